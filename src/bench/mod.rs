@@ -1,0 +1,1 @@
+//! Benchmarks: the seed experiments and local-method comparisons. (In progress.)

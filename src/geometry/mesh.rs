@@ -1,0 +1,163 @@
+//! Triangle meshes (a boundary representation with triangular, hence convex, faces).
+
+use super::GeometryError;
+use nalgebra::{Point3, Vector3};
+use std::collections::HashMap;
+
+/// A triangle mesh: vertices and counter-clockwise (seen from outside) triangles.
+///
+/// Meshes loaded from OMPL.app's files are triangle *soups*: double-sided, open, non-manifold.
+/// Such a mesh is a surface only; [`TriMesh::is_closed`] tells whether it bounds a solid, so
+/// that containment (one body wholly inside the other) can be decided (CHS §2.1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions.
+    pub vertices: Vec<Point3<f64>>,
+    /// Triangles as vertex indices, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl TriMesh {
+    /// Validates indices and coordinates and drops triangles of zero area.
+    pub fn new(
+        vertices: Vec<Point3<f64>>,
+        triangles: Vec<[u32; 3]>,
+    ) -> Result<TriMesh, GeometryError> {
+        if let Some(i) = vertices
+            .iter()
+            .position(|v| !v.coords.iter().all(|c| c.is_finite()))
+        {
+            return Err(GeometryError::NotFinite(i));
+        }
+        for (face, t) in triangles.iter().enumerate() {
+            if let Some(&index) = t.iter().find(|&&i| i as usize >= vertices.len()) {
+                return Err(GeometryError::BadIndex {
+                    face,
+                    index: index as usize,
+                    count: vertices.len(),
+                });
+            }
+        }
+        let triangles: Vec<[u32; 3]> = triangles
+            .into_iter()
+            .filter(|t| {
+                let [a, b, c] = t.map(|i| vertices[i as usize]);
+                (b - a).cross(&(c - a)).norm_squared() > 0.0
+            })
+            .collect();
+        if triangles.is_empty() {
+            return Err(GeometryError::Empty);
+        }
+        Ok(TriMesh {
+            vertices,
+            triangles,
+        })
+    }
+
+    /// An axis-aligned box centred at the origin, outward-oriented and closed.
+    pub fn cuboid(half_extents: [f64; 3]) -> Result<TriMesh, GeometryError> {
+        if !half_extents.iter().all(|h| h.is_finite() && *h > 0.0) {
+            return Err(GeometryError::NotPositive("box half extents"));
+        }
+        let [x, y, z] = half_extents;
+        let vertices = (0..8)
+            .map(|i| {
+                Point3::new(
+                    if i & 1 == 0 { -x } else { x },
+                    if i & 2 == 0 { -y } else { y },
+                    if i & 4 == 0 { -z } else { z },
+                )
+            })
+            .collect();
+        let triangles = vec![
+            [0, 2, 3],
+            [0, 3, 1], // -z
+            [4, 5, 7],
+            [4, 7, 6], // +z
+            [0, 1, 5],
+            [0, 5, 4], // -y
+            [2, 6, 7],
+            [2, 7, 3], // +y
+            [0, 4, 6],
+            [0, 6, 2], // -x
+            [1, 3, 7],
+            [1, 7, 5], // +x
+        ];
+        TriMesh::new(vertices, triangles)
+    }
+
+    /// The mesh moved by `offset`.
+    pub fn translated(mut self, offset: Vector3<f64>) -> TriMesh {
+        self.vertices.iter_mut().for_each(|v| *v += offset);
+        self
+    }
+
+    /// The three corners of triangle `i`.
+    pub fn triangle(&self, i: usize) -> [Point3<f64>; 3] {
+        self.triangles[i].map(|k| self.vertices[k as usize])
+    }
+
+    /// Axis-aligned bounding box `(min, max)` of the vertices used by triangles.
+    pub fn aabb(&self) -> (Point3<f64>, Point3<f64>) {
+        let mut lo = Point3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+        let mut hi = -lo;
+        for t in &self.triangles {
+            for &k in t {
+                let v = self.vertices[k as usize];
+                lo = lo.inf(&v);
+                hi = hi.sup(&v);
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Largest distance of a vertex from the origin (the body frame's reference point).
+    pub fn radius(&self) -> f64 {
+        self.triangles
+            .iter()
+            .flatten()
+            .map(|&k| self.vertices[k as usize].coords.norm())
+            .fold(0.0, f64::max)
+    }
+
+    /// Whether the mesh bounds a solid: every undirected edge is used by an even, non-zero
+    /// number of triangles, and for each edge the two directions occur equally often (every
+    /// oriented edge is matched by its reverse). Open and double-sided soups fail this unless
+    /// their duplicates happen to pair up.
+    pub fn is_closed(&self) -> bool {
+        let mut balance: HashMap<(u32, u32), i64> = HashMap::new();
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                let key = (a.min(b), a.max(b));
+                *balance.entry(key).or_default() += if a < b { 1 } else { -1 };
+            }
+        }
+        !balance.is_empty() && balance.values().all(|&v| v == 0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cuboid_is_closed_and_outward() {
+        let m = TriMesh::cuboid([1.0, 2.0, 3.0]).unwrap();
+        assert!(m.is_closed());
+        // outward: the signed volume is positive
+        let vol: f64 = (0..m.triangles.len())
+            .map(|i| {
+                let [a, b, c] = m.triangle(i);
+                a.coords.dot(&b.coords.cross(&c.coords)) / 6.0
+            })
+            .sum();
+        assert!((vol - 48.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_index_is_an_error() {
+        let e = TriMesh::new(vec![Point3::origin(); 3], vec![[0, 1, 7]]).unwrap_err();
+        assert!(matches!(e, GeometryError::BadIndex { index: 7, .. }));
+    }
+}

@@ -1,0 +1,30 @@
+//! # viaroad
+//!
+//! Multi-query motion planning: a probabilistic roadmap in the style of Overmars and Švestka
+//! whose local method is the recursive **via-point planner** of Chadzelek, Hotz and Schömer
+//! (*Heuristic Motion Planning with Many Degrees of Freedom*, 1995; cited as CHS with its
+//! section numbers).
+//!
+//! The local method never samples along a motion: it asks the scene for *all* collision
+//! intervals of a straight motion and dodges through via points on a borderline. The via
+//! points and certified free segments it discovers are fed back into the roadmap.
+//!
+//! | module | concept |
+//! |---|---|
+//! | [`interval`] | sorted disjoint interval lists: the oracle's answers |
+//! | [`space`] | R^n, SE(2), SE(3): distance, sampling, DOF groups, straight motions |
+//! | [`oracle`] | collision intervals of a motion (discs, polygons, polyhedra, sampled) |
+//! | [`local`] | local methods: straight line, via-point planner, path shortening |
+//! | [`roadmap`] | learning, persistence, queries |
+//! | [`scene`] | TOML scenes, OMPL.app problems, meshes |
+//! | [`bench`] | the seed's experiments and local-method benchmarks |
+#![warn(missing_docs)]
+
+pub mod bench;
+pub mod geometry;
+pub mod interval;
+pub mod local;
+pub mod oracle;
+pub mod roadmap;
+pub mod scene;
+pub mod space;

@@ -1,0 +1,204 @@
+//! Local methods: connect two configurations by a collision-free path, or fail quickly.
+//!
+//! In Overmars–Švestka's learning approach the local method must be deterministic and
+//! symmetric and may fail "now and then" (CHS §1.6). [`StraightLine`] asks one question per DOF
+//! group; [`ViaPoint`] is the recursive via-point planner of CHS §1.3–1.5, which also reports
+//! what it learnt on the way — via points and certified free segments — so the roadmap can keep
+//! them ([`Discoveries`]).
+//!
+//! A *direct path* between two configurations changes one DOF group at a time in cyclic order
+//! (CHS §1.5, Fig 1.6): in R^n that is one straight segment, for a rigid body a translation and
+//! a rotation about one fixed axis. Every path a local method returns is a list of corners
+//! joined by such single-group straight motions.
+
+pub mod shorten;
+pub mod spec;
+pub mod straight;
+pub mod viapoint;
+
+pub use shorten::shorten;
+pub use spec::LocalSpec;
+pub use straight::StraightLine;
+pub use viapoint::{ViaPoint, ViaPointOptions};
+
+use crate::interval::IntervalList;
+use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::space::{Config, Group, Motion, Space};
+use serde::{Deserialize, Serialize};
+
+/// How a connection attempt ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Outcome {
+    /// A collision-free path was found.
+    Connected,
+    /// The search ran out of alternatives without ever reaching its depth limit: with these
+    /// settings no deeper search would help.
+    Blocked,
+    /// The depth limit (or the call budget) cut the search off.
+    DepthExhausted,
+}
+
+/// What a local method learnt about free space while searching (CHS §1.6: "the via points and
+/// direct connections it discovers correspond to nodes and edges").
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Discoveries {
+    /// Free configurations met: index 0 is the start, 1 the goal, then via points and corners
+    /// of direct paths in the order they were found.
+    pub configs: Vec<Config>,
+    /// Pairs of indices into `configs` joined by a certified free single-group straight motion.
+    pub free_segments: Vec<(u32, u32)>,
+    /// Indices into `configs` of the via points (the rest beyond 0 and 1 are corners).
+    pub via_points: Vec<u32>,
+}
+
+impl Discoveries {
+    /// Starts a record for a connection from `a` to `z`.
+    pub fn new(a: &[f64], z: &[f64]) -> Self {
+        Discoveries {
+            configs: vec![a.to_vec(), z.to_vec()],
+            free_segments: Vec::new(),
+            via_points: Vec::new(),
+        }
+    }
+
+    /// Adds a configuration and returns its index.
+    pub fn add(&mut self, q: Config) -> u32 {
+        self.configs.push(q);
+        (self.configs.len() - 1) as u32
+    }
+}
+
+/// One borderline the via-point planner asked about, kept for pictures and debugging.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Borderline {
+    /// The blocked straight motion the borderline divides.
+    pub blocked: Motion,
+    /// Its collision intervals.
+    pub collisions: IntervalList,
+    /// The borderline's base point on the blocked motion.
+    pub base: Config,
+    /// The unbounded motion asked about (a line or a full turn through `base`).
+    pub motion: Motion,
+    /// Free sections of the borderline.
+    pub free: IntervalList,
+    /// The via points taken from it, in order of valuation.
+    pub via_points: Vec<Config>,
+}
+
+/// The result of one connection attempt.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Connection {
+    /// How the attempt ended.
+    pub outcome: Outcome,
+    /// The path from start to goal (corners joined by single-group straight motions) when
+    /// connected; empty otherwise.
+    pub path: Vec<Config>,
+    /// Recursion depth of the path found (0 = the direct path was free); for a failure, the
+    /// deepest limit tried.
+    pub depth: u32,
+    /// Oracle work spent on this attempt.
+    pub counts: CallCounts,
+    /// Via points and certified free segments met, also on failure.
+    pub discoveries: Discoveries,
+    /// Borderlines asked about, if the method was asked to keep them.
+    pub borderlines: Vec<Borderline>,
+}
+
+impl Connection {
+    /// Whether a path was found.
+    pub fn is_connected(&self) -> bool {
+        self.outcome == Outcome::Connected
+    }
+}
+
+/// A local method (OS94; CHS §1.6).
+///
+/// # Contract
+/// - `a` and `z` are valid, collision-free configurations of `space` (the method does not
+///   re-check them) and `oracle` answers for that space.
+/// - Deterministic: the same inputs give the same [`Connection`], whatever thread runs it.
+/// - Every oracle question is counted in [`Connection::counts`].
+/// - Must be thread safe.
+pub trait LocalMethod: Send + Sync {
+    /// The method and its parameters as a spec string (see [`LocalSpec`]); recorded with
+    /// roadmaps and benchmarks.
+    fn spec(&self) -> String;
+
+    /// Tries to connect `a` to `z`.
+    fn connect(
+        &self,
+        space: &Space,
+        oracle: &dyn CollisionOracle,
+        a: &[f64],
+        z: &[f64],
+    ) -> Result<Connection, OracleError>;
+
+    /// The DOF groups this method's paths change one at a time (see [`Space::groups`]).
+    fn groups(&self, space: &Space) -> Vec<Group> {
+        space.groups(false)
+    }
+}
+
+/// The pieces of the direct path from `a` to `z` that changes the groups in cyclic order
+/// starting at group `first`: the motions and the corner each one ends at. Groups in which `a`
+/// and `z` already agree are skipped.
+pub fn direct_pieces(
+    space: &Space,
+    groups: &[Group],
+    first: usize,
+    a: &[f64],
+    z: &[f64],
+) -> Vec<(Motion, Config)> {
+    let mut pieces = Vec::new();
+    let mut cur = a.to_vec();
+    for k in 0..groups.len() {
+        let g = &groups[(first + k) % groups.len()];
+        if space.same_in_group(&cur, z, g) {
+            continue;
+        }
+        let motion = space.group_motion(&cur, z, g);
+        let next = space.with_group_of(&cur, z, g);
+        pieces.push((motion, next.clone()));
+        cur = next;
+    }
+    pieces
+}
+
+/// Length of the direct path from `a` to `z` (sum over the groups it changes; Manhattan-like
+/// when the groups are single axes).
+pub fn direct_length(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> f64 {
+    direct_pieces(space, groups, 0, a, z)
+        .iter()
+        .map(|(m, _)| space.motion_length(m, 0.0, 1.0))
+        .sum()
+}
+
+/// Checks the direct path from `a` to `z` (yes/no, one counted call per piece, stopping at the
+/// first blocked piece). Returns the corners after `a` if the whole path is free.
+pub fn check_direct(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    a: &[f64],
+    z: &[f64],
+    counts: &mut CallCounts,
+) -> Result<Option<Vec<Config>>, OracleError> {
+    let mut corners = Vec::new();
+    for (motion, end) in direct_pieces(space, groups, 0, a, z) {
+        if !oracle.check_motion(&motion, counts)? {
+            return Ok(None);
+        }
+        corners.push(end);
+    }
+    if corners.is_empty() {
+        corners.push(z.to_vec());
+    }
+    Ok(Some(corners))
+}
+
+/// Total length of a path of corners joined by direct paths.
+pub fn path_length(space: &Space, groups: &[Group], path: &[Config]) -> f64 {
+    path.windows(2)
+        .map(|w| direct_length(space, groups, &w[0], &w[1]))
+        .sum()
+}

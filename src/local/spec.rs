@@ -1,0 +1,366 @@
+//! Local methods named by spec strings, for the command line, roadmap headers and benchmarks.
+//!
+//! ```text
+//! straight
+//! sampled:res=0.01
+//! viapoint:depth=deepen-reuse,max=6,beta=0.667,via=2,base=centre-nearest
+//! viapoint:beta=0,0.5,0.667,1          (a grid: one spec per value)
+//! ```
+//!
+//! Keys of `viapoint`: `depth` (`N` | `deepen` | `deepen-reuse`), `max` (deepening limit),
+//! `beta`, `via` (`N` | `all`), `base` (see [`BasePoint::name`]), `dirs` (`basis` | `axes` |
+//! `random:N`), `rotations`, `split` (`true` | `false`), `dodge` (`true` | `false`), `search`
+//! (`dfs` | `bfs`), `calls` (`N` | `none`), `seed`.
+
+use super::viapoint::{BasePoint, Depth, Directions, Search, ViaLimit, ViaPoint, ViaPointOptions};
+use super::{LocalMethod, StraightLine};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// A local method and its parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum LocalSpec {
+    /// [`StraightLine::exact`].
+    Straight,
+    /// [`StraightLine::sampled`] at a resolution.
+    Sampled {
+        /// Fraction of the space's extent between checked states.
+        resolution: f64,
+    },
+    /// [`ViaPoint`] with options.
+    ViaPoint(ViaPointOptions),
+}
+
+impl Default for LocalSpec {
+    fn default() -> Self {
+        LocalSpec::ViaPoint(ViaPointOptions::default())
+    }
+}
+
+/// A spec string that does not parse.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("bad local method spec `{spec}`: {reason}")]
+pub struct SpecError {
+    /// The spec given.
+    pub spec: String,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+impl LocalSpec {
+    /// Builds the method.
+    pub fn build(&self) -> Box<dyn LocalMethod> {
+        match self {
+            LocalSpec::Straight => Box::new(StraightLine::exact()),
+            LocalSpec::Sampled { resolution } => Box::new(StraightLine::sampled(*resolution)),
+            LocalSpec::ViaPoint(o) => Box::new(ViaPoint::new(o.clone())),
+        }
+    }
+
+    /// Parses a spec that may hold grids of values (`beta=0,0.5,1`) and returns one spec per
+    /// combination, in the order the values were given (last key varies fastest).
+    pub fn parse_grid(s: &str) -> Result<Vec<LocalSpec>, SpecError> {
+        let err = |reason: String| SpecError {
+            spec: s.to_string(),
+            reason,
+        };
+        let (name, rest) = match s.split_once(':') {
+            Some((n, r)) => (n.trim(), r.trim()),
+            None => (s.trim(), ""),
+        };
+        // key=value tokens; a token without '=' adds another value to the previous key
+        let mut keys: Vec<(String, Vec<String>)> = Vec::new();
+        for tok in rest.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+            match tok.split_once('=') {
+                Some((k, v)) => keys.push((k.trim().to_string(), vec![v.trim().to_string()])),
+                None => match keys.last_mut() {
+                    Some((_, vals)) => vals.push(tok.to_string()),
+                    None => return Err(err(format!("`{tok}` is not key=value"))),
+                },
+            }
+        }
+        let mut combos: Vec<Vec<(String, String)>> = vec![Vec::new()];
+        for (k, vals) in &keys {
+            combos = combos
+                .into_iter()
+                .flat_map(|c| {
+                    vals.iter().map(move |v| {
+                        let mut c = c.clone();
+                        c.push((k.clone(), v.clone()));
+                        c
+                    })
+                })
+                .collect();
+        }
+        combos
+            .iter()
+            .map(|kv| Self::from_pairs(name, kv).map_err(err))
+            .collect()
+    }
+
+    fn from_pairs(name: &str, kv: &[(String, String)]) -> Result<LocalSpec, String> {
+        let num = |k: &str, v: &str| -> Result<f64, String> {
+            v.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| format!("{k}={v} is not a number"))
+        };
+        let int = |k: &str, v: &str| -> Result<u64, String> {
+            v.parse::<u64>()
+                .map_err(|_| format!("{k}={v} is not a whole number"))
+        };
+        let boolean = |k: &str, v: &str| -> Result<bool, String> {
+            v.parse::<bool>()
+                .map_err(|_| format!("{k}={v} is not true or false"))
+        };
+        match name {
+            "straight" => {
+                if let Some((k, _)) = kv.first() {
+                    return Err(format!("straight takes no parameters (got {k})"));
+                }
+                Ok(LocalSpec::Straight)
+            }
+            "sampled" => {
+                let mut resolution = crate::oracle::sampled::OMPL_DEFAULT_RESOLUTION;
+                for (k, v) in kv {
+                    match k.as_str() {
+                        "res" | "resolution" => resolution = num(k, v)?,
+                        _ => return Err(format!("unknown key `{k}` for sampled")),
+                    }
+                }
+                if resolution <= 0.0 {
+                    return Err("res must be positive".into());
+                }
+                Ok(LocalSpec::Sampled { resolution })
+            }
+            "viapoint" | "via" => {
+                let mut o = ViaPointOptions::default();
+                let mut depth_kind: Option<String> = None;
+                let mut max: Option<u32> = None;
+                for (k, v) in kv {
+                    match k.as_str() {
+                        "depth" => depth_kind = Some(v.clone()),
+                        "max" => max = Some(int(k, v)? as u32),
+                        "beta" => {
+                            o.beta = parse_fraction(v)
+                                .ok_or_else(|| format!("beta={v} is not a number"))?;
+                            if o.beta < 0.0 {
+                                return Err("beta must be ≥ 0".into());
+                            }
+                        }
+                        "via" => {
+                            o.via = match v.as_str() {
+                                "all" => ViaLimit::All,
+                                _ => match int(k, v)? {
+                                    0 => return Err("via must be ≥ 1 or all".into()),
+                                    n => ViaLimit::Best(n as usize),
+                                },
+                            }
+                        }
+                        "base" => {
+                            o.base_point = BasePoint::from_name(v).ok_or_else(|| {
+                                let names: Vec<&str> =
+                                    BasePoint::ALL.iter().map(|b| b.name()).collect();
+                                format!("base={v}; expected one of {}", names.join(", "))
+                            })?
+                        }
+                        "dirs" => {
+                            o.directions = match v.as_str() {
+                                "axes" => Directions::Basis {
+                                    axis_preference: true,
+                                    rotations: rotations_of(&o.directions),
+                                },
+                                "basis" => Directions::Basis {
+                                    axis_preference: false,
+                                    rotations: rotations_of(&o.directions),
+                                },
+                                r => match r.strip_prefix("random:") {
+                                    Some(n) => Directions::Random {
+                                        count: int(k, n)?.max(1) as u32,
+                                    },
+                                    None => {
+                                        return Err(format!(
+                                            "dirs={v}; expected axes, basis or random:N"
+                                        ))
+                                    }
+                                },
+                            }
+                        }
+                        "rotations" => {
+                            let r = int(k, v)? as u32;
+                            if let Directions::Basis { rotations, .. } = &mut o.directions {
+                                *rotations = r;
+                            }
+                        }
+                        "split" => o.split_axes = boolean(k, v)?,
+                        "dodge" => o.dodge_other_groups = boolean(k, v)?,
+                        "search" => {
+                            o.search = match v.as_str() {
+                                "dfs" | "depth-first" => Search::DepthFirst,
+                                "bfs" | "breadth-first" => Search::BreadthFirst,
+                                _ => return Err(format!("search={v}; expected dfs or bfs")),
+                            }
+                        }
+                        "calls" => o.max_calls = if v == "none" { None } else { Some(int(k, v)?) },
+                        "seed" => o.seed = int(k, v)?,
+                        _ => return Err(format!("unknown key `{k}` for viapoint")),
+                    }
+                }
+                let default_max = o.depth.max();
+                o.depth = match depth_kind.as_deref() {
+                    None => match o.depth {
+                        Depth::Fixed(_) => o.depth,
+                        Depth::Deepen { .. } => Depth::Deepen {
+                            max: max.unwrap_or(default_max),
+                        },
+                        Depth::DeepenReuse { .. } => Depth::DeepenReuse {
+                            max: max.unwrap_or(default_max),
+                        },
+                    },
+                    Some("deepen") => Depth::Deepen {
+                        max: max.unwrap_or(default_max),
+                    },
+                    Some("deepen-reuse") | Some("reuse") => Depth::DeepenReuse {
+                        max: max.unwrap_or(default_max),
+                    },
+                    Some(n) => Depth::Fixed(n.parse::<u32>().map_err(|_| {
+                        format!("depth={n}; expected a number, deepen or deepen-reuse")
+                    })?),
+                };
+                Ok(LocalSpec::ViaPoint(o))
+            }
+            _ => Err(format!(
+                "unknown method `{name}`; expected straight, sampled or viapoint"
+            )),
+        }
+    }
+}
+
+fn rotations_of(d: &Directions) -> u32 {
+    match d {
+        Directions::Basis { rotations, .. } => *rotations,
+        Directions::Random { .. } => 1,
+    }
+}
+
+/// `0.667`, or a fraction such as `2/3`.
+fn parse_fraction(v: &str) -> Option<f64> {
+    match v.split_once('/') {
+        Some((a, b)) => {
+            let (a, b) = (a.trim().parse::<f64>().ok()?, b.trim().parse::<f64>().ok()?);
+            (b != 0.0).then(|| a / b).filter(|x| x.is_finite())
+        }
+        None => v.parse::<f64>().ok().filter(|x| x.is_finite()),
+    }
+}
+
+impl FromStr for LocalSpec {
+    type Err = SpecError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let mut all = Self::parse_grid(s)?;
+        if all.len() != 1 {
+            return Err(SpecError {
+                spec: s.into(),
+                reason: format!(
+                    "names {} methods (a grid); give one value per key",
+                    all.len()
+                ),
+            });
+        }
+        Ok(all.remove(0))
+    }
+}
+
+impl fmt::Display for LocalSpec {
+    /// The canonical spec string, naming every parameter; parsing it gives the same spec.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LocalSpec::Straight => write!(f, "straight"),
+            LocalSpec::Sampled { resolution } => write!(f, "sampled:res={resolution}"),
+            LocalSpec::ViaPoint(o) => {
+                let (depth, max) = match o.depth {
+                    Depth::Fixed(k) => (k.to_string(), None),
+                    Depth::Deepen { max } => ("deepen".to_string(), Some(max)),
+                    Depth::DeepenReuse { max } => ("deepen-reuse".to_string(), Some(max)),
+                };
+                write!(f, "viapoint:depth={depth}")?;
+                if let Some(m) = max {
+                    write!(f, ",max={m}")?;
+                }
+                write!(f, ",beta={}", o.beta)?;
+                match o.via {
+                    ViaLimit::All => write!(f, ",via=all")?,
+                    ViaLimit::Best(n) => write!(f, ",via={n}")?,
+                }
+                write!(f, ",base={}", o.base_point.name())?;
+                match o.directions {
+                    Directions::Basis {
+                        axis_preference,
+                        rotations,
+                    } => write!(
+                        f,
+                        ",dirs={},rotations={rotations}",
+                        if axis_preference { "axes" } else { "basis" }
+                    )?,
+                    Directions::Random { count } => write!(f, ",dirs=random:{count}")?,
+                }
+                write!(f, ",split={},dodge={}", o.split_axes, o.dodge_other_groups)?;
+                write!(
+                    f,
+                    ",search={}",
+                    match o.search {
+                        Search::DepthFirst => "dfs",
+                        Search::BreadthFirst => "bfs",
+                    }
+                )?;
+                match o.max_calls {
+                    None => write!(f, ",calls=none")?,
+                    Some(c) => write!(f, ",calls={c}")?,
+                }
+                write!(f, ",seed={}", o.seed)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn display_round_trips() {
+        for s in [
+            "straight",
+            "sampled:res=0.02",
+            "viapoint:depth=deepen-reuse,beta=2/3,via=2",
+            "viapoint:depth=9,via=all,base=centre-first,search=bfs,calls=none",
+            "viapoint:dirs=random:4,split=true,seed=7",
+        ] {
+            let spec: LocalSpec = s.parse().unwrap();
+            let again: LocalSpec = spec.to_string().parse().unwrap();
+            assert_eq!(spec, again, "{s}");
+        }
+    }
+
+    #[test]
+    fn grids_expand() {
+        let all = LocalSpec::parse_grid("viapoint:beta=0,0.5,1,via=2,all").unwrap();
+        assert_eq!(all.len(), 6);
+        assert!("viapoint:beta=0,1".parse::<LocalSpec>().is_err());
+    }
+
+    #[test]
+    fn bad_specs_say_why() {
+        for s in [
+            "curved",
+            "viapoint:beta=x",
+            "viapoint:via=0",
+            "sampled:res=-1",
+            "viapoint:foo=1",
+            "straight:x=1",
+        ] {
+            assert!(s.parse::<LocalSpec>().is_err(), "{s}");
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! A point among discs (balls in R^n): the seed's own experiment (CHS Appendix A.1).
+//!
+//! The collision set of a straight motion `o + t·d` with a closed ball `|x - c| ≤ r` is the
+//! solution set of one quadratic inequality in `t`, hence at most one interval per ball; the
+//! answer is the union over all balls.
+
+use super::{CallCounts, CollisionOracle, OracleError};
+use crate::interval::{Interval, IntervalList};
+use crate::space::{Change, Motion};
+
+/// Closed balls in R^n (discs for n = 2) as obstacles for a point robot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Discs {
+    dim: usize,
+    /// Centres, `dim` coordinates each, flattened.
+    centres: Vec<f64>,
+    radii: Vec<f64>,
+}
+
+impl Discs {
+    /// Balls with the given centres (all of dimension `dim`) and radii. The caller (the scene
+    /// loader) has checked that every radius is non-negative and every number finite.
+    pub fn new(dim: usize, centres: &[Vec<f64>], radii: &[f64]) -> Discs {
+        debug_assert_eq!(centres.len(), radii.len());
+        debug_assert!(centres.iter().all(|c| c.len() == dim));
+        Discs {
+            dim,
+            centres: centres.iter().flatten().copied().collect(),
+            radii: radii.to_vec(),
+        }
+    }
+
+    /// Number of balls.
+    pub fn len(&self) -> usize {
+        self.radii.len()
+    }
+
+    /// Whether there are no balls.
+    pub fn is_empty(&self) -> bool {
+        self.radii.is_empty()
+    }
+
+    /// Centre of ball `i`.
+    pub fn centre(&self, i: usize) -> &[f64] {
+        &self.centres[i * self.dim..(i + 1) * self.dim]
+    }
+
+    /// Radius of ball `i`.
+    pub fn radius(&self, i: usize) -> f64 {
+        self.radii[i]
+    }
+
+    /// Dimension of the space the balls live in.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// The parameter interval in which `o + t·d` lies in ball `i`, unclipped.
+    fn ball_interval(&self, i: usize, o: &[f64], d: &[f64]) -> Option<Interval> {
+        let c = self.centre(i);
+        let r = self.radii[i];
+        let (mut a, mut b, mut e) = (0.0, 0.0, 0.0);
+        for k in 0..self.dim {
+            let w = o[k] - c[k];
+            a += d[k] * d[k];
+            b += d[k] * w;
+            e += w * w;
+        }
+        let e = e - r * r;
+        if a == 0.0 {
+            // not moving: inside for all t or never
+            return (e <= 0.0).then_some(Interval::ALL);
+        }
+        // a t² + 2 b t + e ≤ 0
+        let disc = b * b - a * e;
+        if disc < 0.0 {
+            return None;
+        }
+        let s = disc.sqrt();
+        // numerically stable roots: q = -(b + sign(b)·s), roots q/a and e/q
+        let q = -(b + s.copysign(b));
+        let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
+        Some(Interval {
+            lo: t1.min(t2),
+            hi: t1.max(t2),
+        })
+    }
+
+    fn linear_delta<'m>(&self, motion: &'m Motion) -> Result<&'m [f64], OracleError> {
+        match &motion.change {
+            Change::Linear(d) if d.len() == self.dim && motion.origin.len() == self.dim => Ok(d),
+            Change::Linear(d) => Err(OracleError::Unsupported(format!(
+                "a {}-coordinate motion among {}-dimensional discs",
+                d.len(),
+                self.dim
+            ))),
+            Change::Rotation { .. } => Err(OracleError::Unsupported(
+                "a rotation of a point robot".into(),
+            )),
+        }
+    }
+}
+
+impl CollisionOracle for Discs {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        let d = self.linear_delta(motion)?;
+        counts.pairs_tested += self.radii.len() as u64;
+        let hits: Vec<Interval> = (0..self.radii.len())
+            .filter_map(|i| self.ball_interval(i, &motion.origin, d))
+            .filter_map(|iv| iv.meet(&motion.range))
+            .collect();
+        Ok(IntervalList::from_unsorted(hits))
+    }
+
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        counts.pairs_tested += self.radii.len() as u64;
+        (0..self.radii.len()).any(|i| {
+            let c = self.centre(i);
+            let d2: f64 = q.iter().zip(c).map(|(x, y)| (x - y) * (x - y)).sum();
+            d2 <= self.radii[i] * self.radii[i]
+        })
+    }
+
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        let d = self.linear_delta(motion)?;
+        for i in 0..self.radii.len() {
+            counts.pairs_tested += 1;
+            if self
+                .ball_interval(i, &motion.origin, d)
+                .is_some_and(|iv| iv.meet(&motion.range).is_some())
+            {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segment_through_a_disc_centre() {
+        let discs = Discs::new(2, &[vec![0.5, 0.5]], &[0.1]);
+        let m = Motion::segment(vec![0.0, 0.5], Change::Linear(vec![1.0, 0.0]));
+        let l = discs.intervals(&m, &mut CallCounts::default()).unwrap();
+        assert_eq!(l.len(), 1);
+        assert!(
+            (l.as_slice()[0].lo - 0.4).abs() < 1e-15 && (l.as_slice()[0].hi - 0.6).abs() < 1e-15
+        );
+        assert!(!discs
+            .motion_is_free(&m, &mut CallCounts::default())
+            .unwrap());
+    }
+
+    #[test]
+    fn tangent_line_touches_in_one_point() {
+        let discs = Discs::new(2, &[vec![0.0, 1.0]], &[1.0]);
+        let m = Motion::line(vec![-3.0, 0.0], Change::Linear(vec![1.0, 0.0]));
+        let l = discs.intervals(&m, &mut CallCounts::default()).unwrap();
+        assert_eq!(l.len(), 1);
+        assert!((l.as_slice()[0].lo - 3.0).abs() < 1e-12);
+        assert!(l.as_slice()[0].length() < 1e-7);
+    }
+
+    #[test]
+    fn rotation_is_unsupported() {
+        let discs = Discs::new(2, &[], &[]);
+        let m = Motion::segment(
+            vec![0.0, 0.0],
+            Change::Rotation {
+                axis: [0.0, 0.0, 1.0],
+                angle: 1.0,
+            },
+        );
+        assert!(discs.intervals(&m, &mut CallCounts::default()).is_err());
+    }
+}

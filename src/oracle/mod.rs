@@ -1,0 +1,283 @@
+//! Collision oracles: *all* collision intervals of a straight motion (CHS §1.2, Chapter 2).
+//!
+//! The via-point planner never samples along a motion: it asks an oracle for every parameter
+//! interval in which the moving robot collides (*intersectSegment* for a bounded motion,
+//! *intersectLine* for an unbounded one or a full turn) and dodges through the free sections.
+//! The number of such calls is the seed's cost measure, so every call is counted
+//! ([`CallCounts`]): callers go through [`CountedOracle`], which counts and then asks the
+//! oracle.
+//!
+//! Implementations:
+//! - [`discs::Discs`]: a point among discs (balls in R^n), analytic (CHS Appendix A.1);
+//! - [`polygons`]: a polygonal robot among polygons in SE(2);
+//! - [`polyhedra`]: a polyhedral robot among polyhedra in SE(3) (CHS Chapter 2);
+//! - [`sampled::Sampled`]: checks states at a resolution like OMPL's `DiscreteMotionValidator`
+//!   — the baseline the benchmarks compare against, never the default;
+//! - [`Bounded`]: adds "outside the bounds is obstacle" to any of them.
+
+pub mod discs;
+pub mod polygons;
+pub mod polyhedra;
+pub mod sampled;
+
+use crate::interval::{Interval, IntervalList};
+use crate::space::{Motion, Space, Sweep};
+use serde::{Deserialize, Serialize};
+use std::ops::{Add, AddAssign};
+
+/// What an oracle cannot answer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OracleError {
+    /// The oracle cannot compute intervals for this kind of motion (for example a simultaneous
+    /// translation and rotation asked of an exact polyhedral oracle).
+    #[error("unsupported motion: {0}")]
+    Unsupported(String),
+}
+
+/// Counts of oracle work: the seed's cost measure (CHS A.1.3) and more.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct CallCounts {
+    /// Bounded motions asked about (intersectSegment, and yes/no motion checks).
+    pub segment_calls: u64,
+    /// Unbounded motions and full turns asked about (intersectLine).
+    pub line_calls: u64,
+    /// Single configurations checked.
+    pub state_checks: u64,
+    /// Primitive pairs (disc, edge–face, triangle–triangle …) an exact oracle actually
+    /// evaluated after culling; states a sampled oracle checked inside a motion.
+    pub pairs_tested: u64,
+}
+
+impl CallCounts {
+    /// Segment plus line calls: the seed's "intersect calls".
+    pub fn intersect_calls(&self) -> u64 {
+        self.segment_calls + self.line_calls
+    }
+}
+
+impl AddAssign for CallCounts {
+    fn add_assign(&mut self, o: CallCounts) {
+        self.segment_calls += o.segment_calls;
+        self.line_calls += o.line_calls;
+        self.state_checks += o.state_checks;
+        self.pairs_tested += o.pairs_tested;
+    }
+}
+
+impl Add for CallCounts {
+    type Output = CallCounts;
+    fn add(mut self, o: CallCounts) -> CallCounts {
+        self += o;
+        self
+    }
+}
+
+impl std::iter::Sum for CallCounts {
+    fn sum<I: Iterator<Item = CallCounts>>(iter: I) -> CallCounts {
+        iter.fold(CallCounts::default(), Add::add)
+    }
+}
+
+/// A scene's collision test, asked about whole motions.
+///
+/// # Contract
+/// - [`intervals`](Self::intervals) returns exactly the closed set of `t ∈ motion.range` at
+///   which `motion.at(t)` collides (touching counts as collision), as a sorted list clipped to
+///   `motion.range`. For an unbounded range, intervals may reach `±∞`. Exact oracles must not
+///   miss any collision; a [`sampled::Sampled`] oracle is an approximation and says so.
+/// - Implementations add the primitive pairs they evaluate to `counts.pairs_tested` but do not
+///   count the call itself: callers use [`CountedOracle`], which does.
+/// - Must be thread safe: learning asks from many threads at once.
+/// - Never panics on a motion of the right dimension; motions it cannot handle get
+///   [`OracleError::Unsupported`].
+pub trait CollisionOracle: Send + Sync {
+    /// All collision intervals of `motion` within `motion.range`.
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError>;
+
+    /// Whether configuration `q` collides.
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool;
+
+    /// Whether the whole of `motion.range` is free. The default asks for all intervals;
+    /// oracles override it to stop at the first collision found.
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        Ok(self.intervals(motion, counts)?.is_empty())
+    }
+}
+
+/// Counting access to an oracle: every question goes through here, so that every call is
+/// counted exactly once (the seed's cost measure).
+pub trait CountedOracle {
+    /// intersectSegment / intersectLine: all collision intervals of `motion`, counted as one
+    /// segment call or one line call.
+    fn intersect(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError>;
+    /// A yes/no check of a bounded motion, counted as one segment call.
+    fn check_motion(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError>;
+    /// Whether `q` is collision-free, counted as one state check.
+    fn is_free(&self, q: &[f64], counts: &mut CallCounts) -> bool;
+}
+
+impl<T: CollisionOracle + ?Sized> CountedOracle for T {
+    fn intersect(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        match motion.sweep {
+            Sweep::Segment => counts.segment_calls += 1,
+            Sweep::Line | Sweep::Turn => counts.line_calls += 1,
+        }
+        self.intervals(motion, counts)
+    }
+
+    fn check_motion(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError> {
+        counts.segment_calls += 1;
+        self.motion_is_free(motion, counts)
+    }
+
+    fn is_free(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        counts.state_checks += 1;
+        !self.collides(q, counts)
+    }
+}
+
+impl<T: CollisionOracle + ?Sized> CollisionOracle for &T {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        (**self).intervals(motion, counts)
+    }
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        (**self).collides(q, counts)
+    }
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        (**self).motion_is_free(motion, counts)
+    }
+}
+
+impl<T: CollisionOracle + ?Sized> CollisionOracle for Box<T> {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        (**self).intervals(motion, counts)
+    }
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        (**self).collides(q, counts)
+    }
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        (**self).motion_is_free(motion, counts)
+    }
+}
+
+impl<T: CollisionOracle + ?Sized> CollisionOracle for std::sync::Arc<T> {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        (**self).intervals(motion, counts)
+    }
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        (**self).collides(q, counts)
+    }
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        (**self).motion_is_free(motion, counts)
+    }
+}
+
+/// Wraps an oracle so that a position outside the space's bounds counts as obstacle.
+///
+/// Unbounded motions are clipped to the part inside the bounds before the inner oracle is
+/// asked, so the inner oracle only ever sees bounded sweeps of translation, and every borderline
+/// has bounded free sections (CHS §1.3 assumes "the whole scene is bounded in some way").
+pub struct Bounded<O> {
+    space: Space,
+    inner: O,
+}
+
+impl<O: CollisionOracle> Bounded<O> {
+    /// `inner` restricted to the bounds of `space`.
+    pub fn new(space: Space, inner: O) -> Self {
+        Bounded { space, inner }
+    }
+
+    /// The wrapped oracle.
+    pub fn inner(&self) -> &O {
+        &self.inner
+    }
+
+    /// The space whose bounds apply.
+    pub fn space(&self) -> &Space {
+        &self.space
+    }
+}
+
+impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        let Some(inside) = self.space.inside_range(motion) else {
+            return Ok(IntervalList::single(motion.range));
+        };
+        let mut outside = IntervalList::new();
+        if inside.lo > motion.range.lo {
+            outside.push(Interval {
+                lo: motion.range.lo,
+                hi: inside.lo,
+            });
+        }
+        let hits = self.inner.intervals(&motion.with_range(inside), counts)?;
+        let mut tail = IntervalList::new();
+        if inside.hi < motion.range.hi {
+            tail.push(Interval {
+                lo: inside.hi,
+                hi: motion.range.hi,
+            });
+        }
+        Ok(outside.union(&hits).union(&tail))
+    }
+
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        !self.space.in_bounds(q) || self.inner.collides(q, counts)
+    }
+
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        match self.space.inside_range(motion) {
+            Some(inside) if inside == motion.range => self.inner.motion_is_free(motion, counts),
+            _ => Ok(false),
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! The roadmap: learning, persistence, queries. (In progress.)

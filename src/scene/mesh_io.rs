@@ -1,0 +1,1 @@
+//! Mesh files: Wavefront OBJ, STL, Collada. (In progress.)

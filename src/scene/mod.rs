@@ -1,0 +1,301 @@
+//! Scenes: bounds, robot, obstacles and queries, from a TOML file or an OMPL.app `.cfg`.
+//!
+//! A scene turns into the oracle for its space ([`Scene::oracle`]): a point among discs in
+//! R^n, a polygonal robot among polygons in SE(2), a polyhedral robot among polyhedra in SE(3),
+//! always with "outside the bounds is obstacle". The file formats are documented in the README.
+
+pub mod mesh_io;
+pub mod ompl_cfg;
+pub mod toml_format;
+
+use crate::geometry::{GeometryError, Polygon, TriMesh};
+use crate::oracle::discs::Discs;
+use crate::oracle::polygons::Polygons;
+use crate::oracle::polyhedra::Polyhedra;
+use crate::oracle::{Bounded, CallCounts, CollisionOracle, CountedOracle};
+use crate::space::{Config, Space, SpaceError, SpaceKind};
+use std::path::{Path, PathBuf};
+
+/// Everything that can be wrong with a scene or a configuration asked of it.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file cannot be read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML / INI / mesh syntax.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// What the parser said.
+        message: String,
+    },
+    /// Well-formed but meaningless (unknown space kind, negative radius, wrong dimension …).
+    #[error("{path}: {message}")]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A mesh that cannot be used.
+    #[error("mesh {path}: {source}")]
+    Geometry {
+        /// The mesh file (or the scene file for inline shapes).
+        path: PathBuf,
+        /// What is wrong.
+        source: GeometryError,
+    },
+    /// A configuration of the wrong shape.
+    #[error("{what}: {source}")]
+    Config {
+        /// Which configuration ("start of query 2" …).
+        what: String,
+        /// What is wrong.
+        source: SpaceError,
+    },
+    /// A configuration outside the bounds.
+    #[error("{what} {config:?} lies outside the scene's bounds")]
+    OutOfBounds {
+        /// Which configuration.
+        what: String,
+        /// The configuration.
+        config: Config,
+    },
+    /// A configuration in collision.
+    #[error("{what} {config:?} is in collision")]
+    InCollision {
+        /// Which configuration.
+        what: String,
+        /// The configuration.
+        config: Config,
+    },
+}
+
+/// The moving body.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Robot {
+    /// A point (R^n scenes).
+    Point,
+    /// The union of polygons in the body frame (SE(2) scenes); the reference point is the origin.
+    Polygons(Vec<Polygon>),
+    /// A triangle mesh in the body frame (SE(3) scenes); the reference point is the origin.
+    Mesh(TriMesh),
+}
+
+/// A fixed obstacle.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Obstacle {
+    /// A closed ball (a disc in the plane).
+    Disc {
+        /// Centre.
+        centre: Vec<f64>,
+        /// Radius (≥ 0).
+        radius: f64,
+    },
+    /// A polygon (SE(2) scenes; boxes become rectangles).
+    Polygon(Polygon),
+    /// A triangle mesh (SE(3) scenes; boxes become closed cuboids).
+    Mesh(TriMesh),
+}
+
+/// A start and a goal.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Query {
+    /// Start configuration.
+    pub start: Config,
+    /// Goal configuration.
+    pub goal: Config,
+}
+
+/// A motion planning scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Name (from the file).
+    pub name: String,
+    /// Configuration space with bounds.
+    pub space: Space,
+    /// The moving body.
+    pub robot: Robot,
+    /// The fixed obstacles.
+    pub obstacles: Vec<Obstacle>,
+    /// The scene's own queries.
+    pub queries: Vec<Query>,
+    /// The file it was read from, if any.
+    pub source: Option<PathBuf>,
+    /// Things worth telling the user (open meshes whose containment cannot be decided …).
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Reads a scene: `.toml` in viaroad's format, `.cfg` as an OMPL.app problem.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some("cfg") => ompl_cfg::load(path),
+            _ => toml_format::load(path),
+        }
+    }
+
+    /// The collision oracle of this scene, with "outside the bounds is obstacle".
+    pub fn oracle(&self) -> Box<dyn CollisionOracle> {
+        match (&self.robot, self.space.kind()) {
+            (Robot::Point, SpaceKind::Euclidean(n)) => {
+                let (centres, radii): (Vec<Vec<f64>>, Vec<f64>) = self
+                    .obstacles
+                    .iter()
+                    .filter_map(|o| match o {
+                        Obstacle::Disc { centre, radius } => Some((centre.clone(), *radius)),
+                        _ => None,
+                    })
+                    .unzip();
+                Box::new(Bounded::new(
+                    self.space.clone(),
+                    Discs::new(n, &centres, &radii),
+                ))
+            }
+            (Robot::Polygons(parts), _) => {
+                let obstacles = self
+                    .obstacles
+                    .iter()
+                    .filter_map(|o| match o {
+                        Obstacle::Polygon(p) => Some(p.clone()),
+                        _ => None,
+                    })
+                    .collect();
+                Box::new(Bounded::new(
+                    self.space.clone(),
+                    Polygons::new(parts.clone(), obstacles),
+                ))
+            }
+            (Robot::Mesh(mesh), _) => {
+                let obstacles = self
+                    .obstacles
+                    .iter()
+                    .filter_map(|o| match o {
+                        Obstacle::Mesh(m) => Some(m.clone()),
+                        _ => None,
+                    })
+                    .collect();
+                Box::new(Bounded::new(
+                    self.space.clone(),
+                    Polyhedra::new(mesh.clone(), obstacles),
+                ))
+            }
+            (Robot::Point, _) => unreachable!("the loaders only pair a point robot with R^n"),
+        }
+    }
+
+    /// Checks a configuration given by a user: shape, finiteness, bounds and freedom from
+    /// collision. Returns it normalised (angle wrapped, quaternion unit length).
+    pub fn check_config(
+        &self,
+        oracle: &dyn CollisionOracle,
+        what: &str,
+        q: &[f64],
+    ) -> Result<Config, SceneError> {
+        self.space.check(q).map_err(|source| SceneError::Config {
+            what: what.to_string(),
+            source,
+        })?;
+        let mut q = q.to_vec();
+        self.space.normalize(&mut q);
+        if !self.space.in_bounds(&q) {
+            return Err(SceneError::OutOfBounds {
+                what: what.to_string(),
+                config: q,
+            });
+        }
+        if !oracle.is_free(&q, &mut CallCounts::default()) {
+            return Err(SceneError::InCollision {
+                what: what.to_string(),
+                config: q,
+            });
+        }
+        Ok(q)
+    }
+
+    /// A 64-bit fingerprint of what decides collisions: space kind, bounds, rotation scale,
+    /// robot and obstacle geometry (not the name, not the queries). A roadmap records it and is
+    /// refused for any other scene.
+    pub fn fingerprint(&self) -> u64 {
+        let mut h = Fnv::new();
+        h.str(&self.space.kind().to_string());
+        h.floats(self.space.lower());
+        h.floats(self.space.upper());
+        h.floats(&[self.space.rotation_scale()]);
+        match &self.robot {
+            Robot::Point => h.str("point"),
+            Robot::Polygons(parts) => {
+                h.str("polygons");
+                parts.iter().for_each(|p| h.polygon(p));
+            }
+            Robot::Mesh(m) => {
+                h.str("mesh");
+                h.mesh(m);
+            }
+        }
+        for o in &self.obstacles {
+            match o {
+                Obstacle::Disc { centre, radius } => {
+                    h.str("disc");
+                    h.floats(centre);
+                    h.floats(&[*radius]);
+                }
+                Obstacle::Polygon(p) => {
+                    h.str("polygon");
+                    h.polygon(p);
+                }
+                Obstacle::Mesh(m) => {
+                    h.str("mesh");
+                    h.mesh(m);
+                }
+            }
+        }
+        h.finish()
+    }
+}
+
+/// FNV-1a, 64 bit: stable across platforms and versions (unlike `std`'s hasher).
+struct Fnv(u64);
+
+impl Fnv {
+    fn new() -> Self {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+    fn bytes(&mut self, b: &[u8]) {
+        for &x in b {
+            self.0 ^= x as u64;
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    fn str(&mut self, s: &str) {
+        self.bytes(&(s.len() as u64).to_le_bytes());
+        self.bytes(s.as_bytes());
+    }
+    fn floats(&mut self, v: &[f64]) {
+        self.bytes(&(v.len() as u64).to_le_bytes());
+        v.iter()
+            .for_each(|x| self.bytes(&x.to_bits().to_le_bytes()));
+    }
+    fn polygon(&mut self, p: &Polygon) {
+        let v: Vec<f64> = p.vertices.iter().flat_map(|v| [v.x, v.y]).collect();
+        self.floats(&v);
+    }
+    fn mesh(&mut self, m: &TriMesh) {
+        let v: Vec<f64> = m.vertices.iter().flat_map(|v| [v.x, v.y, v.z]).collect();
+        self.floats(&v);
+        self.bytes(&(m.triangles.len() as u64).to_le_bytes());
+        m.triangles
+            .iter()
+            .flatten()
+            .for_each(|i| self.bytes(&i.to_le_bytes()));
+    }
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}

@@ -1,0 +1,596 @@
+//! Configuration spaces: R^n with box bounds, SE(2) = R² × S¹ and SE(3) = R³ × S³.
+//!
+//! A space knows distance, interpolation, sampling, its **DOF groups** (CHS §1.5) and how to
+//! build the straight motions the oracle is asked about. Configurations are plain coordinate
+//! vectors in OMPL's layout: `[x₀ … xₙ₋₁]`, `[x, y, θ]`, `[x, y, z, qx, qy, qz, qw]`.
+//!
+//! Only the position is bounded (as in OMPL); outside the bounds counts as obstacle, so every
+//! borderline has bounded free sections (see [`crate::oracle::Bounded`]).
+
+pub mod motion;
+pub mod rotation;
+
+pub use motion::{Change, Motion, Sweep};
+
+use crate::interval::Interval;
+use rand::Rng;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+use std::ops::Range;
+
+/// A configuration: one `f64` per coordinate, in the space's layout.
+pub type Config = Vec<f64>;
+
+/// Which configuration space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum SpaceKind {
+    /// R^n: a point robot (or any robot whose configuration is n independent reals).
+    Euclidean(usize),
+    /// SE(2): `[x, y, θ]`, θ in radians, wrapped into `[-π, π)`.
+    Se2,
+    /// SE(3): `[x, y, z, qx, qy, qz, qw]`, a unit quaternion in OMPL's order.
+    Se3,
+}
+
+impl std::fmt::Display for SpaceKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SpaceKind::Euclidean(2) => write!(f, "r2"),
+            SpaceKind::Euclidean(n) => write!(f, "r{n}"),
+            SpaceKind::Se2 => write!(f, "se2"),
+            SpaceKind::Se3 => write!(f, "se3"),
+        }
+    }
+}
+
+/// What a group of coordinates is (CHS §1.5: a configuration is a tuple of DOF groups, and a
+/// path changes one group at a time).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum GroupKind {
+    /// Coordinates that move linearly (R^n, or the position of a rigid body).
+    Linear,
+    /// One angle (SO(2)): turns about the robot's reference point.
+    Angle,
+    /// A unit quaternion (SO(3)): rotations about axes through the reference point.
+    Quaternion,
+}
+
+/// A group of coordinates that changes together.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Group {
+    /// What the coordinates are.
+    pub kind: GroupKind,
+    /// Their indices in a configuration.
+    pub coords: Range<usize>,
+}
+
+impl Group {
+    /// Number of coordinates.
+    pub fn len(&self) -> usize {
+        self.coords.len()
+    }
+
+    /// Whether the group has no coordinates (never, for groups a space hands out).
+    pub fn is_empty(&self) -> bool {
+        self.coords.is_empty()
+    }
+}
+
+/// Invalid space definitions and configurations.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SpaceError {
+    /// Bounds of the wrong length, NaN, or lower > upper.
+    #[error("invalid bounds: {0}")]
+    Bounds(String),
+    /// A configuration with the wrong number of coordinates.
+    #[error("configuration has {got} coordinates, the {kind} space needs {want}")]
+    Dimension {
+        /// The space.
+        kind: SpaceKind,
+        /// Expected length.
+        want: usize,
+        /// Actual length.
+        got: usize,
+    },
+    /// NaN or infinite coordinate.
+    #[error("configuration coordinate {index} is not a finite number ({value})")]
+    NotFinite {
+        /// Index of the coordinate.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// An SE(3) quaternion of (almost) zero length.
+    #[error("quaternion (qx, qy, qz, qw) has length {0}, cannot be normalised")]
+    Quaternion(f64),
+    /// Rotation scale not positive.
+    #[error("rotation scale must be a positive number, got {0}")]
+    RotationScale(f64),
+}
+
+/// A configuration space with bounds on the position.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Space {
+    kind: SpaceKind,
+    lower: Vec<f64>,
+    upper: Vec<f64>,
+    rotation_scale: f64,
+}
+
+impl Space {
+    /// R^n with the box `[lower, upper]`.
+    pub fn euclidean(lower: Vec<f64>, upper: Vec<f64>) -> Result<Space, SpaceError> {
+        let n = lower.len();
+        if n == 0 {
+            return Err(SpaceError::Bounds("R^n needs n ≥ 1 coordinates".into()));
+        }
+        Space::build(SpaceKind::Euclidean(n), lower, upper, 1.0)
+    }
+
+    /// SE(2) with position bounds `[lower, upper]` (two coordinates each). `rotation_scale` is
+    /// the length one radian of turning counts as (see [`Space::rotation_scale`]).
+    pub fn se2(lower: [f64; 2], upper: [f64; 2], rotation_scale: f64) -> Result<Space, SpaceError> {
+        Space::build(
+            SpaceKind::Se2,
+            lower.to_vec(),
+            upper.to_vec(),
+            rotation_scale,
+        )
+    }
+
+    /// SE(3) with position bounds `[lower, upper]` (three coordinates each).
+    pub fn se3(lower: [f64; 3], upper: [f64; 3], rotation_scale: f64) -> Result<Space, SpaceError> {
+        Space::build(
+            SpaceKind::Se3,
+            lower.to_vec(),
+            upper.to_vec(),
+            rotation_scale,
+        )
+    }
+
+    fn build(
+        kind: SpaceKind,
+        lower: Vec<f64>,
+        upper: Vec<f64>,
+        rotation_scale: f64,
+    ) -> Result<Space, SpaceError> {
+        if lower.len() != upper.len() {
+            return Err(SpaceError::Bounds(format!(
+                "lower has {} coordinates, upper {}",
+                lower.len(),
+                upper.len()
+            )));
+        }
+        for (i, (l, u)) in lower.iter().zip(&upper).enumerate() {
+            if !l.is_finite() || !u.is_finite() {
+                return Err(SpaceError::Bounds(format!(
+                    "coordinate {i} bound is not finite"
+                )));
+            }
+            if l > u {
+                return Err(SpaceError::Bounds(format!(
+                    "coordinate {i}: lower {l} > upper {u}"
+                )));
+            }
+        }
+        if !(rotation_scale.is_finite() && rotation_scale > 0.0) {
+            return Err(SpaceError::RotationScale(rotation_scale));
+        }
+        Ok(Space {
+            kind,
+            lower,
+            upper,
+            rotation_scale,
+        })
+    }
+
+    /// The same space with another rotation scale.
+    pub fn with_rotation_scale(mut self, scale: f64) -> Result<Space, SpaceError> {
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(SpaceError::RotationScale(scale));
+        }
+        self.rotation_scale = scale;
+        Ok(self)
+    }
+
+    /// Which space.
+    pub fn kind(&self) -> SpaceKind {
+        self.kind
+    }
+
+    /// Number of coordinates of a configuration.
+    pub fn dim(&self) -> usize {
+        match self.kind {
+            SpaceKind::Euclidean(n) => n,
+            SpaceKind::Se2 => 3,
+            SpaceKind::Se3 => 7,
+        }
+    }
+
+    /// Number of position coordinates (all of them for R^n).
+    pub fn position_dim(&self) -> usize {
+        self.lower.len()
+    }
+
+    /// Lower position bounds.
+    pub fn lower(&self) -> &[f64] {
+        &self.lower
+    }
+
+    /// Upper position bounds.
+    pub fn upper(&self) -> &[f64] {
+        &self.upper
+    }
+
+    /// Length that one radian of rotation counts as, in distances and valuations. For a rigid
+    /// body the scene sets it to the robot's radius about its reference point, so that
+    /// `distance` bounds how far any point of the robot moves. 1 for R^n.
+    pub fn rotation_scale(&self) -> f64 {
+        self.rotation_scale
+    }
+
+    /// Diagonal of the position bounds (OMPL's "extent" of a real vector space).
+    pub fn extent(&self) -> f64 {
+        self.lower
+            .iter()
+            .zip(&self.upper)
+            .map(|(l, u)| (u - l) * (u - l))
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    /// Checks length and finiteness (and a normalisable quaternion); does not check bounds.
+    pub fn check(&self, q: &[f64]) -> Result<(), SpaceError> {
+        if q.len() != self.dim() {
+            return Err(SpaceError::Dimension {
+                kind: self.kind,
+                want: self.dim(),
+                got: q.len(),
+            });
+        }
+        if let Some((index, &value)) = q.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(SpaceError::NotFinite { index, value });
+        }
+        if self.kind == SpaceKind::Se3 {
+            let n = q[3..7].iter().map(|v| v * v).sum::<f64>().sqrt();
+            if n < 1e-9 {
+                return Err(SpaceError::Quaternion(n));
+            }
+        }
+        Ok(())
+    }
+
+    /// Canonical form: SE(2) angle wrapped into `[-π, π)`, SE(3) quaternion of unit length.
+    pub fn normalize(&self, q: &mut [f64]) {
+        match self.kind {
+            SpaceKind::Euclidean(_) => {}
+            SpaceKind::Se2 => q[2] = rotation::wrap_angle(q[2]),
+            SpaceKind::Se3 => {
+                let n = q[3..7].iter().map(|v| v * v).sum::<f64>().sqrt();
+                if n > 0.0 {
+                    q[3..7].iter_mut().for_each(|v| *v /= n);
+                }
+            }
+        }
+    }
+
+    /// Whether the position lies in the closed bounds.
+    pub fn in_bounds(&self, q: &[f64]) -> bool {
+        q.iter()
+            .zip(self.lower.iter().zip(&self.upper))
+            .all(|(v, (l, u))| *l <= *v && *v <= *u)
+    }
+
+    /// The parameter range of `motion` in which the position stays inside the bounds (the slab
+    /// method); `None` if it never is inside within `motion.range`.
+    pub fn inside_range(&self, motion: &Motion) -> Option<Interval> {
+        let rate = motion.translation_rate(self.position_dim());
+        let mut range = motion.range;
+        for i in 0..self.position_dim() {
+            let p = motion.origin[i];
+            let v = rate.get(i).copied().unwrap_or(0.0);
+            let (l, u) = (self.lower[i], self.upper[i]);
+            if v == 0.0 {
+                if p < l || p > u {
+                    return None;
+                }
+            } else {
+                let (a, b) = ((l - p) / v, (u - p) / v);
+                range = range.meet(&Interval {
+                    lo: a.min(b),
+                    hi: a.max(b),
+                })?;
+            }
+        }
+        Some(range)
+    }
+
+    /// Distance: Euclidean for R^n; `‖Δp‖ + rotation_scale · angle` for rigid bodies, with the
+    /// angle of the rotation between the orientations (at most π).
+    pub fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        let p = self.position_dim();
+        let dp = a[..p]
+            .iter()
+            .zip(&b[..p])
+            .map(|(x, y)| (x - y) * (x - y))
+            .sum::<f64>()
+            .sqrt();
+        match self.kind {
+            SpaceKind::Euclidean(_) => dp,
+            SpaceKind::Se2 => dp + self.rotation_scale * rotation::wrap_angle(b[2] - a[2]).abs(),
+            SpaceKind::Se3 => {
+                dp + self.rotation_scale * rotation::rotation_angle(&a[3..7], &b[3..7])
+            }
+        }
+    }
+
+    /// Simultaneous interpolation of all coordinates (OMPL's `interpolate`): linear position,
+    /// shortest-way angle, slerp for quaternions. Used by sampled checking, not by exact motions.
+    pub fn interpolate(&self, a: &[f64], b: &[f64], t: f64) -> Config {
+        let p = self.position_dim();
+        let mut q: Config = a[..p]
+            .iter()
+            .zip(&b[..p])
+            .map(|(x, y)| x + t * (y - x))
+            .collect();
+        match self.kind {
+            SpaceKind::Euclidean(_) => {}
+            SpaceKind::Se2 => q.push(rotation::wrap_angle(
+                a[2] + t * rotation::wrap_angle(b[2] - a[2]),
+            )),
+            SpaceKind::Se3 => {
+                let qa = rotation::quat_from_slice(&a[3..7]);
+                let mut qb = rotation::quat_from_slice(&b[3..7]);
+                if qa.coords.dot(&qb.coords) < 0.0 {
+                    qb = nalgebra::UnitQuaternion::new_unchecked(-qb.into_inner());
+                }
+                let r = qa.try_slerp(&qb, t, 1e-12).unwrap_or(qa);
+                q.extend_from_slice(&[0.0; 4]);
+                rotation::quat_to_slice(&r, &mut q[3..7]);
+            }
+        }
+        q
+    }
+
+    /// A configuration drawn uniformly: position in the bounds, θ in `[-π, π)`, a uniformly
+    /// random rotation (Shoemake's method).
+    pub fn sample_uniform<R: Rng + ?Sized>(&self, rng: &mut R) -> Config {
+        let mut q: Config = self
+            .lower
+            .iter()
+            .zip(&self.upper)
+            .map(|(l, u)| if u > l { rng.random_range(*l..=*u) } else { *l })
+            .collect();
+        match self.kind {
+            SpaceKind::Euclidean(_) => {}
+            SpaceKind::Se2 => q.push(rng.random_range(-PI..PI)),
+            SpaceKind::Se3 => {
+                let (u1, u2, u3): (f64, f64, f64) = (rng.random(), rng.random(), rng.random());
+                let (s1, s2) = ((1.0 - u1).sqrt(), u1.sqrt());
+                q.extend_from_slice(&[
+                    s1 * (TAU * u2).sin(),
+                    s1 * (TAU * u2).cos(),
+                    s2 * (TAU * u3).sin(),
+                    s2 * (TAU * u3).cos(),
+                ]);
+            }
+        }
+        q
+    }
+
+    /// The DOF groups (CHS §1.5). Natural groups: all of R^n; position and orientation of a
+    /// rigid body. With `split_axes` every position coordinate is a group of its own, so paths
+    /// run parallel to the axes (CHS A.1.1).
+    pub fn groups(&self, split_axes: bool) -> Vec<Group> {
+        let p = self.position_dim();
+        let mut groups = if split_axes {
+            (0..p)
+                .map(|i| Group {
+                    kind: GroupKind::Linear,
+                    coords: i..i + 1,
+                })
+                .collect()
+        } else {
+            vec![Group {
+                kind: GroupKind::Linear,
+                coords: 0..p,
+            }]
+        };
+        match self.kind {
+            SpaceKind::Euclidean(_) => {}
+            SpaceKind::Se2 => groups.push(Group {
+                kind: GroupKind::Angle,
+                coords: 2..3,
+            }),
+            SpaceKind::Se3 => groups.push(Group {
+                kind: GroupKind::Quaternion,
+                coords: 3..7,
+            }),
+        }
+        groups
+    }
+
+    /// Whether `a` and `b` have the same coordinates in `group` (orientations compared as
+    /// rotations, `q ≡ -q`).
+    pub fn same_in_group(&self, a: &[f64], b: &[f64], group: &Group) -> bool {
+        match group.kind {
+            GroupKind::Linear => a[group.coords.clone()] == b[group.coords.clone()],
+            GroupKind::Angle => rotation::wrap_angle(b[2] - a[2]) == 0.0,
+            GroupKind::Quaternion => {
+                a[3..7] == b[3..7] || a[3..7].iter().zip(&b[3..7]).all(|(x, y)| *x == -*y)
+            }
+        }
+    }
+
+    /// `a` with the coordinates of `group` taken from `b`.
+    pub fn with_group_of(&self, a: &[f64], b: &[f64], group: &Group) -> Config {
+        let mut q = a.to_vec();
+        q[group.coords.clone()].copy_from_slice(&b[group.coords.clone()]);
+        q
+    }
+
+    /// The straight motion from `a` to `with_group_of(a, z, group)`: linear in a position
+    /// group, the shorter way round for an angle, about one fixed axis for a quaternion.
+    pub fn group_motion(&self, a: &[f64], z: &[f64], group: &Group) -> Motion {
+        let change = match group.kind {
+            GroupKind::Linear => {
+                let mut delta = vec![0.0; a.len()];
+                for i in group.coords.clone() {
+                    delta[i] = z[i] - a[i];
+                }
+                Change::Linear(delta)
+            }
+            GroupKind::Angle => {
+                let mut delta = vec![0.0; a.len()];
+                delta[2] = rotation::wrap_angle(z[2] - a[2]);
+                Change::Linear(delta)
+            }
+            GroupKind::Quaternion => {
+                let qa = rotation::quat_from_slice(&a[3..7]);
+                let qz = rotation::quat_from_slice(&z[3..7]);
+                let (axis, angle) = rotation::relative_axis_angle(&qa, &qz);
+                Change::Rotation { axis, angle }
+            }
+        };
+        Motion::segment(a.to_vec(), change)
+    }
+
+    /// The straight motion from `a` to `z` when all coordinates may change at once (R^n only,
+    /// or motions that differ in a single group). `None` if `a` and `z` differ in more than one
+    /// natural group of a rigid body.
+    pub fn direct_motion(&self, a: &[f64], z: &[f64]) -> Option<Motion> {
+        let groups = self.groups(false);
+        let differing: Vec<&Group> = groups
+            .iter()
+            .filter(|g| !self.same_in_group(a, z, g))
+            .collect();
+        match differing.as_slice() {
+            [] => Some(self.group_motion(a, z, &groups[0])),
+            [g] => Some(self.group_motion(a, z, g)),
+            _ => None,
+        }
+    }
+
+    /// The unbounded line through `base` along the unit `direction` in a linear group;
+    /// `direction` has one entry per coordinate of the group and `t` measures length.
+    pub fn line_through(&self, base: &[f64], group: &Group, direction: &[f64]) -> Motion {
+        debug_assert_eq!(group.kind, GroupKind::Linear);
+        let mut delta = vec![0.0; base.len()];
+        for (i, d) in group.coords.clone().zip(direction) {
+            delta[i] = *d;
+        }
+        Motion::line(base.to_vec(), Change::Linear(delta))
+    }
+
+    /// The full turn through `base` in a rotational group (about the unit `axis` for a
+    /// quaternion; the axis is ignored for an angle). `t ∈ [-½, ½]` covers one turn.
+    pub fn turn_through(&self, base: &[f64], group: &Group, axis: [f64; 3]) -> Motion {
+        match group.kind {
+            GroupKind::Angle => {
+                let mut delta = vec![0.0; base.len()];
+                delta[2] = TAU;
+                Motion::turn(base.to_vec(), Change::Linear(delta))
+            }
+            GroupKind::Quaternion => {
+                Motion::turn(base.to_vec(), Change::Rotation { axis, angle: TAU })
+            }
+            GroupKind::Linear => panic!("turn_through on a linear group"),
+        }
+    }
+
+    /// Length of the path a motion sweeps between parameters `t0` and `t1`, in the units of
+    /// [`distance`](Self::distance).
+    pub fn motion_length(&self, motion: &Motion, t0: f64, t1: f64) -> f64 {
+        let dt = (t1 - t0).abs();
+        match &motion.change {
+            Change::Linear(delta) => {
+                let p = self.position_dim();
+                let lin = delta[..p].iter().map(|d| d * d).sum::<f64>().sqrt();
+                let ang = if self.kind == SpaceKind::Se2 {
+                    delta[2].abs()
+                } else {
+                    0.0
+                };
+                dt * (lin + self.rotation_scale * ang)
+            }
+            Change::Rotation { angle, .. } => dt * angle.abs() * self.rotation_scale,
+        }
+    }
+
+    /// Points for a nearest-neighbour index whose Euclidean distance approximates
+    /// [`distance`](Self::distance): the configuration itself for R^n;
+    /// `[x, y, s·cos θ, s·sin θ]` for SE(2); `[x, y, z, 2s·q]` for SE(3), together with the
+    /// antipodal `[x, y, z, -2s·q]` because `q ≡ -q` (so SE(3) yields two points).
+    pub fn embeddings(&self, q: &[f64]) -> Vec<Vec<f64>> {
+        let s = self.rotation_scale;
+        match self.kind {
+            SpaceKind::Euclidean(_) => vec![q.to_vec()],
+            SpaceKind::Se2 => vec![vec![q[0], q[1], s * q[2].cos(), s * q[2].sin()]],
+            SpaceKind::Se3 => {
+                let mut a = q[..3].to_vec();
+                a.extend(q[3..7].iter().map(|v| 2.0 * s * v));
+                let mut b = q[..3].to_vec();
+                b.extend(q[3..7].iter().map(|v| -2.0 * s * v));
+                vec![a, b]
+            }
+        }
+    }
+
+    /// Length of the vectors [`embeddings`](Self::embeddings) returns.
+    pub fn embedding_dim(&self) -> usize {
+        match self.kind {
+            SpaceKind::Euclidean(n) => n,
+            SpaceKind::Se2 => 4,
+            SpaceKind::Se3 => 7,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn inside_range_clips_a_line_to_the_box() {
+        let s = Space::euclidean(vec![0.0, 0.0], vec![1.0, 1.0]).unwrap();
+        let m = Motion::line(vec![0.5, 0.5], Change::Linear(vec![1.0, 0.0]));
+        assert_eq!(s.inside_range(&m), Some(Interval { lo: -0.5, hi: 0.5 }));
+        let m = Motion::line(vec![2.0, 0.5], Change::Linear(vec![0.0, 1.0]));
+        assert_eq!(s.inside_range(&m), None);
+    }
+
+    #[test]
+    fn se3_group_motion_ends_at_the_goal() {
+        let s = Space::se3([-1.0; 3], [1.0; 3], 1.0).unwrap();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        for _ in 0..50 {
+            let a = s.sample_uniform(&mut rng);
+            let z = s.sample_uniform(&mut rng);
+            let g = &s.groups(false)[1];
+            let m = s.group_motion(&a, &z, g);
+            let end = m.at(1.0);
+            assert!(rotation::rotation_angle(&end[3..7], &z[3..7]) < 1e-9);
+            assert_eq!(&end[..3], &a[..3]);
+            // the distance of the motion equals the space's distance
+            let len = s.motion_length(&m, 0.0, 1.0);
+            assert!((len - s.distance(&a, &s.with_group_of(&a, &z, g))).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn checks_reject_bad_configurations() {
+        let s = Space::se3([-1.0; 3], [1.0; 3], 1.0).unwrap();
+        assert!(matches!(
+            s.check(&[0.0; 6]),
+            Err(SpaceError::Dimension { .. })
+        ));
+        assert!(matches!(
+            s.check(&[0.0, f64::NAN, 0.0, 0.0, 0.0, 0.0, 1.0]),
+            Err(SpaceError::NotFinite { index: 1, .. })
+        ));
+        assert!(matches!(s.check(&[0.0; 7]), Err(SpaceError::Quaternion(_))));
+        assert!(Space::euclidean(vec![1.0], vec![0.0]).is_err());
+        assert!(Space::euclidean(vec![f64::NAN], vec![0.0]).is_err());
+    }
+}
