@@ -25,6 +25,7 @@ pub mod geometry;
 pub mod interval;
 pub mod local;
 pub mod oracle;
+pub mod render;
 pub mod roadmap;
 pub mod scene;
 pub mod space;

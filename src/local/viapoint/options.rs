@@ -173,6 +173,10 @@ pub struct ViaPointOptions {
     pub seed: u64,
     /// Keep every borderline asked about in [`crate::local::Connection::borderlines`].
     pub trace: bool,
+    /// Record via points and free segments in [`crate::local::Connection::discoveries`] (the
+    /// roadmap's feedback). Benchmarks of the search alone turn it off: the record grows with
+    /// the number of calls.
+    pub discoveries: bool,
 }
 
 impl Default for ViaPointOptions {
@@ -192,6 +196,7 @@ impl Default for ViaPointOptions {
             max_calls: Some(5000),
             seed: 0,
             trace: false,
+            discoveries: true,
         }
     }
 }

@@ -1,0 +1,407 @@
+//! Tables A.1–A.4 of the seed, regenerated on the random disc problems of [`super::discs`].
+//!
+//! Each row is one planner configuration run on the same problem set. As in the seed, the two
+//! measures are the number of intersect calls (segment and line calls) and the minimal
+//! recursion depth that allows a solution; both are reported as maximum and mean. Unsolved
+//! problems — the seed's "start of 1st interval" row lost 173 to its depth limit of 10, and
+//! here a per-problem call budget applies — count towards the calls but not towards the depth
+//! statistics, exactly as the seed counts them (footnote of Table A.4).
+
+use super::discs::{problem, DiscProblem, GOAL, START};
+use crate::local::viapoint::{BasePoint, Depth, ViaLimit, ViaPoint, ViaPointOptions};
+use crate::local::{LocalMethod, Outcome};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// Budgets that keep one pathological problem from running for hours (the seed's β = 2 run
+/// took 4 days 11.5 hours). Plain recursion keeps only the current branch in memory, so it gets
+/// the seed's own maximum of 2·10⁷ calls; the tree of subproblems grows with the number of
+/// calls, so re-use gets 2·10⁶.
+pub const PLAIN_CALL_BUDGET: u64 = 1_000_000;
+/// See [`PLAIN_CALL_BUDGET`].
+pub const REUSE_CALL_BUDGET: u64 = 2_000_000;
+/// Largest recursion limit tried by deepening (none of the seed's rows needed more than 20).
+pub const MAX_DEPTH: u32 = 30;
+
+/// The seed's published numbers for one row (`None`: not given, "?").
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Published {
+    /// Maximal minimal recursion depth.
+    pub depth_max: Option<f64>,
+    /// Mean minimal recursion depth.
+    pub depth_mean: Option<f64>,
+    /// Maximal number of intersect calls.
+    pub calls_max: Option<f64>,
+    /// Mean number of intersect calls.
+    pub calls_mean: Option<f64>,
+}
+
+const fn p(depth_max: f64, depth_mean: f64, calls_max: f64, calls_mean: f64) -> Published {
+    Published {
+        depth_max: Some(depth_max),
+        depth_mean: Some(depth_mean),
+        calls_max: Some(calls_max),
+        calls_mean: Some(calls_mean),
+    }
+}
+
+const fn calls_only(calls_max: f64, calls_mean: f64) -> Published {
+    Published {
+        depth_max: None,
+        depth_mean: None,
+        calls_max: Some(calls_max),
+        calls_mean: Some(calls_mean),
+    }
+}
+
+const UNKNOWN: Published = Published {
+    depth_max: None,
+    depth_mean: None,
+    calls_max: None,
+    calls_mean: None,
+};
+
+/// What we measured for one row.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Measured {
+    /// Problems run.
+    pub problems: u64,
+    /// Problems solved.
+    pub solved: u64,
+    /// Maximal recursion depth over the solved problems.
+    pub depth_max: u32,
+    /// Mean recursion depth over the solved problems.
+    pub depth_mean: f64,
+    /// Maximal intersect calls over all problems.
+    pub calls_max: u64,
+    /// Mean intersect calls over all problems.
+    pub calls_mean: f64,
+    /// Wall time of the row in seconds.
+    pub seconds: f64,
+}
+
+/// One row of one table.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// "A.1" … "A.4".
+    pub table: &'static str,
+    /// The row's label in the seed (a β value or a base point).
+    pub label: String,
+    /// Column group: "≤ 2 via points" or "all via points" (A.1–A.3).
+    pub via: &'static str,
+    /// The planner configuration.
+    #[serde(skip)]
+    pub options: ViaPointOptions,
+    /// The configuration as a spec string.
+    pub spec: String,
+    /// The seed's numbers.
+    pub published: Published,
+    /// Ours.
+    pub measured: Measured,
+}
+
+fn beta_label(b: f64) -> String {
+    for (num, den) in [(0, 1), (2, 5), (1, 2), (4, 7), (2, 3), (1, 1), (2, 1)] {
+        if (b - num as f64 / den as f64).abs() < 1e-12 {
+            return if den == 1 {
+                num.to_string()
+            } else {
+                format!("{num}/{den}")
+            };
+        }
+    }
+    format!("{b}")
+}
+
+/// The configurations of Tables A.1–A.4 with the seed's numbers.
+pub fn rows() -> Vec<Row> {
+    let base = ViaPointOptions {
+        discoveries: false,
+        ..ViaPointOptions::seed_experiment()
+    };
+    let mut rows = Vec::new();
+    let mut add = |table, label: String, via: ViaLimit, options: ViaPointOptions, published| {
+        let spec = crate::local::LocalSpec::ViaPoint(options.clone()).to_string();
+        rows.push(Row {
+            table,
+            label,
+            via: if via == ViaLimit::All {
+                "all via points"
+            } else {
+                "≤ 2 via points"
+            },
+            options,
+            spec,
+            published,
+            measured: Measured::default(),
+        });
+    };
+    let plain = |beta: f64, via: ViaLimit| ViaPointOptions {
+        beta,
+        via,
+        depth: Depth::Deepen { max: MAX_DEPTH },
+        max_calls: Some(PLAIN_CALL_BUDGET),
+        ..base.clone()
+    };
+    let reuse = |beta: f64, via: ViaLimit| ViaPointOptions {
+        beta,
+        via,
+        depth: Depth::DeepenReuse { max: MAX_DEPTH },
+        max_calls: Some(REUSE_CALL_BUDGET),
+        ..base.clone()
+    };
+    let fixed = |beta: f64, via: ViaLimit, k: u32| ViaPointOptions {
+        beta,
+        via,
+        depth: Depth::Fixed(k),
+        max_calls: Some(PLAIN_CALL_BUDGET),
+        ..base.clone()
+    };
+    let two = ViaLimit::Best(2);
+    let all = ViaLimit::All;
+    // Table A.1: variation of β with minimal recursion depth (iterative deepening)
+    for (b, two_p, all_p) in [
+        (
+            0.0,
+            p(9.0, 4.606, 3362.0, 194.4),
+            p(6.0, 3.812, 3688.0, 321.2),
+        ),
+        (
+            0.5,
+            p(7.0, 4.471, 1039.0, 167.0),
+            p(6.0, 3.812, 4246.0, 304.5),
+        ),
+        (
+            2.0 / 3.0,
+            p(8.0, 4.463, 1937.0, 167.6),
+            p(6.0, 3.812, 4367.0, 302.6),
+        ),
+        (
+            1.0,
+            p(9.0, 4.573, 7655.0, 194.8),
+            p(6.0, 3.812, 3808.0, 308.4),
+        ),
+        (2.0, p(20.0, 5.528, 2e7, 2e4), p(6.0, 3.812, 4545.0, 339.8)),
+    ] {
+        add("A.1", beta_label(b), two, plain(b, two), two_p);
+        add("A.1", beta_label(b), all, plain(b, all), all_p);
+    }
+    // Table A.2: the same, re-using a tree of solved subproblems
+    for (b, two_p, all_p) in [
+        (
+            0.5,
+            p(7.0, 4.471, 557.0, 94.0),
+            p(6.0, 3.812, 3609.0, 236.8),
+        ),
+        (
+            2.0 / 3.0,
+            p(8.0, 4.463, 1084.0, 93.9),
+            p(6.0, 3.812, 3649.0, 234.5),
+        ),
+        (
+            1.0,
+            p(9.0, 4.573, 2939.0, 106.2),
+            p(6.0, 3.812, 3033.0, 234.6),
+        ),
+    ] {
+        add("A.2", beta_label(b), two, reuse(b, two), two_p);
+        add("A.2", beta_label(b), all, reuse(b, all), all_p);
+    }
+    // Table A.3: fixed recursion depth, nine with ≤ 2 via points, six with all
+    for (b, two_p, all_p) in [
+        (0.0, calls_only(3069.0, 94.74), calls_only(7306.0, 149.2)),
+        (0.4, calls_only(1933.0, 51.04), UNKNOWN),
+        (0.5, calls_only(1793.0, 47.26), calls_only(4178.0, 90.33)),
+        (
+            4.0 / 7.0,
+            calls_only(1802.0, 46.41),
+            calls_only(3961.0, 86.49),
+        ),
+        (
+            2.0 / 3.0,
+            calls_only(1837.0, 45.97),
+            calls_only(3633.0, 83.38),
+        ),
+        (1.0, calls_only(3159.0, 72.19), calls_only(2056.0, 90.52)),
+    ] {
+        add("A.3", beta_label(b), two, fixed(b, two, 9), two_p);
+        add("A.3", beta_label(b), all, fixed(b, all, 6), all_p);
+    }
+    // Table A.4: base points of the borderline (β = 2/3, ≤ 2 via points, re-use)
+    for (bp, pubd) in [
+        (BasePoint::StartOfFirst, p(10.0, 5.972, 9086.0, 547.6)),
+        (BasePoint::RandomInFirst, p(8.0, 4.612, 806.0, 106.8)),
+        (BasePoint::CentreOfFirst, p(8.0, 4.463, 1084.0, 93.9)),
+        (BasePoint::CentreOfRandom, p(7.0, 4.026, 440.0, 64.9)),
+        (BasePoint::CentreOfMiddle, p(7.0, 3.649, 591.0, 53.2)),
+        (BasePoint::CentreNearestMiddle, p(7.0, 3.616, 581.0, 51.3)),
+        (BasePoint::MiddleOfMotion, p(9.0, 4.380, 1359.0, 89.6)),
+        (BasePoint::RandomInMotion, p(12.0, 5.972, 5375.0, 211.0)),
+    ] {
+        let mut o = reuse(2.0 / 3.0, two);
+        o.base_point = bp;
+        if bp == BasePoint::StartOfFirst {
+            // the seed: "recursion depth had to be limited to 10"
+            o.depth = Depth::DeepenReuse { max: 10 };
+        }
+        add("A.4", bp.description().to_string(), two, o, pubd);
+    }
+    rows
+}
+
+/// Runs `row` on problems `0..problems` of the set generated with `seed` and disc `radius`,
+/// calling `tick` after each problem (from any thread).
+pub fn run_row(row: &mut Row, problems: u64, seed: u64, radius: f64, tick: &(dyn Fn() + Sync)) {
+    let method = ViaPoint::new(row.options.clone());
+    let space = DiscProblem::space();
+    let start = std::time::Instant::now();
+    let results: Vec<(bool, u32, u64)> = (0..problems)
+        .into_par_iter()
+        .map(|i| {
+            let p = problem(seed, i, radius);
+            let oracle = p.oracle();
+            let c = method
+                .connect(&space, &oracle, &START, &GOAL)
+                .expect("the disc oracle answers every straight motion");
+            tick();
+            (
+                c.outcome == Outcome::Connected,
+                c.depth,
+                c.counts.intersect_calls(),
+            )
+        })
+        .collect();
+    let solved: Vec<&(bool, u32, u64)> = results.iter().filter(|r| r.0).collect();
+    row.measured = Measured {
+        problems,
+        solved: solved.len() as u64,
+        depth_max: solved.iter().map(|r| r.1).max().unwrap_or(0),
+        depth_mean: solved.iter().map(|r| r.1 as f64).sum::<f64>() / solved.len().max(1) as f64,
+        calls_max: results.iter().map(|r| r.2).max().unwrap_or(0),
+        calls_mean: results.iter().map(|r| r.2 as f64).sum::<f64>() / problems.max(1) as f64,
+        seconds: start.elapsed().as_secs_f64(),
+    };
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    match v {
+        None => "?".into(),
+        Some(x) if x >= 1e6 => format!("{x:.0e}"),
+        Some(x) => format!("{x:.digits$}"),
+    }
+}
+
+/// The rows as Markdown tables in the seed's layout, ours beside the seed's ("seed" columns).
+pub fn markdown(rows: &[Row]) -> String {
+    let mut out = String::new();
+    for (table, title, depth_cols) in [
+        ("A.1", "Table A.1: variation of β with minimal recursion depth", true),
+        ("A.2", "Table A.2: variation of β with minimal recursion depth re-using information", true),
+        ("A.3", "Table A.3: variation of β with fixed recursion depth (9 with ≤ 2 via points, 6 with all)", false),
+        ("A.4", "Table A.4: different base points for the borderline (β = 2/3, ≤ 2 via points, re-use)", true),
+    ] {
+        let rs: Vec<&Row> = rows.iter().filter(|r| r.table == table).collect();
+        if rs.is_empty() {
+            continue;
+        }
+        let _ = writeln!(out, "\n### {title}\n");
+        let first = if table == "A.4" { "location of base point" } else { "β" };
+        let _ = write!(out, "| {first} | via points | solved |");
+        if depth_cols {
+            let _ = write!(out, " depth max (seed) | depth mean (seed) |");
+        }
+        let _ = writeln!(out, " calls max (seed) | calls mean (seed) | seconds |");
+        let cols = if depth_cols { 8 } else { 6 };
+        let _ = writeln!(out, "|{}", "---|".repeat(cols));
+        for r in rs {
+            let m = &r.measured;
+            let _ = write!(out, "| {} | {} | {}/{} |", r.label, r.via, m.solved, m.problems);
+            if depth_cols {
+                let _ = write!(
+                    out,
+                    " {} ({}) | {:.3} ({}) |",
+                    m.depth_max,
+                    opt(r.published.depth_max, 0),
+                    m.depth_mean,
+                    opt(r.published.depth_mean, 3)
+                );
+            }
+            let _ = writeln!(
+                out,
+                " {} ({}) | {:.1} ({}) | {:.2} |",
+                m.calls_max,
+                opt(r.published.calls_max, 0),
+                m.calls_mean,
+                opt(r.published.calls_mean, 1),
+                m.seconds
+            );
+        }
+    }
+    out
+}
+
+/// The rows as CSV, one line per row, our numbers and the seed's.
+pub fn csv(rows: &[Row]) -> String {
+    let mut out = String::from(
+        "table,label,via,problems,solved,depth_max,depth_mean,calls_max,calls_mean,seconds,seed_depth_max,seed_depth_mean,seed_calls_max,seed_calls_mean,spec\n",
+    );
+    let o = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
+    for r in rows {
+        let m = &r.measured;
+        let _ = writeln!(
+            out,
+            "{},\"{}\",{},{},{},{},{:.4},{},{:.3},{:.3},{},{},{},{},\"{}\"",
+            r.table,
+            r.label,
+            if r.via.starts_with("all") { "all" } else { "2" },
+            m.problems,
+            m.solved,
+            m.depth_max,
+            m.depth_mean,
+            m.calls_max,
+            m.calls_mean,
+            m.seconds,
+            o(r.published.depth_max),
+            o(r.published.depth_mean),
+            o(r.published.calls_max),
+            o(r.published.calls_mean),
+            r.spec
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_cover_the_four_tables() {
+        let r = rows();
+        assert_eq!(r.iter().filter(|r| r.table == "A.1").count(), 10);
+        assert_eq!(r.iter().filter(|r| r.table == "A.2").count(), 6);
+        assert_eq!(r.iter().filter(|r| r.table == "A.3").count(), 12);
+        assert_eq!(r.iter().filter(|r| r.table == "A.4").count(), 8);
+    }
+
+    #[test]
+    fn a_small_run_fills_the_tables() {
+        let mut r = rows();
+        r.retain(|r| r.table == "A.2");
+        for row in &mut r {
+            run_row(row, 20, 1, super::super::discs::SEED_RADIUS, &|| {});
+            assert_eq!(row.measured.problems, 20);
+            assert!(
+                row.measured.solved >= 18,
+                "{}: {:?}",
+                row.spec,
+                row.measured
+            );
+            assert!(row.measured.calls_mean >= 1.0);
+        }
+        let md = markdown(&r);
+        assert!(md.contains("Table A.2") && md.contains("| 2/3 |"));
+        assert_eq!(csv(&r).lines().count(), 7);
+    }
+}

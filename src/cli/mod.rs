@@ -1,0 +1,51 @@
+//! Sub-commands of the `viaroad` binary, one file each.
+
+mod bench;
+mod local_args;
+mod render;
+mod solve;
+
+use clap::{Parser, Subcommand};
+
+/// Multi-query motion planning with a via-point roadmap (Chadzelek–Hotz–Schömer local method,
+/// Overmars–Švestka learning).
+#[derive(Parser)]
+#[command(name = "viaroad", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a scene's queries with the local method alone (no roadmap).
+    Solve(solve::SolveArgs),
+    /// Draw a scene, a solved query with the borderlines and via points tried, as SVG.
+    Render(render::RenderArgs),
+    /// Benchmarks: the seed's disc experiments (Tables A.1–A.4).
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
+}
+
+/// Runs one command.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Solve(a) => solve::run(a),
+        Command::Render(a) => render::run(a),
+        Command::Bench(b) => bench::run(b),
+    }
+}
+
+/// A progress bar on stderr (hidden when stderr is not a terminal).
+pub fn progress_bar(len: u64, what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(len);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{prefix:>12} [{bar:40}] {pos}/{len} {elapsed_precise} eta {eta}",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
+    );
+    bar.set_prefix(what.to_string());
+    bar
+}

@@ -1,0 +1,68 @@
+//! `viaroad render`: a picture of a scene and one query solved by the local method, with the
+//! borderlines and via points it tried.
+
+use super::local_args::LocalArgs;
+use super::solve::solve_query;
+use anyhow::Context;
+use clap::Args;
+use std::path::PathBuf;
+use viaroad::local::LocalSpec;
+use viaroad::render::Picture;
+use viaroad::scene::Scene;
+
+/// Arguments of `render`.
+#[derive(Args)]
+pub struct RenderArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Output SVG file.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Which of the scene's queries to solve and draw (1-based); 0 draws the scene only.
+    #[arg(long, default_value_t = 1)]
+    pub query: usize,
+    #[command(flatten)]
+    pub local: LocalArgs,
+}
+
+/// Runs `render`.
+pub fn run(a: RenderArgs) -> anyhow::Result<()> {
+    let scene = Scene::load(&a.scene)?;
+    let mut spec = a.local.spec()?;
+    if let LocalSpec::ViaPoint(o) = &mut spec {
+        o.trace = true;
+    }
+    let mut picture = Picture::new(&scene);
+    picture.obstacles(&scene);
+    if a.query > 0 {
+        let q = scene.queries.get(a.query - 1).with_context(|| {
+            format!(
+                "{} has {} queries, not {}",
+                a.scene.display(),
+                scene.queries.len(),
+                a.query
+            )
+        })?;
+        let oracle = scene.oracle();
+        let start = scene.check_config(oracle.as_ref(), "start", &q.start)?;
+        let goal = scene.check_config(oracle.as_ref(), "goal", &q.goal)?;
+        let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal)?;
+        picture
+            .borderlines(&s.connection.borderlines)
+            .path(&scene, &s.connection.path, false)
+            .path(&scene, &s.shortened, true);
+        eprintln!(
+            "query {}: {:?}, depth {}, {} intersect calls, {} borderlines",
+            a.query,
+            s.connection.outcome,
+            s.connection.depth,
+            s.connection.counts.intersect_calls(),
+            s.connection.borderlines.len()
+        );
+    }
+    picture
+        .save(&a.output)
+        .with_context(|| format!("cannot write {}", a.output.display()))?;
+    eprintln!("wrote {}", a.output.display());
+    Ok(())
+}

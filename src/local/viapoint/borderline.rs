@@ -1,0 +1,224 @@
+//! Borderlines and via points (CHS §1.2–1.5).
+//!
+//! "Every path from a to z … must cross this borderline separating a from z. In order to avoid
+//! the obstacle such a crossing can only take place on the free sections of b." The borderline
+//! crosses the blocked motion at a *base point* (Table A.4), runs perpendicular to it (within the
+//! blocked DOF group, or in another group, CHS §1.5), and its free sections give the via points:
+//! their centres, ranked by `V_β(d, l) = d / l^β` with `d` the distance of the via point from the
+//! blocked motion and `l` the length of its free section (CHS §1.3, "Via Points").
+
+use super::directions::perpendicular;
+use super::options::{BasePoint, ViaPointOptions};
+use crate::interval::{Interval, IntervalList};
+use crate::space::{Change, Config, Group, GroupKind, Motion, Space, Sweep};
+use rand::Rng;
+
+/// The motion parameter in `[0, 1]` where the borderline crosses the blocked motion, given its
+/// collision intervals (non-empty).
+pub fn base_parameter(strategy: BasePoint, collisions: &IntervalList, rng: &mut impl Rng) -> f64 {
+    let ivs = collisions.as_slice();
+    let uniform = |iv: &Interval, rng: &mut dyn rand::RngCore| {
+        if iv.hi > iv.lo {
+            rng.random_range(iv.lo..=iv.hi)
+        } else {
+            iv.lo
+        }
+    };
+    match strategy {
+        BasePoint::StartOfFirst => ivs[0].lo,
+        BasePoint::RandomInFirst => uniform(&ivs[0], rng),
+        BasePoint::CentreOfFirst => ivs[0].centre(),
+        BasePoint::CentreOfRandom => ivs[rng.random_range(0..ivs.len())].centre(),
+        BasePoint::CentreOfMiddle => ivs[ivs.len() / 2].centre(),
+        BasePoint::CentreNearestMiddle => ivs
+            .iter()
+            .map(Interval::centre)
+            .min_by(|a, b| (a - 0.5).abs().total_cmp(&(b - 0.5).abs()))
+            .unwrap_or(0.5),
+        BasePoint::MiddleOfMotion => 0.5,
+        BasePoint::RandomInMotion => rng.random_range(0.0..=1.0),
+    }
+    .clamp(0.0, 1.0)
+}
+
+/// Where a borderline is erected: the blocked motion, the index of the DOF group it moves in,
+/// and the base point on it.
+pub struct Crossing<'a> {
+    /// The blocked straight motion.
+    pub motion: &'a Motion,
+    /// Index (into the planner's groups) of the group it changes.
+    pub group: usize,
+    /// The base point.
+    pub base: &'a [f64],
+}
+
+/// The borderlines of round `round` through the crossing's base point: unbounded motions paired
+/// with the group each one dodges in.
+///
+/// Round 0 holds the directions perpendicular to the motion within its own group and — if
+/// `dodge_other_groups`, or if the group has no perpendicular direction (one axis, an angle) —
+/// lines along the axes of every other linear group and full turns in every other rotational
+/// group (about the world axes for a quaternion). Later rounds are the rotated bases of
+/// [`Directions::Basis`](super::options::Directions) or nothing.
+pub fn borderlines(
+    space: &Space,
+    groups: &[Group],
+    options: &ViaPointOptions,
+    crossing: &Crossing,
+    round: u32,
+    rng: &mut impl Rng,
+) -> Vec<(Motion, usize)> {
+    let (blocked, blocked_group, base) = (crossing.motion, crossing.group, crossing.base);
+    let g = &groups[blocked_group];
+    let mut out = Vec::new();
+    match (g.kind, &blocked.change) {
+        (GroupKind::Linear, Change::Linear(delta)) => {
+            let mut u: Vec<f64> = delta[g.coords.clone()].to_vec();
+            let n = u.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if n > 0.0 {
+                u.iter_mut().for_each(|x| *x /= n);
+                for d in perpendicular(&u, options.directions, round, rng) {
+                    out.push((space.line_through(base, g, &d), blocked_group));
+                }
+            }
+        }
+        (GroupKind::Quaternion, Change::Rotation { axis, .. }) => {
+            for d in perpendicular(axis, options.directions, round, rng) {
+                out.push((
+                    space.turn_through(base, g, [d[0], d[1], d[2]]),
+                    blocked_group,
+                ));
+            }
+        }
+        _ => {}
+    }
+    if round == 0 && (options.dodge_other_groups || out.is_empty()) {
+        for (k, h) in groups.iter().enumerate() {
+            if k == blocked_group {
+                continue;
+            }
+            match h.kind {
+                GroupKind::Linear => {
+                    for i in 0..h.len() {
+                        let mut d = vec![0.0; h.len()];
+                        d[i] = 1.0;
+                        out.push((space.line_through(base, h, &d), k));
+                    }
+                }
+                GroupKind::Angle => out.push((space.turn_through(base, h, [0.0, 0.0, 1.0]), k)),
+                GroupKind::Quaternion => {
+                    for axis in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
+                        out.push((space.turn_through(base, h, axis), k));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A via point on a borderline and what it is worth.
+#[derive(Clone, Debug)]
+pub struct Candidate {
+    /// The via point (normalised).
+    pub q: Config,
+    /// `V_β(d, l)`; smaller is better.
+    pub value: f64,
+}
+
+/// The free sections of a borderline with collision intervals `collisions`: for a full turn the
+/// section across `t = ±½` is joined into one (it is one arc of the circle), with `hi > ½`.
+pub fn free_sections(motion: &Motion, collisions: &IntervalList) -> Vec<Interval> {
+    let free = collisions.complement_within(motion.range);
+    let mut v: Vec<Interval> = free.iter().copied().filter(|iv| iv.hi > iv.lo).collect();
+    if motion.sweep == Sweep::Turn && v.len() > 1 {
+        let (first, last) = (v[0], v[v.len() - 1]);
+        if first.lo <= motion.range.lo && last.hi >= motion.range.hi {
+            v.pop();
+            v[0] = Interval {
+                lo: last.lo,
+                hi: first.hi + (motion.range.hi - motion.range.lo),
+            };
+        }
+    }
+    v
+}
+
+/// Via points on one borderline: the centres of its bounded free sections, valued by
+/// `V_β(d, l) = d / l^β` (CHS §1.3). A turn that is free all the way round has no centre; it
+/// offers the quarter and half turns instead.
+pub fn candidates(
+    space: &Space,
+    motion: &Motion,
+    sections: &[Interval],
+    base: &[f64],
+    beta: f64,
+) -> Vec<Candidate> {
+    let period = motion.range.hi - motion.range.lo;
+    let mut ts: Vec<(f64, f64)> = Vec::new(); // (parameter, section length in t)
+    for s in sections {
+        if !s.is_bounded() || s.hi <= s.lo {
+            continue;
+        }
+        if motion.sweep == Sweep::Turn && s.length() >= period {
+            for t in [0.25, -0.25, 0.5] {
+                ts.push((t, period));
+            }
+            continue;
+        }
+        let mut c = s.centre();
+        if motion.sweep == Sweep::Turn && c > motion.range.hi {
+            c -= period;
+        }
+        ts.push((c, s.length()));
+    }
+    ts.into_iter()
+        .map(|(t, len)| {
+            let mut q = motion.at(t);
+            space.normalize(&mut q);
+            let d = space.distance(&q, base);
+            let l = space.motion_length(motion, 0.0, len);
+            let value = if beta == 0.0 { d } else { d / l.powf(beta) };
+            Candidate { q, value }
+        })
+        .filter(|c| c.value.is_finite())
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::space::Change;
+
+    #[test]
+    fn turn_sections_join_across_the_seam() {
+        let m = Motion::turn(
+            vec![0.0, 0.0, 0.0],
+            Change::Linear(vec![0.0, 0.0, std::f64::consts::TAU]),
+        );
+        let hits = IntervalList::from_bounds(-0.1, 0.2);
+        let s = free_sections(&m, &hits);
+        assert_eq!(s, vec![Interval { lo: 0.2, hi: 0.9 }]);
+        let space = Space::se2([-1.0; 2], [1.0; 2], 1.0).unwrap();
+        let c = candidates(&space, &m, &s, &[0.0, 0.0, 0.0], 0.0);
+        assert_eq!(c.len(), 1);
+        // the centre of the joined arc [0.2, 0.9] is 0.55, i.e. t = -0.45 of a turn
+        assert!((c[0].q[2] - (-0.45 * std::f64::consts::TAU)).abs() < 1e-12);
+        // the via point is 0.45 of a turn from the base, the short way round: 0.55·2π → 0.45·2π
+        assert!((c[0].value - 0.45 * std::f64::consts::TAU).abs() < 1e-9);
+    }
+
+    #[test]
+    fn valuation_prefers_close_and_wide() {
+        let space = Space::euclidean(vec![-10.0, -10.0], vec![10.0, 10.0]).unwrap();
+        let m = Motion::line(vec![0.0, 0.0], Change::Linear(vec![0.0, 1.0]));
+        let sections = [
+            Interval { lo: 1.0, hi: 3.0 },
+            Interval { lo: -9.0, hi: -1.0 },
+        ];
+        let close = candidates(&space, &m, &sections, &[0.0, 0.0], 0.0);
+        assert!(close[0].value < close[1].value); // β = 0: distance only (2 < 5)
+        let wide = candidates(&space, &m, &sections, &[0.0, 0.0], 2.0);
+        assert!(wide[0].value > wide[1].value); // β = 2: 2/4 > 5/64
+    }
+}

@@ -1,0 +1,53 @@
+//! Independent validity checks for paths in disc scenes: plain segment–ball distances, written
+//! here and sharing no code with the library's oracles.
+#![allow(dead_code)]
+
+/// Distance from point `c` to the segment `a`–`b` (any dimension).
+pub fn segment_point_distance(a: &[f64], b: &[f64], c: &[f64]) -> f64 {
+    let ab: Vec<f64> = a.iter().zip(b).map(|(x, y)| y - x).collect();
+    let ac: Vec<f64> = a.iter().zip(c).map(|(x, y)| y - x).collect();
+    let len2: f64 = ab.iter().map(|v| v * v).sum();
+    let t = if len2 > 0.0 {
+        (ab.iter().zip(&ac).map(|(u, v)| u * v).sum::<f64>() / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    a.iter()
+        .zip(&ab)
+        .zip(c)
+        .map(|((x, d), y)| (x + t * d - y).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// A point robot's path among closed balls inside a box: every segment stays farther than the
+/// radius from every centre (up to `tol` for rounding), every corner lies in the box (the box is
+/// convex, so segments do too). Returns a description of the first violation.
+pub fn check_disc_path(
+    path: &[Vec<f64>],
+    centres: &[Vec<f64>],
+    radii: &[f64],
+    lower: &[f64],
+    upper: &[f64],
+    tol: f64,
+) -> Result<(), String> {
+    for (k, q) in path.iter().enumerate() {
+        for i in 0..q.len() {
+            if q[i] < lower[i] - tol || q[i] > upper[i] + tol {
+                return Err(format!("corner {k} {q:?} outside the bounds"));
+            }
+        }
+    }
+    for (k, w) in path.windows(2).enumerate() {
+        for (c, r) in centres.iter().zip(radii) {
+            let d = segment_point_distance(&w[0], &w[1], c);
+            if d < r - tol {
+                return Err(format!(
+                    "segment {k} {:?}→{:?} passes {d} from disc {c:?} of radius {r}",
+                    w[0], w[1]
+                ));
+            }
+        }
+    }
+    Ok(())
+}
