@@ -1,7 +1,9 @@
 //! Sub-commands of the `viaroad` binary, one file each.
 
 mod bench;
+mod config_arg;
 mod local_args;
+mod probe;
 mod render;
 mod solve;
 
@@ -22,6 +24,8 @@ enum Command {
     Solve(solve::SolveArgs),
     /// Draw a scene, a solved query with the borderlines and via points tried, as SVG.
     Render(render::RenderArgs),
+    /// Print the collision intervals of one straight motion (translation or turn).
+    Probe(probe::ProbeArgs),
     /// Benchmarks: the seed's disc experiments (Tables A.1–A.4).
     #[command(subcommand)]
     Bench(bench::BenchCommand),
@@ -32,6 +36,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Solve(a) => solve::run(a),
         Command::Render(a) => render::run(a),
+        Command::Probe(a) => probe::run(a),
         Command::Bench(b) => bench::run(b),
     }
 }

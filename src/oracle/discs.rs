@@ -55,35 +55,46 @@ impl Discs {
         self.dim
     }
 
-    /// The parameter interval in which `o + t·d` lies in ball `i`, unclipped.
-    fn ball_interval(&self, i: usize, o: &[f64], d: &[f64]) -> Option<Interval> {
-        let c = self.centre(i);
-        let r = self.radii[i];
-        let (mut a, mut b, mut e) = (0.0, 0.0, 0.0);
-        for k in 0..self.dim {
-            let w = o[k] - c[k];
-            a += d[k] * d[k];
-            b += d[k] * w;
-            e += w * w;
+    /// Calls `hit(lo, hi)` with the unclipped parameter interval of every ball that the line
+    /// `o + t·d` meets (`d ≠ 0`), in ball order, and stops early if `hit` returns `false`.
+    /// Solves `|o + t·d − c|² ≤ r²`, i.e. `a t² + 2 b t + e ≤ 0`, with the numerically stable
+    /// root formula.
+    fn for_each_hit(&self, o: &[f64], d: &[f64], mut hit: impl FnMut(f64, f64) -> bool) {
+        let a: f64 = d.iter().map(|x| x * x).sum();
+        let n = self.dim;
+        for (c, &r) in self.centres.chunks_exact(n).zip(&self.radii) {
+            let (b, e) = if n == 2 {
+                // the seed's planar case, unrolled
+                let (w0, w1) = (o[0] - c[0], o[1] - c[1]);
+                (d[0] * w0 + d[1] * w1, w0 * w0 + w1 * w1)
+            } else {
+                let (mut b, mut e) = (0.0, 0.0);
+                for k in 0..n {
+                    let w = o[k] - c[k];
+                    b += d[k] * w;
+                    e += w * w;
+                }
+                (b, e)
+            };
+            let e = e - r * r;
+            let disc = b * b - a * e;
+            if disc < 0.0 {
+                continue;
+            }
+            let q = -(b + disc.sqrt().copysign(b));
+            let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
+            if !hit(t1.min(t2), t1.max(t2)) {
+                return;
+            }
         }
-        let e = e - r * r;
-        if a == 0.0 {
-            // not moving: inside for all t or never
-            return (e <= 0.0).then_some(Interval::ALL);
-        }
-        // a t² + 2 b t + e ≤ 0
-        let disc = b * b - a * e;
-        if disc < 0.0 {
-            return None;
-        }
-        let s = disc.sqrt();
-        // numerically stable roots: q = -(b + sign(b)·s), roots q/a and e/q
-        let q = -(b + s.copysign(b));
-        let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
-        Some(Interval {
-            lo: t1.min(t2),
-            hi: t1.max(t2),
-        })
+    }
+
+    /// Whether the static point `q` lies in some ball.
+    fn contains_point(&self, q: &[f64]) -> bool {
+        self.centres
+            .chunks_exact(self.dim)
+            .zip(&self.radii)
+            .any(|(c, r)| q.iter().zip(c).map(|(x, y)| (x - y) * (x - y)).sum::<f64>() <= r * r)
     }
 
     fn linear_delta<'m>(&self, motion: &'m Motion) -> Result<&'m [f64], OracleError> {
@@ -109,20 +120,27 @@ impl CollisionOracle for Discs {
     ) -> Result<IntervalList, OracleError> {
         let d = self.linear_delta(motion)?;
         counts.pairs_tested += self.radii.len() as u64;
-        let hits: Vec<Interval> = (0..self.radii.len())
-            .filter_map(|i| self.ball_interval(i, &motion.origin, d))
-            .filter_map(|iv| iv.meet(&motion.range))
-            .collect();
+        if d.iter().all(|x| *x == 0.0) {
+            let inside = self.contains_point(&motion.origin);
+            return Ok(if inside {
+                IntervalList::single(motion.range)
+            } else {
+                IntervalList::new()
+            });
+        }
+        let mut hits = Vec::new();
+        self.for_each_hit(&motion.origin, d, |lo, hi| {
+            if let Some(iv) = (Interval { lo, hi }).meet(&motion.range) {
+                hits.push(iv);
+            }
+            true
+        });
         Ok(IntervalList::from_unsorted(hits))
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
         counts.pairs_tested += self.radii.len() as u64;
-        (0..self.radii.len()).any(|i| {
-            let c = self.centre(i);
-            let d2: f64 = q.iter().zip(c).map(|(x, y)| (x - y) * (x - y)).sum();
-            d2 <= self.radii[i] * self.radii[i]
-        })
+        self.contains_point(q)
     }
 
     fn motion_is_free(
@@ -131,16 +149,16 @@ impl CollisionOracle for Discs {
         counts: &mut CallCounts,
     ) -> Result<bool, OracleError> {
         let d = self.linear_delta(motion)?;
-        for i in 0..self.radii.len() {
-            counts.pairs_tested += 1;
-            if self
-                .ball_interval(i, &motion.origin, d)
-                .is_some_and(|iv| iv.meet(&motion.range).is_some())
-            {
-                return Ok(false);
-            }
+        counts.pairs_tested += self.radii.len() as u64;
+        if d.iter().all(|x| *x == 0.0) {
+            return Ok(!self.contains_point(&motion.origin));
         }
-        Ok(true)
+        let mut free = true;
+        self.for_each_hit(&motion.origin, d, |lo, hi| {
+            free = (Interval { lo, hi }).meet(&motion.range).is_none();
+            free
+        });
+        Ok(free)
     }
 }
 

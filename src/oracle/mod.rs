@@ -248,22 +248,26 @@ impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
         let Some(inside) = self.space.inside_range(motion) else {
             return Ok(IntervalList::single(motion.range));
         };
-        let mut outside = IntervalList::new();
+        if inside == motion.range {
+            // the common case of a segment within the bounds: nothing to add, nothing to clip
+            return self.inner.intervals(motion, counts);
+        }
+        let hits = self.inner.intervals(&motion.with_range(inside), counts)?;
+        let mut out = IntervalList::new();
         if inside.lo > motion.range.lo {
-            outside.push(Interval {
+            out.push(Interval {
                 lo: motion.range.lo,
                 hi: inside.lo,
             });
         }
-        let hits = self.inner.intervals(&motion.with_range(inside), counts)?;
-        let mut tail = IntervalList::new();
+        hits.iter().for_each(|iv| out.push(*iv));
         if inside.hi < motion.range.hi {
-            tail.push(Interval {
+            out.push(Interval {
                 lo: inside.hi,
                 hi: motion.range.hi,
             });
         }
-        Ok(outside.union(&hits).union(&tail))
+        Ok(out)
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {

@@ -114,7 +114,7 @@ impl LocalMethod for ViaPoint {
             path,
             depth,
             counts: s.counts,
-            discoveries: s.found,
+            discoveries: s.discoveries(),
             borderlines: s.borderlines,
         })
     }

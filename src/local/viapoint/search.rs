@@ -10,40 +10,58 @@
 //! recursion is the tree thrown away after each limit; *deepening with re-use* keeps it, so
 //! that solved and failed subproblems and all oracle answers are remembered — Table A.2), and a
 //! breadth-first expansion level by level.
+//!
+//! Configurations live in one flat arena and nodes refer to them by index: a search makes
+//! millions of subproblems in the worst cases of the seed's experiments, and per-node
+//! allocations used to cost more than the oracle.
 
 use super::borderline::{base_parameter, borderlines, candidates, free_sections, Crossing};
 use super::options::{ViaLimit, ViaPointOptions};
 use crate::interval::IntervalList;
 use crate::local::{Borderline, Discoveries};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
-use crate::space::{Config, Group, Motion, Space};
+use crate::space::{Config, Group, Space};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 
 pub(super) type NodeId = usize;
-
-/// The first blocked piece of a node's direct path.
-struct Blocked {
-    motion: Motion,
-    group: usize,
-    collisions: IntervalList,
-}
+type Pt = u32;
 
 /// The direct path of a node, walked as far as it is free.
 struct Walk {
-    /// Corners reached after the node's start (the last is `cur`).
-    corners: Vec<Config>,
-    cur: Config,
-    cur_idx: u32,
+    /// Arena indices of the corners reached after the node's start (the last is the current
+    /// configuration): `first_corner..end` plus the goal itself if the walk reached it.
+    first_corner: Pt,
+    end: Pt,
+    reached_goal: bool,
     /// Length of the free part.
     length: f64,
+    /// The first blocked piece: the configuration it aims at (its group taken from the goal),
+    /// the index of the group, and the borderline's base point on it.
     blocked: Option<Blocked>,
 }
 
+struct Blocked {
+    target: Pt,
+    group: usize,
+    base: Pt,
+    /// Kept only when tracing.
+    collisions: Option<IntervalList>,
+}
+
+impl Walk {
+    fn cur(&self, node_a: Pt) -> Pt {
+        if self.end > self.first_corner {
+            self.end - 1
+        } else {
+            node_a
+        }
+    }
+}
+
 struct Via {
-    q: Config,
-    q_idx: u32,
+    q: Pt,
     /// The group the via point dodges in: its left child changes this group first.
     group: usize,
     left: Option<NodeId>,
@@ -62,13 +80,10 @@ enum Status {
 }
 
 struct Node {
-    a: Config,
-    z: Config,
-    a_idx: u32,
-    z_idx: u32,
+    a: Pt,
+    z: Pt,
     first_group: usize,
     walk: Option<Walk>,
-    base: Option<Config>,
     vias: Vec<Via>,
     rounds: u32,
     rounds_exhausted: bool,
@@ -81,25 +96,27 @@ pub(super) struct Search<'a> {
     oracle: &'a dyn CollisionOracle,
     options: &'a ViaPointOptions,
     groups: &'a [Group],
+    dim: usize,
+    /// Flat arena of configurations, `dim` numbers each; 0 is the start, 1 the goal.
+    pts: Vec<f64>,
     nodes: Vec<Node>,
     /// Oracle work so far.
     pub counts: CallCounts,
-    /// What was learnt (configurations deduplicated by their exact coordinates).
-    pub found: Discoveries,
-    config_index: HashMap<Vec<u64>, u32>,
-    segment_seen: HashSet<(u32, u32)>,
-    via_seen: HashSet<u32>,
+    /// Certified free pieces and via points, as arena indices (only when recording).
+    segments: Vec<(Pt, Pt)>,
+    vias_found: Vec<Pt>,
+    recording: bool,
     /// Borderlines asked about (when tracing).
     pub borderlines: Vec<Borderline>,
-    /// Keep what was learnt (off for benchmarks: it grows with the number of calls).
-    recording: bool,
-    /// Plain recursion: drop the subtrees of failed via points, as the seed's recursion does,
-    /// so memory stays proportional to the depth rather than to the number of calls.
-    forget_failures: bool,
     /// Some branch was cut off by the recursion limit (in the current pass).
     pub limit_hit: bool,
     /// The call budget ran out.
     pub budget_hit: bool,
+    /// Plain recursion: drop the subtrees of failed via points, as the seed's recursion does,
+    /// so memory stays proportional to the depth rather than to the number of calls.
+    forget_failures: bool,
+    /// Scratch buffers.
+    buf: Config,
 }
 
 impl<'a> Search<'a> {
@@ -112,52 +129,56 @@ impl<'a> Search<'a> {
         z: &[f64],
         forget_failures: bool,
     ) -> Self {
-        let mut s = Search {
+        let mut pts = Vec::with_capacity(64 * a.len());
+        pts.extend_from_slice(a);
+        pts.extend_from_slice(z);
+        Search {
             space,
             oracle,
             options,
             groups,
+            dim: a.len(),
+            pts,
             nodes: Vec::new(),
             counts: CallCounts::default(),
-            found: Discoveries::new(a, z),
-            config_index: HashMap::new(),
-            segment_seen: HashSet::new(),
-            via_seen: HashSet::new(),
+            segments: Vec::new(),
+            vias_found: Vec::new(),
+            recording: options.discoveries,
             borderlines: Vec::new(),
             limit_hit: false,
             budget_hit: false,
-            recording: options.discoveries,
             forget_failures,
-        };
-        s.config_index.insert(key(a), 0);
-        s.config_index.entry(key(z)).or_insert(1);
-        s
+            buf: vec![0.0; a.len()],
+        }
+    }
+
+    fn pt(&self, i: Pt) -> &[f64] {
+        let d = self.dim;
+        &self.pts[i as usize * d..(i as usize + 1) * d]
+    }
+
+    fn push_pt(&mut self, q: &[f64]) -> Pt {
+        self.pts.extend_from_slice(q);
+        (self.pts.len() / self.dim - 1) as Pt
+    }
+
+    fn pt_count(&self) -> usize {
+        self.pts.len() / self.dim
     }
 
     /// Forgets the tree (plain recursion re-computes everything for the next limit) but keeps
-    /// the counts and discoveries. Returns the new root.
+    /// the counts and what was learnt. Returns the new root.
     pub fn new_root(&mut self) -> NodeId {
         self.nodes.clear();
-        let (a, z) = (self.found.configs[0].clone(), self.found.configs[1].clone());
-        self.new_node(a, z, 0, 1, 0)
+        self.new_node(0, 1, 0)
     }
 
-    fn new_node(
-        &mut self,
-        a: Config,
-        z: Config,
-        a_idx: u32,
-        z_idx: u32,
-        first_group: usize,
-    ) -> NodeId {
+    fn new_node(&mut self, a: Pt, z: Pt, first_group: usize) -> NodeId {
         self.nodes.push(Node {
             a,
             z,
-            a_idx,
-            z_idx,
             first_group,
             walk: None,
-            base: None,
             vias: Vec::new(),
             rounds: 0,
             rounds_exhausted: false,
@@ -166,69 +187,71 @@ impl<'a> Search<'a> {
         self.nodes.len() - 1
     }
 
-    fn record(&mut self, q: &[f64]) -> u32 {
-        if !self.recording {
-            return u32::MAX;
-        }
-        if let Some(&i) = self.config_index.get(&key(q)) {
-            return i;
-        }
-        let i = self.found.add(q.to_vec());
-        self.config_index.insert(key(q), i);
-        i
-    }
-
-    fn record_segment(&mut self, i: u32, j: u32) {
-        if self.recording && i != j && self.segment_seen.insert((i.min(j), i.max(j))) {
-            self.found.free_segments.push((i, j));
-        }
-    }
-
     fn out_of_budget(&self) -> bool {
         self.options
             .max_calls
             .is_some_and(|m| self.counts.intersect_calls() >= m)
     }
 
-    /// Walks the node's direct path (one intersectSegment per group it changes).
+    /// Walks the node's direct path (one intersectSegment per group it changes); at the first
+    /// blocked piece, fixes the borderline's base point.
     fn ensure_walk(&mut self, id: NodeId) -> Result<(), OracleError> {
         if self.nodes[id].walk.is_some() {
             return Ok(());
         }
         let (space, groups) = (self.space, self.groups);
-        let z = self.nodes[id].z.clone();
-        let z_idx = self.nodes[id].z_idx;
-        let first = self.nodes[id].first_group;
-        let mut cur = self.nodes[id].a.clone();
-        let mut cur_idx = self.nodes[id].a_idx;
-        let mut corners = Vec::new();
+        let (a, z, first) = (
+            self.nodes[id].a,
+            self.nodes[id].z,
+            self.nodes[id].first_group,
+        );
+        let goal = self.pt(z).to_vec();
+        let mut cur = self.pt(a).to_vec();
+        let mut cur_idx = a;
+        let first_corner = self.pt_count() as Pt;
         let mut length = 0.0;
+        let mut reached_goal = false;
         let mut blocked = None;
         for k in 0..groups.len() {
             let gi = (first + k) % groups.len();
             let g = &groups[gi];
-            if space.same_in_group(&cur, &z, g) {
+            if space.same_in_group(&cur, &goal, g) {
                 continue;
             }
-            let motion = space.group_motion(&cur, &z, g);
+            let motion = space.group_motion(&cur, &goal, g);
             let collisions = self.oracle.intersect(&motion, &mut self.counts)?;
+            let next = space.with_group_of(&cur, &goal, g);
             if !collisions.is_empty() {
+                let mut rng = self.node_rng(id, 0);
+                let t = base_parameter(self.options.base_point, &collisions, &mut rng);
+                motion.write_at(t, &mut self.buf);
+                let mut base = std::mem::take(&mut self.buf);
+                space.normalize(&mut base);
+                let base_idx = self.push_pt(&base);
+                self.buf = base;
+                let target = self.push_pt(&next);
                 blocked = Some(Blocked {
-                    motion,
+                    target,
                     group: gi,
-                    collisions,
+                    base: base_idx,
+                    collisions: self.options.trace.then_some(collisions),
                 });
                 break;
             }
-            let next = space.with_group_of(&cur, &z, g);
-            let at_goal = groups.iter().all(|h| space.same_in_group(&next, &z, h));
-            let idx = if at_goal { z_idx } else { self.record(&next) };
-            self.record_segment(cur_idx, idx);
             length += space.motion_length(&motion, 0.0, 1.0);
-            corners.push(next.clone());
+            reached_goal = groups.iter().all(|h| space.same_in_group(&next, &goal, h));
+            let idx = if reached_goal { z } else { self.push_pt(&next) };
+            if self.recording {
+                self.segments.push((cur_idx, idx));
+            }
             cur = next;
             cur_idx = idx;
         }
+        // corners are the points pushed before any base/target of a blocked piece
+        let end = match &blocked {
+            Some(b) => b.base,
+            None => self.pt_count() as Pt,
+        };
         if blocked.is_none() {
             self.nodes[id].status = Status::Solved {
                 depth: 0,
@@ -236,9 +259,9 @@ impl<'a> Search<'a> {
             };
         }
         self.nodes[id].walk = Some(Walk {
-            corners,
-            cur,
-            cur_idx,
+            first_corner,
+            end,
+            reached_goal,
             length,
             blocked,
         });
@@ -250,12 +273,8 @@ impl<'a> Search<'a> {
     fn node_rng(&self, id: NodeId, round: u32) -> ChaCha8Rng {
         let n = &self.nodes[id];
         let mut h = 0xcbf2_9ce4_8422_2325u64 ^ self.options.seed;
-        for v in
-            n.a.iter()
-                .chain(&n.z)
-                .map(|x| x.to_bits())
-                .chain([n.first_group as u64, round as u64])
-        {
+        let words = self.pt(n.a).iter().chain(self.pt(n.z)).map(|x| x.to_bits());
+        for v in words.chain([n.first_group as u64, round as u64]) {
             h = (h ^ v).wrapping_mul(0x0000_0100_0000_01b3);
             h ^= h >> 29;
         }
@@ -269,28 +288,23 @@ impl<'a> Search<'a> {
             return Ok(false);
         }
         let round = self.nodes[id].rounds;
-        let mut rng = self.node_rng(id, round);
-        let Some(blocked) = self.nodes[id]
-            .walk
-            .as_ref()
-            .and_then(|w| w.blocked.as_ref())
-        else {
+        let node = &self.nodes[id];
+        let Some(walk) = &node.walk else {
             return Ok(false);
         };
-        let (blocked_motion, blocked_group) = (blocked.motion.clone(), blocked.group);
-        let base = match &self.nodes[id].base {
-            Some(b) => b.clone(),
-            None => {
-                let t = base_parameter(self.options.base_point, &blocked.collisions, &mut rng);
-                let mut b = blocked_motion.at(t);
-                self.space.normalize(&mut b);
-                self.nodes[id].base = Some(b.clone());
-                b
-            }
+        let Some(blocked) = &walk.blocked else {
+            return Ok(false);
         };
+        let cur = self.pt(walk.cur(node.a)).to_vec();
+        let base = self.pt(blocked.base).to_vec();
+        let group = blocked.group;
+        let blocked_motion =
+            self.space
+                .group_motion(&cur, self.pt(blocked.target), &self.groups[group]);
+        let mut rng = self.node_rng(id, round + 1);
         let crossing = Crossing {
             motion: &blocked_motion,
-            group: blocked_group,
+            group,
             base: &base,
         };
         let lines = borderlines(
@@ -306,7 +320,7 @@ impl<'a> Search<'a> {
             return Ok(false);
         }
         let mut pool = Vec::new();
-        for (motion, group) in lines {
+        for (motion, dodge_group) in lines {
             if self.out_of_budget() {
                 self.budget_hit = true;
                 break;
@@ -321,29 +335,30 @@ impl<'a> Search<'a> {
                     .and_then(|w| w.blocked.as_ref());
                 self.borderlines.push(Borderline {
                     blocked: blocked_motion.clone(),
-                    collisions: blocked.map(|b| b.collisions.clone()).unwrap_or_default(),
+                    collisions: blocked
+                        .and_then(|b| b.collisions.clone())
+                        .unwrap_or_default(),
                     base: base.clone(),
                     motion: motion.clone(),
                     free: IntervalList::from_unsorted(sections),
                     via_points: cands.iter().map(|c| c.q.clone()).collect(),
                 });
             }
-            pool.extend(cands.into_iter().map(|c| (c, group)));
+            pool.extend(cands.into_iter().map(|c| (c, dodge_group)));
         }
         // best first; ties keep the order of the borderlines and sections
         pool.sort_by(|a, b| a.0.value.total_cmp(&b.0.value));
         if let ViaLimit::Best(k) = self.options.via {
             pool.truncate(k);
         }
-        for (c, group) in pool {
-            let q_idx = self.record(&c.q);
-            if self.recording && self.via_seen.insert(q_idx) {
-                self.found.via_points.push(q_idx);
+        for (c, dodge_group) in pool {
+            let q = self.push_pt(&c.q);
+            if self.recording {
+                self.vias_found.push(q);
             }
             self.nodes[id].vias.push(Via {
-                q: c.q,
-                q_idx,
-                group,
+                q,
+                group: dodge_group,
                 left: None,
                 right: None,
             });
@@ -354,40 +369,24 @@ impl<'a> Search<'a> {
 
     /// The left (`cur → q`) or right (`q → z`) child of via point `i`.
     fn child(&mut self, id: NodeId, i: usize, left: bool) -> NodeId {
-        let existing = if left {
-            self.nodes[id].vias[i].left
-        } else {
-            self.nodes[id].vias[i].right
-        };
-        if let Some(c) = existing {
+        let node = &self.nodes[id];
+        let via = &node.vias[i];
+        if let Some(c) = if left { via.left } else { via.right } {
             return c;
         }
-        let node = &self.nodes[id];
         let walk = node.walk.as_ref().expect("children only of walked nodes");
         let blocked_group = walk.blocked.as_ref().map_or(0, |b| b.group);
-        let via = &node.vias[i];
-        let (a, z, a_idx, z_idx, first) = if left {
-            (
-                walk.cur.clone(),
-                via.q.clone(),
-                walk.cur_idx,
-                via.q_idx,
-                via.group,
-            )
+        let (a, z, first) = if left {
+            (walk.cur(node.a), via.q, via.group)
         } else {
-            (
-                via.q.clone(),
-                node.z.clone(),
-                via.q_idx,
-                node.z_idx,
-                blocked_group,
-            )
+            (via.q, node.z, blocked_group)
         };
-        let c = self.new_node(a, z, a_idx, z_idx, first);
+        let c = self.new_node(a, z, first);
+        let v = &mut self.nodes[id].vias[i];
         if left {
-            self.nodes[id].vias[i].left = Some(c);
+            v.left = Some(c);
         } else {
-            self.nodes[id].vias[i].right = Some(c);
+            v.right = Some(c);
         }
         c
     }
@@ -433,7 +432,7 @@ impl<'a> Search<'a> {
                 }
                 break;
             }
-            let mark = self.nodes.len();
+            let (node_mark, pt_mark) = (self.nodes.len(), self.pts.len());
             let left = self.child(id, i, true);
             if self.depth_first(left, rec - 1)? {
                 let right = self.child(id, i, false);
@@ -447,8 +446,12 @@ impl<'a> Search<'a> {
                 }
             }
             if self.forget_failures && !self.budget_hit {
-                // the subtrees of via i were created after `mark`; nothing else refers to them
-                self.nodes.truncate(mark);
+                // the subtrees of via i, and the configurations only they use, were created
+                // after the marks; nothing else refers to them
+                self.nodes.truncate(node_mark);
+                if !self.recording {
+                    self.pts.truncate(pt_mark);
+                }
                 let v = &mut self.nodes[id].vias[i];
                 v.left = None;
                 v.right = None;
@@ -458,8 +461,8 @@ impl<'a> Search<'a> {
         if self.budget_hit {
             return Ok(false);
         }
-        let node = &self.nodes[id];
         // (with forgotten subtrees nothing is known dead, which only costs the early stop)
+        let node = &self.nodes[id];
         let dead = node.rounds_exhausted
             && node
                 .vias
@@ -483,6 +486,10 @@ impl<'a> Search<'a> {
             return Ok(());
         }
         while !self.out_of_budget() && self.extend_vias(id)? {}
+        if self.out_of_budget() {
+            self.budget_hit = true;
+            return Ok(());
+        }
         for i in 0..self.nodes[id].vias.len() {
             if self.out_of_budget() {
                 self.budget_hit = true;
@@ -577,7 +584,12 @@ impl<'a> Search<'a> {
     pub fn append_path(&self, id: NodeId, out: &mut Vec<Config>) {
         let node = &self.nodes[id];
         let Some(walk) = &node.walk else { return };
-        out.extend(walk.corners.iter().cloned());
+        for c in walk.first_corner..walk.end {
+            out.push(self.pt(c).to_vec());
+        }
+        if walk.reached_goal {
+            out.push(self.pt(node.z).to_vec());
+        }
         if let Status::Solved { via: Some(i), .. } = node.status {
             let v = &node.vias[i];
             if let (Some(l), Some(r)) = (v.left, v.right) {
@@ -585,6 +597,37 @@ impl<'a> Search<'a> {
                 self.append_path(r, out);
             }
         }
+    }
+
+    /// What was learnt, with identical configurations merged (index 0 the start, 1 the goal).
+    pub fn discoveries(&self) -> Discoveries {
+        let (a, z) = (self.pt(0), self.pt(1));
+        let mut found = Discoveries::new(a, z);
+        if !self.recording {
+            return found;
+        }
+        let mut index: HashMap<Vec<u64>, u32> = HashMap::new();
+        index.insert(key(a), 0);
+        index.entry(key(z)).or_insert(1);
+        let mut remap = |found: &mut Discoveries, p: Pt| -> u32 {
+            let q = self.pt(p);
+            *index.entry(key(q)).or_insert_with(|| found.add(q.to_vec()))
+        };
+        let mut seen = std::collections::HashSet::new();
+        for &(i, j) in &self.segments {
+            let (i, j) = (remap(&mut found, i), remap(&mut found, j));
+            if i != j && seen.insert((i.min(j), i.max(j))) {
+                found.free_segments.push((i, j));
+            }
+        }
+        let mut vias_seen = std::collections::HashSet::new();
+        for &v in &self.vias_found {
+            let v = remap(&mut found, v);
+            if vias_seen.insert(v) {
+                found.via_points.push(v);
+            }
+        }
+        found
     }
 }
 
