@@ -4,8 +4,10 @@
 //! R^n, a polygonal robot among polygons in SE(2), a polyhedral robot among polyhedra in SE(3),
 //! always with "outside the bounds is obstacle". The file formats are documented in the README.
 
+pub mod collada;
 pub mod mesh_io;
 pub mod ompl_cfg;
+pub mod shapes;
 pub mod toml_format;
 
 use crate::geometry::{GeometryError, Polygon, TriMesh};
