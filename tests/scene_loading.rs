@@ -1674,3 +1674,93 @@ fn ompl_path_and_query_files() {
         "{e:?}"
     );
 }
+
+/// Whether the robot placed at `q` touches the environment, by parry's triangle-mesh
+/// intersection test (surfaces, as OMPL.app's FCL mesh–mesh check): independent of viaroad's
+/// oracles, it checks the frame, centre and rotation conventions of the loader.
+fn ompl_state_collides(scene: &Scene, q: &[f64]) -> bool {
+    match &scene.robot {
+        Robot::Mesh(robot) => {
+            let shape = |m: &TriMesh| {
+                parry3d_f64::shape::TriMesh::new(m.vertices.clone(), m.triangles.clone()).unwrap()
+            };
+            let Obstacle::Mesh(env) = &scene.obstacles[0] else {
+                panic!()
+            };
+            let (r, e) = (shape(robot), shape(env));
+            parry3d_f64::query::intersection_test(&pose3(q), &r, &Isometry3::identity(), &e)
+                .unwrap()
+        }
+        Robot::Polygons(parts) => {
+            let tri = |p: &viaroad::geometry::Polygon| p.vertices.clone();
+            let env: Vec<Point2<f64>> = scene
+                .obstacles
+                .iter()
+                .flat_map(|o| match o {
+                    Obstacle::Polygon(p) => tri(p),
+                    other => panic!("{other:?}"),
+                })
+                .collect();
+            let indices: Vec<[u32; 3]> = (0..env.len() as u32 / 3)
+                .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                .collect();
+            let env = parry2d_f64::shape::TriMesh::new(env, indices).unwrap();
+            let at = Isometry2::new(Vector2::new(q[0], q[1]), q[2]);
+            parts.iter().any(|p| {
+                let t =
+                    parry2d_f64::shape::Triangle::new(p.vertices[0], p.vertices[1], p.vertices[2]);
+                parry2d_f64::query::intersection_test(&at, &t, &Isometry2::identity(), &env)
+                    .unwrap()
+            })
+        }
+        Robot::Point => panic!("a point robot"),
+    }
+}
+
+#[test]
+fn ompl_starts_goals_and_path_states_are_free_under_parry() {
+    let dir = root().join("scenes/ompl");
+    for (cfg, path) in [
+        ("3D/Easy.cfg", Some("3D/Easy.path")),
+        ("3D/Twistycool.cfg", Some("3D/Twistycool.path")),
+        ("3D/cubicles.cfg", Some("3D/cubicles.path")),
+        ("3D/Apartment.cfg", Some("3D/Apartment.path")),
+        ("3D/alpha-1.5.cfg", Some("3D/alpha-1.5.path")),
+        ("3D/Home.cfg", None),
+        ("3D/bugtrap.cfg", None),
+        ("3D/Abstract.cfg", None),
+        ("2D/BugTrap_planar.cfg", Some("2D/BugTrap_planar.path")),
+        ("2D/Maze_planar.cfg", Some("2D/Maze_planar.path")),
+        (
+            "2D/RandomPolygons_planar.cfg",
+            Some("2D/RandomPolygons_planar.path"),
+        ),
+        (
+            "2D/UniqueSolutionMaze.cfg",
+            Some("2D/UniqueSolutionMaze.path"),
+        ),
+        ("2D/Barriers.cfg", Some("2D/Barriers.path")),
+    ] {
+        let s = Scene::load(&dir.join(cfg)).unwrap();
+        let mut states = vec![s.queries[0].start.clone(), s.queries[0].goal.clone()];
+        if let Some(p) = path {
+            states.extend(read_states(&dir.join(p), &s.space).unwrap());
+        }
+        for q in &states {
+            assert!(!ompl_state_collides(&s, q), "{cfg}: {q:?} collides");
+        }
+        // the check is sensitive: moved by a quarter of the robot's radius, some state collides
+        // (for the 3D problems; 2D footprints have room to spare in the open mazes)
+        if cfg.starts_with("3D") && path.is_some() {
+            let shift = 0.25 * s.space.rotation_scale();
+            let collides = states.iter().any(|q| {
+                [0, 1, 2].iter().any(|&i| {
+                    let mut moved = q.clone();
+                    moved[i] += shift;
+                    ompl_state_collides(&s, &moved)
+                })
+            });
+            assert!(collides, "{cfg}: no state collides when moved by {shift}");
+        }
+    }
+}

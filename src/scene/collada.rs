@@ -258,13 +258,19 @@ impl Stream<'_> {
                 a.count
             ));
         }
-        let start = a.offset + i * a.stride;
-        let slice = self.values.get(start..start + width).ok_or_else(|| {
-            format!(
-                "source {} is shorter than its accessor says",
-                self.source.id.as_deref().unwrap_or("?")
-            )
-        })?;
+        let start = i
+            .checked_mul(a.stride)
+            .and_then(|k| k.checked_add(a.offset))
+            .unwrap_or(usize::MAX);
+        let slice = self
+            .values
+            .get(start..start.saturating_add(width))
+            .ok_or_else(|| {
+                format!(
+                    "source {} is shorter than its accessor says",
+                    self.source.id.as_deref().unwrap_or("?")
+                )
+            })?;
         let mut v = [0.0; 4];
         v[..width].copy_from_slice(slice);
         Ok(v)
@@ -429,6 +435,13 @@ fn read_primitive(
         }
     }
     let position = position.ok_or("a primitive has no POSITION input")?;
+    let accessor = &position.source.accessor;
+    if accessor.stride < 3 || accessor.param.len() < 3 {
+        return Err(format!(
+            "POSITION source {} has fewer than 3 components",
+            position.source.id.as_deref().unwrap_or("?")
+        ));
+    }
     let has_normals = inputs.iter().any(|i| i.semantic == Semantic::Normal)
         || inputs.iter().any(|i| {
             i.semantic == Semantic::Vertex

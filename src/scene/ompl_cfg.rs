@@ -11,8 +11,8 @@
 //!   `start.axis.*`. In 3D the orientation is `q = (sin(θ/2)·a/|a|, cos(θ/2))`
 //!   ([`ompl_axis_angle`]); in 2D θ is wrapped into `[-π, π)`. A missing θ is 0;
 //! - `volume.min.x … volume.max.z`: the position bounds, grown to contain the start and goal
-//!   positions (OMPL.app's `InferProblemDefinitionBounds`); without a volume, the bounding box
-//!   of the world mesh (OMPL.app's `inferEnvironmentBounds`);
+//!   positions (OMPL.app's `InferProblemDefinitionBounds`); without a complete volume, the
+//!   bounding box of the world mesh (OMPL.app's `inferEnvironmentBounds`), grown likewise;
 //! - `control = …`: a kinematic/dynamic car problem, loaded as a geometric SE(2) problem with a
 //!   warning (viaroad plans geometric paths only).
 //!

@@ -365,45 +365,57 @@ impl Reader<'_> {
         })
     }
 
+    /// The one shape of an obstacle or robot table.
+    fn one_shape<'s>(
+        &self,
+        what: &str,
+        owner: &str,
+        shapes: Vec<Shape<'s>>,
+        hint: &str,
+    ) -> Result<Shape<'s>, SceneError> {
+        let mut shapes = shapes;
+        match shapes.len() {
+            1 => Ok(shapes.remove(0)),
+            0 => Err(self.invalid(format!("{what}: no shape; give {hint}"))),
+            _ => Err(self.invalid(format!(
+                "{what}: one shape per {owner}, found {}",
+                shapes
+                    .iter()
+                    .map(Shape::name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))),
+        }
+    }
+
     fn disc_obstacle(&self, i: usize, o: &ObstacleSpec, n: usize) -> Result<Obstacle, SceneError> {
-        let shapes = shape_names(o);
-        let d = match (&o.disc, shapes.as_slice()) {
-            (Some(d), ["disc"]) => d,
-            (_, []) => {
+        let what = format!("obstacle {i}");
+        let hint = "disc = { center, radius }";
+        let d = match self.one_shape(&what, "obstacle", o.shapes(), hint)? {
+            Shape::Disc(d) => d,
+            other => {
                 return Err(self.invalid(format!(
-                    "obstacle {i}: no shape; give disc = {{ center, radius }}"
-                )))
-            }
-            (_, [one]) => {
-                return Err(self.invalid(format!(
-                    "obstacle {i}: a {one} does not belong in an r{n} scene (a point robot among \
-                     discs); give disc = {{ center, radius }}"
-                )))
-            }
-            (_, many) => {
-                return Err(self.invalid(format!(
-                    "obstacle {i}: one shape per obstacle, found {}",
-                    many.join(", ")
+                    "{what}: a {} does not belong in an r{n} scene (a point robot among discs); \
+                     give {hint}",
+                    other.name()
                 )))
             }
         };
         if o.offset.is_some() {
-            return Err(self.invalid(format!(
-                "obstacle {i}: offset applies to mesh obstacles only"
-            )));
+            return Err(self.invalid(format!("{what}: offset applies to mesh obstacles only")));
         }
         if d.center.len() != n {
             return Err(self.invalid(format!(
-                "obstacle {i}: disc center has {} coordinates, the space has {n}",
+                "{what}: disc center has {} coordinates, the space has {n}",
                 d.center.len()
             )));
         }
         if !d.center.iter().all(|c| c.is_finite()) {
-            return Err(self.invalid(format!("obstacle {i}: disc center is not finite")));
+            return Err(self.invalid(format!("{what}: disc center is not finite")));
         }
         if !(d.radius.is_finite() && d.radius >= 0.0) {
             return Err(self.invalid(format!(
-                "obstacle {i}: disc radius must be a non-negative number, got {}",
+                "{what}: disc radius must be a non-negative number, got {}",
                 d.radius
             )));
         }
@@ -421,175 +433,133 @@ impl Reader<'_> {
         kind: Kind,
     ) -> Result<Vec<Obstacle>, SceneError> {
         let what = format!("obstacle {i}");
-        let shapes = shape_names(o);
-        let dim = if kind == Kind::Se2 { 2 } else { 3 };
-        match shapes.as_slice() {
-            [] => {
-                return Err(self.invalid(format!(
-                    "{what}: no shape; give box, mesh, convex{}",
-                    if dim == 2 { " or polygon" } else { "" }
-                )))
-            }
-            [_] => {}
-            many => {
-                return Err(self.invalid(format!(
-                    "{what}: one shape per obstacle, found {}",
-                    many.join(", ")
-                )))
-            }
-        }
-        if o.disc.is_some() {
-            return Err(self.invalid(format!(
-                "{what}: a disc does not belong in a {} scene (discs are obstacles for a point \
-                 robot in r2/rn); use box, convex, mesh{}",
-                if dim == 2 { "se2" } else { "se3" },
-                if dim == 2 { " or polygon" } else { "" }
-            )));
-        }
-        if o.offset.is_some() && o.mesh.is_none() {
+        let (space, hint) = match kind {
+            Kind::Se2 => ("se2", "box, mesh, convex or polygon"),
+            _ => ("se3", "box, mesh or convex"),
+        };
+        let shape = self.one_shape(&what, "obstacle", o.shapes(), hint)?;
+        if o.offset.is_some() && !matches!(shape, Shape::Mesh(_)) {
             return Err(self.invalid(format!("{what}: offset applies to mesh obstacles only")));
         }
-        if dim == 3 {
-            if o.polygon.is_some() {
-                return Err(self.invalid(format!(
-                    "{what}: a polygon does not belong in a se3 scene; use box, convex or mesh"
-                )));
-            }
-            let mesh = if let Some(b) = &o.cuboid {
-                self.cuboid(&what, b)?
-            } else if let Some(c) = &o.convex {
-                self.convex_3d(&what, c)?
-            } else if let Some(file) = &o.mesh {
-                let offset = self.vector(&what, "offset", o.offset.as_deref(), 3)?;
-                let mesh = self.mesh_3d(file)?;
-                mesh.translated(Vector3::new(offset[0], offset[1], offset[2]))
-            } else {
-                unreachable!("one shape is present")
+        let misplaced = |name: &str| {
+            self.invalid(format!(
+                "{what}: a {name} does not belong in a {space} scene{}; use {hint}",
+                if name == "disc" {
+                    " (discs are obstacles for a point robot in r2/rn)"
+                } else {
+                    ""
+                }
+            ))
+        };
+        if kind == Kind::Se3 {
+            let mesh = match shape {
+                Shape::Box(b) => self.cuboid(&what, b)?,
+                Shape::Convex(c) => self.convex_3d(&what, c)?,
+                Shape::Mesh(file) => {
+                    let offset = self.vector(&what, "offset", o.offset.as_deref(), 3)?;
+                    let mesh = self.mesh_3d(file)?;
+                    mesh.translated(Vector3::new(offset[0], offset[1], offset[2]))
+                }
+                other => return Err(misplaced(other.name())),
             };
             return Ok(vec![Obstacle::Mesh(mesh)]);
         }
-        let polygons = if let Some(b) = &o.cuboid {
-            vec![self.rectangle(&what, b)?]
-        } else if let Some(c) = &o.convex {
-            vec![self.convex_2d(&what, c)?]
-        } else if let Some(p) = &o.polygon {
-            vec![self.polygon(&what, p)?]
-        } else if let Some(file) = &o.mesh {
-            let offset = self.vector(&what, "offset", o.offset.as_deref(), 2)?;
-            let mesh = mesh_io::load_mesh(&self.resolve(file))?;
-            self.footprint(file, &mesh)?
-                .into_iter()
-                .map(|p| p.translated(Vector2::new(offset[0], offset[1])))
-                .collect()
-        } else {
-            unreachable!("one shape is present")
+        let polygons = match shape {
+            Shape::Box(b) => vec![self.rectangle(&what, b)?],
+            Shape::Convex(c) => vec![self.convex_2d(&what, c)?],
+            Shape::Polygon(p) => vec![self.polygon(&what, p)?],
+            Shape::Mesh(file) => {
+                let offset = self.vector(&what, "offset", o.offset.as_deref(), 2)?;
+                let mesh = mesh_io::load_mesh(&self.resolve(file))?;
+                self.footprint(file, &mesh)?
+                    .into_iter()
+                    .map(|p| p.translated(Vector2::new(offset[0], offset[1])))
+                    .collect()
+            }
+            other => return Err(misplaced(other.name())),
         };
         Ok(polygons.into_iter().map(Obstacle::Polygon).collect())
     }
 
     fn robot_3d(&mut self, r: &RobotSpec) -> Result<TriMesh, SceneError> {
-        let what = "[robot]".to_string();
-        if r.polygon.is_some() || r.polygons.is_some() {
-            return Err(self.invalid(
-                "[robot]: polygons describe se2 robots; in a se3 scene use box, convex or mesh"
-                    .into(),
-            ));
-        }
-        self.one_robot_shape(r)?;
-        let (mesh, mean) = if let Some(b) = &r.cuboid {
-            let m = self.cuboid(&what, b)?;
-            let c = vertex_mean(&m);
-            (m, c)
-        } else if let Some(c) = &r.convex {
-            let m = self.convex_3d(&what, c)?;
-            let c = vertex_mean(&m);
-            (m, c)
-        } else if let Some(file) = &r.mesh {
-            let path = self.resolve(file);
-            if is_dae(&path) {
-                let dae = collada::load_collada(&path)?;
-                self.warn_if_open(file, &dae.mesh);
-                let c = dae.assimp_centre.map(f64::from);
-                (dae.mesh, Point3::new(c[0], c[1], c[2]))
-            } else {
-                let m = self.mesh_3d(file)?;
+        let what = "[robot]";
+        let shape = self.one_shape(what, "robot", r.shapes(), "box, mesh or convex")?;
+        let (mesh, mean) = match shape {
+            Shape::Box(b) => {
+                let m = self.cuboid(what, b)?;
                 let c = vertex_mean(&m);
                 (m, c)
             }
-        } else {
-            unreachable!("one shape is present")
+            Shape::Convex(c) => {
+                let m = self.convex_3d(what, c)?;
+                let c = vertex_mean(&m);
+                (m, c)
+            }
+            Shape::Mesh(file) => {
+                let path = self.resolve(file);
+                if is_dae(&path) {
+                    let dae = collada::load_collada(&path)?;
+                    self.warn_if_open(file, &dae.mesh);
+                    let c = dae.assimp_centre.map(f64::from);
+                    (dae.mesh, Point3::new(c[0], c[1], c[2]))
+                } else {
+                    let m = self.mesh_3d(file)?;
+                    let c = vertex_mean(&m);
+                    (m, c)
+                }
+            }
+            Shape::Polygon(_) | Shape::Polygons(_) => {
+                return Err(self.invalid(
+                    "[robot]: polygons describe se2 robots; in a se3 scene use box, convex or \
+                     mesh"
+                        .into(),
+                ))
+            }
+            Shape::Disc(_) => unreachable!("a robot table has no disc"),
         };
         let centre = self.centre(r.center.as_ref(), 3, mean.coords.as_slice())?;
         Ok(mesh.translated(-Vector3::new(centre[0], centre[1], centre[2])))
     }
 
     fn robot_2d(&mut self, r: &RobotSpec) -> Result<Vec<Polygon>, SceneError> {
-        let what = "[robot]".to_string();
-        self.one_robot_shape(r)?;
-        let (parts, mean) = if let Some(b) = &r.cuboid {
-            let p = self.rectangle(&what, b)?;
-            let m = polygon_mean(std::slice::from_ref(&p));
-            (vec![p], m)
-        } else if let Some(c) = &r.convex {
-            let p = self.convex_2d(&what, c)?;
-            let m = polygon_mean(std::slice::from_ref(&p));
-            (vec![p], m)
-        } else if let Some(p) = &r.polygon {
-            let p = self.polygon(&what, p)?;
-            let m = polygon_mean(std::slice::from_ref(&p));
-            (vec![p], m)
-        } else if let Some(ps) = &r.polygons {
-            if ps.is_empty() {
-                return Err(self.invalid("[robot]: polygons = [] is empty".into()));
+        let what = "[robot]";
+        let hint = "box, mesh, polygon(s) or convex";
+        let shape = self.one_shape(what, "robot", r.shapes(), hint)?;
+        let parts = match shape {
+            Shape::Box(b) => vec![self.rectangle(what, b)?],
+            Shape::Convex(c) => vec![self.convex_2d(what, c)?],
+            Shape::Polygon(p) => vec![self.polygon(what, p)?],
+            Shape::Polygons(ps) => {
+                if ps.is_empty() {
+                    return Err(self.invalid("[robot]: polygons = [] is empty".into()));
+                }
+                ps.iter()
+                    .enumerate()
+                    .map(|(k, p)| self.polygon(&format!("[robot] polygon {}", k + 1), p))
+                    .collect::<Result<Vec<_>, _>>()?
             }
-            let parts = ps
-                .iter()
-                .enumerate()
-                .map(|(k, p)| self.polygon(&format!("[robot] polygon {}", k + 1), p))
-                .collect::<Result<Vec<_>, _>>()?;
-            let m = polygon_mean(&parts);
-            (parts, m)
-        } else if let Some(file) = &r.mesh {
-            let path = self.resolve(file);
-            let (mesh, mean) = if is_dae(&path) {
-                let dae = collada::load_collada(&path)?;
-                let c = dae.assimp_centre;
-                (dae.mesh, Point2::new(c[0] as f64, c[1] as f64))
-            } else {
-                let m = mesh_io::load_mesh(&path)?;
-                let c = vertex_mean(&m);
-                (m, Point2::new(c.x, c.y))
-            };
-            (self.footprint(file, &mesh)?, mean)
-        } else {
-            unreachable!("one shape is present")
+            Shape::Mesh(file) => {
+                let path = self.resolve(file);
+                let (mesh, centre) = if is_dae(&path) {
+                    let dae = collada::load_collada(&path)?;
+                    let c = dae.assimp_centre;
+                    (dae.mesh, Point2::new(c[0] as f64, c[1] as f64))
+                } else {
+                    let m = mesh_io::load_mesh(&path)?;
+                    let c = vertex_mean(&m);
+                    (m, Point2::new(c.x, c.y))
+                };
+                let parts = self.footprint(file, &mesh)?;
+                let offset = self.centre(r.center.as_ref(), 2, centre.coords.as_slice())?;
+                let shift = -Vector2::new(offset[0], offset[1]);
+                return Ok(parts.into_iter().map(|p| p.translated(shift)).collect());
+            }
+            Shape::Disc(_) => unreachable!("a robot table has no disc"),
         };
+        let mean = polygon_mean(&parts);
         let centre = self.centre(r.center.as_ref(), 2, mean.coords.as_slice())?;
         let shift = -Vector2::new(centre[0], centre[1]);
         Ok(parts.into_iter().map(|p| p.translated(shift)).collect())
-    }
-
-    fn one_robot_shape(&self, r: &RobotSpec) -> Result<(), SceneError> {
-        let names: Vec<&str> = [
-            ("box", r.cuboid.is_some()),
-            ("mesh", r.mesh.is_some()),
-            ("polygon", r.polygon.is_some()),
-            ("polygons", r.polygons.is_some()),
-            ("convex", r.convex.is_some()),
-        ]
-        .into_iter()
-        .filter_map(|(n, present)| present.then_some(n))
-        .collect();
-        match names.len() {
-            1 => Ok(()),
-            0 => {
-                Err(self.invalid("[robot]: no shape; give box, mesh, polygon(s) or convex".into()))
-            }
-            _ => Err(self.invalid(format!(
-                "[robot]: one shape per robot, found {}",
-                names.join(", ")
-            ))),
-        }
     }
 
     /// The reference point: the shape's origin, the mean of its vertices, or a given point.
@@ -746,18 +716,51 @@ impl Reader<'_> {
     }
 }
 
-/// The shape keys present in an obstacle table.
-fn shape_names(o: &ObstacleSpec) -> Vec<&'static str> {
-    [
-        ("box", o.cuboid.is_some()),
-        ("mesh", o.mesh.is_some()),
-        ("polygon", o.polygon.is_some()),
-        ("convex", o.convex.is_some()),
-        ("disc", o.disc.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(n, present)| present.then_some(n))
-    .collect()
+/// The shape given in a robot or obstacle table.
+enum Shape<'a> {
+    Box(&'a BoxSpec),
+    Mesh(&'a str),
+    Polygon(&'a PolygonSpec),
+    Polygons(&'a [PolygonSpec]),
+    Convex(&'a ConvexSpec),
+    Disc(&'a DiscSpec),
+}
+
+impl Shape<'_> {
+    fn name(&self) -> &'static str {
+        match self {
+            Shape::Box(_) => "box",
+            Shape::Mesh(_) => "mesh",
+            Shape::Polygon(_) => "polygon",
+            Shape::Polygons(_) => "polygons",
+            Shape::Convex(_) => "convex",
+            Shape::Disc(_) => "disc",
+        }
+    }
+}
+
+impl ObstacleSpec {
+    fn shapes(&self) -> Vec<Shape<'_>> {
+        let mut v = Vec::new();
+        v.extend(self.cuboid.as_ref().map(Shape::Box));
+        v.extend(self.mesh.as_deref().map(Shape::Mesh));
+        v.extend(self.polygon.as_ref().map(Shape::Polygon));
+        v.extend(self.convex.as_ref().map(Shape::Convex));
+        v.extend(self.disc.as_ref().map(Shape::Disc));
+        v
+    }
+}
+
+impl RobotSpec {
+    fn shapes(&self) -> Vec<Shape<'_>> {
+        let mut v = Vec::new();
+        v.extend(self.cuboid.as_ref().map(Shape::Box));
+        v.extend(self.mesh.as_deref().map(Shape::Mesh));
+        v.extend(self.polygon.as_ref().map(Shape::Polygon));
+        v.extend(self.polygons.as_deref().map(Shape::Polygons));
+        v.extend(self.convex.as_ref().map(Shape::Convex));
+        v
+    }
 }
 
 /// Mean of the distinct vertices of some polygons.
