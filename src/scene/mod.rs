@@ -2,10 +2,20 @@
 //!
 //! A scene turns into the oracle for its space ([`Scene::oracle`]): a point among discs in
 //! R^n, a polygonal robot among polygons in SE(2), a polyhedral robot among polyhedra in SE(3),
-//! always with "outside the bounds is obstacle". The file formats are documented in the README.
+//! always with "outside the bounds is obstacle".
+//!
+//! | module | reads |
+//! |---|---|
+//! | [`toml_format`] | viaroad's TOML scenes (the format is documented there) |
+//! | [`ompl_cfg`] | OMPL.app problems (`.cfg`), OMPL path files and query-pair files |
+//! | [`mesh_io`] | meshes: Wavefront OBJ, STL |
+//! | [`collada`] | Collada meshes as OMPL.app sees them through assimp (frame, robot centre) |
+//! | [`shapes`] | convex hulls, 2D footprints of prism meshes, simple-polygon check |
 
+pub mod collada;
 pub mod mesh_io;
 pub mod ompl_cfg;
+pub mod shapes;
 pub mod toml_format;
 
 use crate::geometry::{GeometryError, Polygon, TriMesh};

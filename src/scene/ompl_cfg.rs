@@ -1,11 +1,347 @@
-//! OMPL.app `.cfg` problems. (In progress.)
-use super::{Scene, SceneError};
+//! OMPL.app problems (`.cfg`), and OMPL's path and query files, loaded as OMPL.app reads them.
+//!
+//! A `.cfg` is INI. Only `[problem]` is read, leniently: other sections may repeat keys (the
+//! `[planner]` lists of Home and cubicles_opt do), `#` starts a comment, and a later key
+//! overrides an earlier one. From `[problem]`:
+//!
+//! - `robot`, `world`: mesh files relative to the cfg (any format [`load_mesh`] reads; OMPL.app
+//!   ships Collada);
+//! - `start.x start.y [start.z] start.theta [start.axis.x start.axis.y start.axis.z]` and the
+//!   same for `goal.*`. The problem is 2D (SE(2)) when there is no `start.z` and no
+//!   `start.axis.*`. In 3D the orientation is `q = (sin(θ/2)·a/|a|, cos(θ/2))`
+//!   ([`ompl_axis_angle`]); in 2D θ is wrapped into `[-π, π)`. A missing θ is 0;
+//! - `volume.min.x … volume.max.z`: the position bounds, grown to contain the start and goal
+//!   positions (OMPL.app's `InferProblemDefinitionBounds`); without a complete volume, the
+//!   bounding box of the world mesh (OMPL.app's `inferEnvironmentBounds`), grown likewise;
+//! - `control = …`: a kinematic/dynamic car problem, loaded as a geometric SE(2) problem with a
+//!   warning (viaroad plans geometric paths only).
+//!
+//! The robot mesh is shifted so that OMPL.app's centre is its reference point: for Collada the
+//! mean of assimp's imported vertices ([`ColladaMesh::assimp_centre`], z zeroed in 2D); for
+//! other formats the mean of the distinct vertices (an approximation of assimp's, which OMPL.app
+//! does not ship). The world is not moved. In 2D both meshes are prisms along z; they become
+//! their xy footprints ([`footprint`]). The rotation scale is the robot's radius about its
+//! reference point. The scene's one query is (start, goal).
+//!
+//! [`ColladaMesh::assimp_centre`]: super::collada::ColladaMesh::assimp_centre
+
+use super::collada;
+use super::mesh_io::{is_dae, load_mesh, open_mesh_warning, vertex_mean};
+use super::shapes::footprint;
+use super::toml_format::{checked_queries, default_name};
+use super::{Obstacle, Query, Robot, Scene, SceneError};
+use crate::geometry::{GeometryError, Polygon};
+use crate::space::rotation::{ompl_axis_angle, wrap_angle};
+use crate::space::{Config, Space};
+use nalgebra::Vector3;
+use std::collections::HashMap;
 use std::path::Path;
 
-/// Loads an OMPL.app problem.
+/// Loads an OMPL.app problem (see the module documentation).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    Err(SceneError::Invalid {
-        path: path.into(),
-        message: "OMPL .cfg loading not yet".into(),
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let problem = Problem::parse(&text, path)?;
+    let mut warnings = Vec::new();
+    if let Some(control) = problem.text("control") {
+        warnings.push(format!(
+            "{}: control = {control} is a control problem; loaded as a geometric SE(2) problem \
+             (the car's dynamics are ignored)",
+            path.display()
+        ));
+    }
+    let dir = path.parent().unwrap_or_else(|| Path::new("."));
+    let robot_file = dir.join(problem.required_text("robot")?);
+    let world_file = dir.join(problem.required_text("world")?);
+    let planar = !problem.has("start.z") && !problem.has_prefix("start.axis.");
+    let dim = if planar { 2 } else { 3 };
+
+    // the robot, shifted by OMPL.app's centre (z zeroed in 2D)
+    let (robot_mesh, centre) = if is_dae(&robot_file) {
+        let dae = collada::load_collada(&robot_file)?;
+        let c = dae.assimp_centre.map(f64::from);
+        (dae.mesh, Vector3::new(c[0], c[1], c[2]))
+    } else {
+        let m = load_mesh(&robot_file)?;
+        let c = vertex_mean(&m).coords;
+        (m, c)
+    };
+    let centre = if planar {
+        Vector3::new(centre.x, centre.y, 0.0)
+    } else {
+        centre
+    };
+    let robot_mesh = robot_mesh.translated(-centre);
+    let world = load_mesh(&world_file)?;
+
+    // start, goal, bounds
+    let axes = ["x", "y", "z"];
+    let position = |which: &str| -> Result<Vec<f64>, SceneError> {
+        axes[..dim]
+            .iter()
+            .map(|a| problem.number(&format!("{which}.{a}")))
+            .collect()
+    };
+    let state = |which: &str| -> Result<Config, SceneError> {
+        let mut q = position(which)?;
+        let theta = problem
+            .optional_number(&format!("{which}.theta"))?
+            .unwrap_or(0.0);
+        if planar {
+            q.push(wrap_angle(theta));
+        } else {
+            let axis: Vec<Option<f64>> = axes
+                .iter()
+                .map(|a| problem.optional_number(&format!("{which}.axis.{a}")))
+                .collect::<Result<_, _>>()?;
+            let axis = match axis.as_slice() {
+                [Some(x), Some(y), Some(z)] => [*x, *y, *z],
+                [None, None, None] if theta == 0.0 => [1.0, 0.0, 0.0],
+                _ => {
+                    return Err(problem.invalid(format!(
+                        "{which}.theta needs all of {which}.axis.x, {which}.axis.y, {which}.axis.z"
+                    )))
+                }
+            };
+            q.extend_from_slice(&ompl_axis_angle(axis, theta));
+        }
+        Ok(q)
+    };
+    let start = state("start")?;
+    let goal = state("goal")?;
+    let volume: Vec<Option<f64>> = ["min", "max"]
+        .iter()
+        .flat_map(|m| axes[..dim].iter().map(move |a| format!("volume.{m}.{a}")))
+        .map(|k| problem.optional_number(&k))
+        .collect::<Result<_, _>>()?;
+    let (mut lower, mut upper): (Vec<f64>, Vec<f64>) = if volume.iter().all(Option::is_some) {
+        let v: Vec<f64> = volume.into_iter().flatten().collect();
+        (v[..dim].to_vec(), v[dim..].to_vec())
+    } else {
+        let (lo, hi) = world.aabb();
+        (
+            lo.coords.as_slice()[..dim].to_vec(),
+            hi.coords.as_slice()[..dim].to_vec(),
+        )
+    };
+    for q in [&start, &goal] {
+        for i in 0..dim {
+            lower[i] = lower[i].min(q[i]);
+            upper[i] = upper[i].max(q[i]);
+        }
+    }
+
+    // geometry per kind
+    let (robot, obstacles, space) = if planar {
+        let parts = footprint(&robot_mesh);
+        let env = footprint(&world);
+        for (parts, file) in [(&parts, &robot_file), (&env, &world_file)] {
+            if parts.is_empty() {
+                return Err(SceneError::Geometry {
+                    path: file.clone(),
+                    source: GeometryError::Empty,
+                });
+            }
+        }
+        let radius = parts.iter().map(Polygon::radius).fold(0.0, f64::max);
+        let space = Space::se2([lower[0], lower[1]], [upper[0], upper[1]], radius.max(1e-9));
+        let obstacles = env.into_iter().map(Obstacle::Polygon).collect();
+        (Robot::Polygons(parts), obstacles, space)
+    } else {
+        for (mesh, file) in [(&robot_mesh, &robot_file), (&world, &world_file)] {
+            if !mesh.is_closed() {
+                warnings.push(open_mesh_warning(&file.display().to_string()));
+            }
+        }
+        let radius = robot_mesh.radius();
+        let space = Space::se3(
+            [lower[0], lower[1], lower[2]],
+            [upper[0], upper[1], upper[2]],
+            radius.max(1e-9),
+        );
+        (Robot::Mesh(robot_mesh), vec![Obstacle::Mesh(world)], space)
+    };
+    let space = space.map_err(|e| problem.invalid(format!("bounds: {e}")))?;
+    let mut scene = Scene {
+        name: problem
+            .text("name")
+            .map(str::to_string)
+            .unwrap_or_else(|| default_name(path)),
+        space,
+        robot,
+        obstacles,
+        queries: vec![Query { start, goal }],
+        source: Some(path.to_path_buf()),
+        warnings,
+    };
+    scene.queries = checked_queries(&scene)?;
+    Ok(scene)
+}
+
+/// Reads an OMPL path file (or any list of states): one state per line, whitespace-separated,
+/// in the space's layout (`x y z qx qy qz qw`, `x y θ`, or n coordinates). Blank lines and `#`
+/// comments are skipped. States are normalised (angles wrapped, quaternions of unit length);
+/// bounds and collisions are not checked.
+pub fn read_states(path: &Path, space: &Space) -> Result<Vec<Config>, SceneError> {
+    read_rows(path, space, 1).map(|rows| rows.into_iter().map(|mut r| r.remove(0)).collect())
+}
+
+/// Reads query pairs: on each line a start state followed by a goal state (the format of
+/// `scenes/ompl/queries/*.txt`). Normalised like [`read_states`]; validity is up to the caller
+/// ([`Scene::check_config`]).
+pub fn read_query_pairs(path: &Path, space: &Space) -> Result<Vec<Query>, SceneError> {
+    read_rows(path, space, 2).map(|rows| {
+        rows.into_iter()
+            .map(|mut r| {
+                let goal = r.pop().expect("two states per row");
+                let start = r.pop().expect("two states per row");
+                Query { start, goal }
+            })
+            .collect()
     })
+}
+
+/// Rows of `per_line` states each.
+fn read_rows(path: &Path, space: &Space, per_line: usize) -> Result<Vec<Vec<Config>>, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let parse = |line: usize, message: String| SceneError::Parse {
+        path: path.to_path_buf(),
+        message: format!("line {line}: {message}"),
+    };
+    let dim = space.dim();
+    let mut rows = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        let line_no = k + 1;
+        let content = line.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let numbers: Vec<f64> = content
+            .split_whitespace()
+            .map(|w| {
+                w.parse::<f64>()
+                    .map_err(|_| parse(line_no, format!("'{w}' is not a number")))
+            })
+            .collect::<Result<_, _>>()?;
+        if numbers.len() != per_line * dim {
+            return Err(parse(
+                line_no,
+                format!(
+                    "{} numbers; a line holds {per_line} {} state{} of {dim} numbers",
+                    numbers.len(),
+                    space.kind(),
+                    if per_line == 1 { "" } else { "s" }
+                ),
+            ));
+        }
+        let mut row = Vec::with_capacity(per_line);
+        for chunk in numbers.chunks(dim) {
+            space
+                .check(chunk)
+                .map_err(|e| parse(line_no, e.to_string()))?;
+            let mut q = chunk.to_vec();
+            space.normalize(&mut q);
+            row.push(q);
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// The `[problem]` section: key → (value, line number).
+struct Problem<'a> {
+    path: &'a Path,
+    keys: HashMap<String, (String, usize)>,
+}
+
+impl<'a> Problem<'a> {
+    fn parse(text: &str, path: &'a Path) -> Result<Problem<'a>, SceneError> {
+        let mut keys = HashMap::new();
+        let mut section = String::new();
+        let mut seen_problem = false;
+        for (k, line) in text.lines().enumerate() {
+            let content = line.split('#').next().unwrap_or("").trim();
+            if content.is_empty() {
+                continue;
+            }
+            if let Some(name) = content.strip_prefix('[') {
+                let Some(name) = name.strip_suffix(']') else {
+                    return Err(SceneError::Parse {
+                        path: path.to_path_buf(),
+                        message: format!("line {}: unterminated section header", k + 1),
+                    });
+                };
+                section = name.trim().to_string();
+                seen_problem |= section == "problem";
+                continue;
+            }
+            if section != "problem" {
+                continue; // other sections are not ours to judge
+            }
+            let Some((key, value)) = content.split_once('=') else {
+                return Err(SceneError::Parse {
+                    path: path.to_path_buf(),
+                    message: format!("line {}: expected key = value in [problem]", k + 1),
+                });
+            };
+            keys.insert(key.trim().to_string(), (value.trim().to_string(), k + 1));
+        }
+        if !seen_problem {
+            return Err(SceneError::Parse {
+                path: path.to_path_buf(),
+                message: "no [problem] section: not an OMPL.app problem".into(),
+            });
+        }
+        Ok(Problem { path, keys })
+    }
+
+    fn invalid(&self, message: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_path_buf(),
+            message,
+        }
+    }
+
+    fn has(&self, key: &str) -> bool {
+        self.keys.contains_key(key)
+    }
+
+    fn has_prefix(&self, prefix: &str) -> bool {
+        self.keys.keys().any(|k| k.starts_with(prefix))
+    }
+
+    fn text(&self, key: &str) -> Option<&str> {
+        self.keys
+            .get(key)
+            .map(|(v, _)| v.as_str())
+            .filter(|v| !v.is_empty())
+    }
+
+    fn required_text(&self, key: &str) -> Result<&str, SceneError> {
+        self.text(key)
+            .ok_or_else(|| self.invalid(format!("[problem] has no {key}")))
+    }
+
+    fn optional_number(&self, key: &str) -> Result<Option<f64>, SceneError> {
+        let Some((value, line)) = self.keys.get(key) else {
+            return Ok(None);
+        };
+        match value.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(Some(v)),
+            _ => Err(SceneError::Parse {
+                path: self.path.to_path_buf(),
+                message: format!("line {line}: {key} = '{value}' is not a finite number"),
+            }),
+        }
+    }
+
+    fn number(&self, key: &str) -> Result<f64, SceneError> {
+        self.optional_number(key)?
+            .ok_or_else(|| self.invalid(format!("[problem] has no {key}")))
+    }
 }

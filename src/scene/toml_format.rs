@@ -1,20 +1,68 @@
-//! viaroad's TOML scene format (documented in the README).
+//! viaroad's TOML scene format.
+//!
+//! A scene file names a configuration space with position bounds, the moving robot, the
+//! fixed obstacles and any number of queries:
 //!
 //! ```toml
-//! name = "discs-example"
+//! name = "cube-into-box"              # optional; default: the file name without extension
+//!
 //! [space]
-//! kind = "r2"            # "rn", "se2", "se3"
-//! lower = [0.0, 0.0]
-//! upper = [1.0, 1.0]
+//! kind = "se3"                        # "r2", "rn" (or "r3", "r4" …), "se2", "se3"
+//! lower = [-10.0, -10.0, -10.0]       # position bounds: n numbers for rn, 2 for se2, 3 for se3
+//! upper = [10.0, 10.0, 10.0]
+//! rotation_scale = 0.5                # se2/se3 only, optional: the length one radian of turning
+//!                                     # counts as; default: the robot's radius about its
+//!                                     # reference point (largest distance of a vertex from it)
+//!
+//! [robot]                             # se2/se3 only (r2/rn scenes move a point); one shape:
+//! box = { half_extents = [0.5, 0.5, 0.5] }   # se3: 3 numbers; se2: 2 (a rectangle);
+//!                                     # optional center = [...] (default: the origin)
+//! # mesh = "meshes/piano.obj"         # OBJ, STL or Collada (.dae), relative to this file;
+//! #                                   # in se2 the mesh's footprint in the xy-plane is used
+//! # polygon = { vertices = [[x, y], ...] }             # se2: a simple polygon
+//! # polygons = [{ vertices = [...] }, { vertices = [...] }]   # se2: a union of polygons
+//! # convex = { points = [[x, y, z], ...] }             # the convex hull (se2: [x, y] points)
+//! center = "mean"                     # optional: the robot's reference point (the point a
+//!                                     # configuration places and turns about). "mean": the
+//!                                     # mean of the vertices (for .dae meshes exactly
+//!                                     # OMPL.app's centre, see `collada`); [x, y(, z)]: this
+//!                                     # point. Default: the shape's own origin.
+//!
+//! [[obstacle]]                        # any number; one shape each:
+//! box = { center = [3.0, 0.0, 0.0], half_extents = [1.0, 1.0, 1.0] }   # se2: 2 numbers each
 //! [[obstacle]]
-//! disc = { center = [0.30, 0.40], radius = 0.05 }
-//! [[query]]
-//! start = [0.02, 0.98]
-//! goal  = [0.98, 0.02]
+//! mesh = "meshes/room.obj"            # se2/se3; optional offset = [x, y(, z)] moves it
+//! offset = [0.0, 0.0, 0.0]
+//! [[obstacle]]
+//! convex = { points = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]] }    # se2/se3
+//! # polygon = { vertices = [[0, 0], [1, 0], [0, 1]] }  # se2
+//! # disc = { center = [0.3, 0.4], radius = 0.05 }      # r2/rn: a closed ball
+//!
+//! [[query]]                           # any number
+//! start = [0, 0, 0, 0, 0, 0, 1]       # se3: x y z qx qy qz qw (OMPL's order, scalar last);
+//! goal  = [1, 0, 0, 0, 0, 0, 1]       # se2: x y theta (radians); rn: n coordinates
 //! ```
+//!
+//! Rules, each enforced with its own error message naming the file: every key is known
+//! (misspellings are errors), every number is finite, dimensions match the space, radii and
+//! half extents are positive (a radius may be 0), polygons are simple, an obstacle or robot
+//! table holds exactly one shape, the shape suits the space (discs only in r2/rn; polygons only
+//! in se2), and every query's start and goal lie inside the bounds and free of collision.
+//! Quaternions are normalised and angles wrapped into `[-π, π)` on loading. A mesh that is not
+//! closed is accepted with a warning in [`Scene::warnings`]: containment cannot be decided for
+//! it, only surface contact is detected.
+//!
+//! Boxes become closed cuboids ([`TriMesh::cuboid`]) in se3 and rectangles
+//! ([`Polygon::rectangle`]) in se2; meshes in se2 become their footprints (OMPL.app's 2D
+//! problems are prisms extruded along z).
 
+use super::collada;
+use super::mesh_io::{self, is_dae, open_mesh_warning, vertex_mean};
+use super::shapes::{convex_hull_2d, convex_hull_3d, footprint, is_simple};
 use super::{Obstacle, Query, Robot, Scene, SceneError};
-use crate::space::{Space, SpaceKind};
+use crate::geometry::{GeometryError, Polygon, TriMesh};
+use crate::space::Space;
+use nalgebra::{Point2, Point3, Vector2, Vector3};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -41,12 +89,45 @@ struct SpaceSpec {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RobotSpec {}
+struct RobotSpec {
+    #[serde(rename = "box")]
+    cuboid: Option<BoxSpec>,
+    mesh: Option<String>,
+    polygon: Option<PolygonSpec>,
+    polygons: Option<Vec<PolygonSpec>>,
+    convex: Option<ConvexSpec>,
+    center: Option<toml::Value>,
+}
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ObstacleSpec {
+    #[serde(rename = "box")]
+    cuboid: Option<BoxSpec>,
+    mesh: Option<String>,
+    offset: Option<Vec<f64>>,
+    polygon: Option<PolygonSpec>,
+    convex: Option<ConvexSpec>,
     disc: Option<DiscSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoxSpec {
+    center: Option<Vec<f64>>,
+    half_extents: Vec<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PolygonSpec {
+    vertices: Vec<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ConvexSpec {
+    points: Vec<Vec<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -78,115 +159,619 @@ pub fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         path: path.to_path_buf(),
         message: e.to_string().trim_end().replace('\n', " "),
     })?;
-    let invalid = |message: String| SceneError::Invalid {
-        path: path.to_path_buf(),
-        message,
-    };
-    let space = match file.space.kind.as_str() {
-        "r2" | "rn" => {
-            let n = file.space.lower.len();
-            if file.space.kind == "r2" && n != 2 {
-                return Err(invalid(format!(
-                    "kind = \"r2\" needs 2 bounds per side, got {n}"
-                )));
-            }
-            Space::euclidean(file.space.lower.clone(), file.space.upper.clone())
-                .map_err(|e| invalid(format!("[space] {e}")))?
-        }
-        other => {
-            return Err(invalid(format!(
-                "[space] kind = \"{other}\" is not known; expected r2, rn, se2 or se3"
-            )))
-        }
-    };
-    if file.space.rotation_scale.is_some() {
-        return Err(invalid(
-            "rotation_scale applies to se2 and se3 spaces only".into(),
-        ));
-    }
-    if file.robot.is_some() {
-        return Err(invalid(format!(
-            "a {} scene moves a point; remove [robot]",
-            space.kind()
-        )));
-    }
-    let SpaceKind::Euclidean(n) = space.kind() else {
-        unreachable!()
-    };
-    let mut obstacles = Vec::new();
-    for (i, o) in file.obstacles.iter().enumerate() {
-        let Some(d) = &o.disc else {
-            return Err(invalid(format!(
-                "obstacle {}: give disc = {{ center, radius }}",
-                i + 1
-            )));
-        };
-        if d.center.len() != n {
-            return Err(invalid(format!(
-                "obstacle {}: disc center has {} coordinates, the space has {n}",
-                i + 1,
-                d.center.len()
-            )));
-        }
-        if !d.center.iter().all(|c| c.is_finite()) {
-            return Err(invalid(format!(
-                "obstacle {}: disc center is not finite",
-                i + 1
-            )));
-        }
-        if !(d.radius.is_finite() && d.radius >= 0.0) {
-            return Err(invalid(format!(
-                "obstacle {}: disc radius must be a non-negative number, got {}",
-                i + 1,
-                d.radius
-            )));
-        }
-        obstacles.push(Obstacle::Disc {
-            centre: d.center.clone(),
-            radius: d.radius,
-        });
-    }
-    let queries = file
-        .queries
-        .iter()
-        .map(|q| Query {
-            start: q.start.clone(),
-            goal: q.goal.clone(),
-        })
-        .collect();
-    let scene = Scene {
-        name: file.name.unwrap_or_else(|| default_name(path)),
-        space,
-        robot: Robot::Point,
-        obstacles,
-        queries,
-        source: Some(path.to_path_buf()),
+    let mut reader = Reader {
+        path,
         warnings: Vec::new(),
     };
-    validate_queries(&scene)?;
+    let mut scene = reader.scene(file)?;
+    scene.queries = checked_queries(&scene)?;
     Ok(scene)
 }
 
 /// Checks every query of the scene: shape, bounds, collision.
 pub fn validate_queries(scene: &Scene) -> Result<(), SceneError> {
-    let oracle = scene.oracle();
-    for (i, q) in scene.queries.iter().enumerate() {
-        scene.check_config(
-            oracle.as_ref(),
-            &format!("start of query {}", i + 1),
-            &q.start,
-        )?;
-        scene.check_config(
-            oracle.as_ref(),
-            &format!("goal of query {}", i + 1),
-            &q.goal,
-        )?;
-    }
-    Ok(())
+    checked_queries(scene).map(|_| ())
 }
 
-fn default_name(path: &Path) -> String {
+/// The scene's queries after checking (shape, bounds, collision), normalised: quaternions of
+/// unit length, angles in `[-π, π)`.
+pub fn checked_queries(scene: &Scene) -> Result<Vec<Query>, SceneError> {
+    let oracle = scene.oracle();
+    scene
+        .queries
+        .iter()
+        .enumerate()
+        .map(|(i, q)| {
+            Ok(Query {
+                start: scene.check_config(
+                    oracle.as_ref(),
+                    &format!("start of query {}", i + 1),
+                    &q.start,
+                )?,
+                goal: scene.check_config(
+                    oracle.as_ref(),
+                    &format!("goal of query {}", i + 1),
+                    &q.goal,
+                )?,
+            })
+        })
+        .collect()
+}
+
+/// The name a scene gets when its file gives none: the file name without extension.
+pub(crate) fn default_name(path: &Path) -> String {
     path.file_stem()
         .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| PathBuf::from("scene").display().to_string())
+        .unwrap_or_else(|| "scene".into())
+}
+
+/// Reading state: the file for messages and relative paths, and the warnings so far.
+struct Reader<'a> {
+    path: &'a Path,
+    warnings: Vec<String>,
+}
+
+/// Space kinds as the format names them.
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Euclidean,
+    Se2,
+    Se3,
+}
+
+impl Reader<'_> {
+    fn invalid(&self, message: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_path_buf(),
+            message,
+        }
+    }
+
+    fn scene(&mut self, file: File) -> Result<Scene, SceneError> {
+        let (kind, n) = self.kind(&file.space)?;
+        let check_finite = |what: &str, v: &[f64]| {
+            if v.iter().all(|x| x.is_finite()) {
+                Ok(())
+            } else {
+                Err(self.invalid(format!("[space] {what} has a value that is not finite")))
+            }
+        };
+        check_finite("lower", &file.space.lower)?;
+        check_finite("upper", &file.space.upper)?;
+        for (what, v) in [("lower", &file.space.lower), ("upper", &file.space.upper)] {
+            if v.len() != n {
+                return Err(self.invalid(format!(
+                    "[space] {what} has {} numbers, a {} space needs {n}",
+                    v.len(),
+                    file.space.kind
+                )));
+            }
+        }
+        let (robot, obstacles, space) = match kind {
+            Kind::Euclidean => {
+                if file.space.rotation_scale.is_some() {
+                    return Err(self.invalid(
+                        "[space] rotation_scale applies to se2 and se3 spaces only".into(),
+                    ));
+                }
+                if file.robot.is_some() {
+                    return Err(self.invalid(format!(
+                        "a {} scene moves a point; remove [robot]",
+                        file.space.kind
+                    )));
+                }
+                let space = Space::euclidean(file.space.lower.clone(), file.space.upper.clone())
+                    .map_err(|e| self.invalid(format!("[space] {e}")))?;
+                let obstacles = file
+                    .obstacles
+                    .iter()
+                    .enumerate()
+                    .map(|(i, o)| self.disc_obstacle(i + 1, o, n))
+                    .collect::<Result<_, _>>()?;
+                (Robot::Point, obstacles, space)
+            }
+            Kind::Se2 | Kind::Se3 => {
+                let Some(spec) = &file.robot else {
+                    return Err(self.invalid(format!(
+                        "a {} scene needs a [robot] with one shape (box, mesh, {}convex)",
+                        file.space.kind,
+                        if kind == Kind::Se2 {
+                            "polygon, polygons, "
+                        } else {
+                            ""
+                        }
+                    )));
+                };
+                let robot = if kind == Kind::Se2 {
+                    Robot::Polygons(self.robot_2d(spec)?)
+                } else {
+                    Robot::Mesh(self.robot_3d(spec)?)
+                };
+                let obstacles: Vec<Obstacle> = file
+                    .obstacles
+                    .iter()
+                    .enumerate()
+                    .map(|(i, o)| self.rigid_obstacle(i + 1, o, kind))
+                    .collect::<Result<Vec<_>, _>>()?
+                    .into_iter()
+                    .flatten()
+                    .collect();
+                let radius = match &robot {
+                    Robot::Polygons(parts) => parts.iter().map(Polygon::radius).fold(0.0, f64::max),
+                    Robot::Mesh(m) => m.radius(),
+                    Robot::Point => 1.0,
+                };
+                let scale = match file.space.rotation_scale {
+                    Some(s) if !(s.is_finite() && s > 0.0) => {
+                        return Err(self.invalid(format!(
+                            "[space] rotation_scale must be a positive number, got {s}"
+                        )))
+                    }
+                    Some(s) => s,
+                    None if radius > 0.0 => radius,
+                    None => {
+                        return Err(self.invalid(
+                            "the robot's radius about its reference point is 0; give \
+                             [space] rotation_scale"
+                                .into(),
+                        ))
+                    }
+                };
+                let (lo, hi) = (&file.space.lower, &file.space.upper);
+                let space = if kind == Kind::Se2 {
+                    Space::se2([lo[0], lo[1]], [hi[0], hi[1]], scale)
+                } else {
+                    Space::se3([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]], scale)
+                }
+                .map_err(|e| self.invalid(format!("[space] {e}")))?;
+                (robot, obstacles, space)
+            }
+        };
+        Ok(Scene {
+            name: file.name.unwrap_or_else(|| default_name(self.path)),
+            space,
+            robot,
+            obstacles,
+            queries: file
+                .queries
+                .into_iter()
+                .map(|q| Query {
+                    start: q.start,
+                    goal: q.goal,
+                })
+                .collect(),
+            source: Some(self.path.to_path_buf()),
+            warnings: std::mem::take(&mut self.warnings),
+        })
+    }
+
+    /// The kind and the number of position bounds it needs.
+    fn kind(&self, space: &SpaceSpec) -> Result<(Kind, usize), SceneError> {
+        let k = space.kind.as_str();
+        Ok(match k {
+            "r2" => (Kind::Euclidean, 2),
+            "rn" => (Kind::Euclidean, space.lower.len().max(1)),
+            "se2" => (Kind::Se2, 2),
+            "se3" => (Kind::Se3, 3),
+            _ => match k.strip_prefix('r').and_then(|d| d.parse::<usize>().ok()) {
+                Some(n) if n >= 1 => (Kind::Euclidean, n),
+                _ => {
+                    return Err(self.invalid(format!(
+                        "[space] kind = \"{k}\" is not known; expected r2, rn (or r3, r4 …), \
+                         se2 or se3"
+                    )))
+                }
+            },
+        })
+    }
+
+    /// The one shape of an obstacle or robot table.
+    fn one_shape<'s>(
+        &self,
+        what: &str,
+        owner: &str,
+        shapes: Vec<Shape<'s>>,
+        hint: &str,
+    ) -> Result<Shape<'s>, SceneError> {
+        let mut shapes = shapes;
+        match shapes.len() {
+            1 => Ok(shapes.remove(0)),
+            0 => Err(self.invalid(format!("{what}: no shape; give {hint}"))),
+            _ => Err(self.invalid(format!(
+                "{what}: one shape per {owner}, found {}",
+                shapes
+                    .iter()
+                    .map(Shape::name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))),
+        }
+    }
+
+    fn disc_obstacle(&self, i: usize, o: &ObstacleSpec, n: usize) -> Result<Obstacle, SceneError> {
+        let what = format!("obstacle {i}");
+        let hint = "disc = { center, radius }";
+        let d = match self.one_shape(&what, "obstacle", o.shapes(), hint)? {
+            Shape::Disc(d) => d,
+            other => {
+                return Err(self.invalid(format!(
+                    "{what}: a {} does not belong in an r{n} scene (a point robot among discs); \
+                     give {hint}",
+                    other.name()
+                )))
+            }
+        };
+        if o.offset.is_some() {
+            return Err(self.invalid(format!("{what}: offset applies to mesh obstacles only")));
+        }
+        if d.center.len() != n {
+            return Err(self.invalid(format!(
+                "{what}: disc center has {} coordinates, the space has {n}",
+                d.center.len()
+            )));
+        }
+        if !d.center.iter().all(|c| c.is_finite()) {
+            return Err(self.invalid(format!("{what}: disc center is not finite")));
+        }
+        if !(d.radius.is_finite() && d.radius >= 0.0) {
+            return Err(self.invalid(format!(
+                "{what}: disc radius must be a non-negative number, got {}",
+                d.radius
+            )));
+        }
+        Ok(Obstacle::Disc {
+            centre: d.center.clone(),
+            radius: d.radius,
+        })
+    }
+
+    /// A polygon or polyhedron obstacle (several polygons for a mesh footprint).
+    fn rigid_obstacle(
+        &mut self,
+        i: usize,
+        o: &ObstacleSpec,
+        kind: Kind,
+    ) -> Result<Vec<Obstacle>, SceneError> {
+        let what = format!("obstacle {i}");
+        let (space, hint) = match kind {
+            Kind::Se2 => ("se2", "box, mesh, convex or polygon"),
+            _ => ("se3", "box, mesh or convex"),
+        };
+        let shape = self.one_shape(&what, "obstacle", o.shapes(), hint)?;
+        if o.offset.is_some() && !matches!(shape, Shape::Mesh(_)) {
+            return Err(self.invalid(format!("{what}: offset applies to mesh obstacles only")));
+        }
+        let misplaced = |name: &str| {
+            self.invalid(format!(
+                "{what}: a {name} does not belong in a {space} scene{}; use {hint}",
+                if name == "disc" {
+                    " (discs are obstacles for a point robot in r2/rn)"
+                } else {
+                    ""
+                }
+            ))
+        };
+        if kind == Kind::Se3 {
+            let mesh = match shape {
+                Shape::Box(b) => self.cuboid(&what, b)?,
+                Shape::Convex(c) => self.convex_3d(&what, c)?,
+                Shape::Mesh(file) => {
+                    let offset = self.vector(&what, "offset", o.offset.as_deref(), 3)?;
+                    let mesh = self.mesh_3d(file)?;
+                    mesh.translated(Vector3::new(offset[0], offset[1], offset[2]))
+                }
+                other => return Err(misplaced(other.name())),
+            };
+            return Ok(vec![Obstacle::Mesh(mesh)]);
+        }
+        let polygons = match shape {
+            Shape::Box(b) => vec![self.rectangle(&what, b)?],
+            Shape::Convex(c) => vec![self.convex_2d(&what, c)?],
+            Shape::Polygon(p) => vec![self.polygon(&what, p)?],
+            Shape::Mesh(file) => {
+                let offset = self.vector(&what, "offset", o.offset.as_deref(), 2)?;
+                let mesh = mesh_io::load_mesh(&self.resolve(file))?;
+                self.footprint(file, &mesh)?
+                    .into_iter()
+                    .map(|p| p.translated(Vector2::new(offset[0], offset[1])))
+                    .collect()
+            }
+            other => return Err(misplaced(other.name())),
+        };
+        Ok(polygons.into_iter().map(Obstacle::Polygon).collect())
+    }
+
+    fn robot_3d(&mut self, r: &RobotSpec) -> Result<TriMesh, SceneError> {
+        let what = "[robot]";
+        let shape = self.one_shape(what, "robot", r.shapes(), "box, mesh or convex")?;
+        let (mesh, mean) = match shape {
+            Shape::Box(b) => {
+                let m = self.cuboid(what, b)?;
+                let c = vertex_mean(&m);
+                (m, c)
+            }
+            Shape::Convex(c) => {
+                let m = self.convex_3d(what, c)?;
+                let c = vertex_mean(&m);
+                (m, c)
+            }
+            Shape::Mesh(file) => {
+                let path = self.resolve(file);
+                if is_dae(&path) {
+                    let dae = collada::load_collada(&path)?;
+                    self.warn_if_open(file, &dae.mesh);
+                    let c = dae.assimp_centre.map(f64::from);
+                    (dae.mesh, Point3::new(c[0], c[1], c[2]))
+                } else {
+                    let m = self.mesh_3d(file)?;
+                    let c = vertex_mean(&m);
+                    (m, c)
+                }
+            }
+            Shape::Polygon(_) | Shape::Polygons(_) => {
+                return Err(self.invalid(
+                    "[robot]: polygons describe se2 robots; in a se3 scene use box, convex or \
+                     mesh"
+                        .into(),
+                ))
+            }
+            Shape::Disc(_) => unreachable!("a robot table has no disc"),
+        };
+        let centre = self.centre(r.center.as_ref(), 3, mean.coords.as_slice())?;
+        Ok(mesh.translated(-Vector3::new(centre[0], centre[1], centre[2])))
+    }
+
+    fn robot_2d(&mut self, r: &RobotSpec) -> Result<Vec<Polygon>, SceneError> {
+        let what = "[robot]";
+        let hint = "box, mesh, polygon(s) or convex";
+        let shape = self.one_shape(what, "robot", r.shapes(), hint)?;
+        let parts = match shape {
+            Shape::Box(b) => vec![self.rectangle(what, b)?],
+            Shape::Convex(c) => vec![self.convex_2d(what, c)?],
+            Shape::Polygon(p) => vec![self.polygon(what, p)?],
+            Shape::Polygons(ps) => {
+                if ps.is_empty() {
+                    return Err(self.invalid("[robot]: polygons = [] is empty".into()));
+                }
+                ps.iter()
+                    .enumerate()
+                    .map(|(k, p)| self.polygon(&format!("[robot] polygon {}", k + 1), p))
+                    .collect::<Result<Vec<_>, _>>()?
+            }
+            Shape::Mesh(file) => {
+                let path = self.resolve(file);
+                let (mesh, centre) = if is_dae(&path) {
+                    let dae = collada::load_collada(&path)?;
+                    let c = dae.assimp_centre;
+                    (dae.mesh, Point2::new(c[0] as f64, c[1] as f64))
+                } else {
+                    let m = mesh_io::load_mesh(&path)?;
+                    let c = vertex_mean(&m);
+                    (m, Point2::new(c.x, c.y))
+                };
+                let parts = self.footprint(file, &mesh)?;
+                let offset = self.centre(r.center.as_ref(), 2, centre.coords.as_slice())?;
+                let shift = -Vector2::new(offset[0], offset[1]);
+                return Ok(parts.into_iter().map(|p| p.translated(shift)).collect());
+            }
+            Shape::Disc(_) => unreachable!("a robot table has no disc"),
+        };
+        let mean = polygon_mean(&parts);
+        let centre = self.centre(r.center.as_ref(), 2, mean.coords.as_slice())?;
+        let shift = -Vector2::new(centre[0], centre[1]);
+        Ok(parts.into_iter().map(|p| p.translated(shift)).collect())
+    }
+
+    /// The reference point: the shape's origin, the mean of its vertices, or a given point.
+    fn centre(
+        &self,
+        spec: Option<&toml::Value>,
+        dim: usize,
+        mean: &[f64],
+    ) -> Result<Vec<f64>, SceneError> {
+        match spec {
+            None => Ok(vec![0.0; dim]),
+            Some(toml::Value::String(s)) if s == "mean" => Ok(mean[..dim].to_vec()),
+            Some(toml::Value::Array(a)) => {
+                let v: Option<Vec<f64>> = a
+                    .iter()
+                    .map(|x| match x {
+                        toml::Value::Float(f) => Some(*f),
+                        toml::Value::Integer(i) => Some(*i as f64),
+                        _ => None,
+                    })
+                    .collect();
+                match v {
+                    Some(v) => self.vector("[robot]", "center", Some(&v), dim),
+                    None => Err(self.invalid("[robot] center must hold numbers".into())),
+                }
+            }
+            Some(other) => Err(self.invalid(format!(
+                "[robot] center = {other} is neither \"mean\" nor a point [x, y{}]",
+                if dim == 3 { ", z" } else { "" }
+            ))),
+        }
+    }
+
+    /// A vector of `dim` finite numbers (zero if absent).
+    fn vector(
+        &self,
+        what: &str,
+        key: &str,
+        v: Option<&[f64]>,
+        dim: usize,
+    ) -> Result<Vec<f64>, SceneError> {
+        let Some(v) = v else {
+            return Ok(vec![0.0; dim]);
+        };
+        if v.len() != dim {
+            return Err(self.invalid(format!(
+                "{what}: {key} has {} numbers, the space needs {dim}",
+                v.len()
+            )));
+        }
+        if !v.iter().all(|x| x.is_finite()) {
+            return Err(self.invalid(format!("{what}: {key} has a value that is not finite")));
+        }
+        Ok(v.to_vec())
+    }
+
+    fn geometry(&self, what: &str, e: GeometryError) -> SceneError {
+        self.invalid(format!("{what}: {e}"))
+    }
+
+    fn cuboid(&self, what: &str, b: &BoxSpec) -> Result<TriMesh, SceneError> {
+        let h = self.vector(what, "box half_extents", Some(&b.half_extents), 3)?;
+        let c = self.vector(what, "box center", b.center.as_deref(), 3)?;
+        TriMesh::cuboid([h[0], h[1], h[2]])
+            .map(|m| m.translated(Vector3::new(c[0], c[1], c[2])))
+            .map_err(|e| self.geometry(what, e))
+    }
+
+    fn rectangle(&self, what: &str, b: &BoxSpec) -> Result<Polygon, SceneError> {
+        let h = self.vector(what, "box half_extents", Some(&b.half_extents), 2)?;
+        let c = self.vector(what, "box center", b.center.as_deref(), 2)?;
+        Polygon::rectangle([c[0], c[1]], [h[0], h[1]]).map_err(|e| self.geometry(what, e))
+    }
+
+    fn points<const N: usize>(
+        &self,
+        what: &str,
+        key: &str,
+        v: &[Vec<f64>],
+    ) -> Result<Vec<[f64; N]>, SceneError> {
+        v.iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let p = self.vector(what, &format!("{key} {}", k + 1), Some(p), N)?;
+                let mut a = [0.0; N];
+                a.copy_from_slice(&p);
+                Ok(a)
+            })
+            .collect()
+    }
+
+    fn polygon(&self, what: &str, p: &PolygonSpec) -> Result<Polygon, SceneError> {
+        let v = self.points::<2>(what, "polygon vertex", &p.vertices)?;
+        let polygon = Polygon::new(v.iter().map(|[x, y]| Point2::new(*x, *y)).collect())
+            .map_err(|e| self.geometry(what, e))?;
+        if !is_simple(&polygon) {
+            return Err(self.invalid(format!(
+                "{what}: the polygon's edges cross or touch; give a simple polygon (or several)"
+            )));
+        }
+        Ok(polygon)
+    }
+
+    fn convex_2d(&self, what: &str, c: &ConvexSpec) -> Result<Polygon, SceneError> {
+        let v = self.points::<2>(what, "convex point", &c.points)?;
+        let pts: Vec<Point2<f64>> = v.iter().map(|[x, y]| Point2::new(*x, *y)).collect();
+        convex_hull_2d(&pts).map_err(|_| {
+            self.invalid(format!(
+                "{what}: the convex hull of the points has no area (give at least 3 points \
+                 not on a line)"
+            ))
+        })
+    }
+
+    fn convex_3d(&self, what: &str, c: &ConvexSpec) -> Result<TriMesh, SceneError> {
+        let v = self.points::<3>(what, "convex point", &c.points)?;
+        let pts: Vec<Point3<f64>> = v.iter().map(|p| Point3::from(*p)).collect();
+        convex_hull_3d(&pts).map_err(|_| {
+            self.invalid(format!(
+                "{what}: the convex hull of the points has no volume (give at least 4 points \
+                 not in a plane)"
+            ))
+        })
+    }
+
+    fn resolve(&self, file: &str) -> PathBuf {
+        self.path
+            .parent()
+            .unwrap_or_else(|| Path::new("."))
+            .join(file)
+    }
+
+    fn mesh_3d(&mut self, file: &str) -> Result<TriMesh, SceneError> {
+        let mesh = mesh_io::load_mesh(&self.resolve(file))?;
+        self.warn_if_open(file, &mesh);
+        Ok(mesh)
+    }
+
+    fn warn_if_open(&mut self, file: &str, mesh: &TriMesh) {
+        if !mesh.is_closed() {
+            self.warnings.push(open_mesh_warning(file));
+        }
+    }
+
+    fn footprint(&self, file: &str, mesh: &TriMesh) -> Result<Vec<Polygon>, SceneError> {
+        let f = footprint(mesh);
+        if f.is_empty() {
+            return Err(SceneError::Geometry {
+                path: self.resolve(file),
+                source: GeometryError::Empty,
+            });
+        }
+        Ok(f)
+    }
+}
+
+/// The shape given in a robot or obstacle table.
+enum Shape<'a> {
+    Box(&'a BoxSpec),
+    Mesh(&'a str),
+    Polygon(&'a PolygonSpec),
+    Polygons(&'a [PolygonSpec]),
+    Convex(&'a ConvexSpec),
+    Disc(&'a DiscSpec),
+}
+
+impl Shape<'_> {
+    fn name(&self) -> &'static str {
+        match self {
+            Shape::Box(_) => "box",
+            Shape::Mesh(_) => "mesh",
+            Shape::Polygon(_) => "polygon",
+            Shape::Polygons(_) => "polygons",
+            Shape::Convex(_) => "convex",
+            Shape::Disc(_) => "disc",
+        }
+    }
+}
+
+impl ObstacleSpec {
+    fn shapes(&self) -> Vec<Shape<'_>> {
+        let mut v = Vec::new();
+        v.extend(self.cuboid.as_ref().map(Shape::Box));
+        v.extend(self.mesh.as_deref().map(Shape::Mesh));
+        v.extend(self.polygon.as_ref().map(Shape::Polygon));
+        v.extend(self.convex.as_ref().map(Shape::Convex));
+        v.extend(self.disc.as_ref().map(Shape::Disc));
+        v
+    }
+}
+
+impl RobotSpec {
+    fn shapes(&self) -> Vec<Shape<'_>> {
+        let mut v = Vec::new();
+        v.extend(self.cuboid.as_ref().map(Shape::Box));
+        v.extend(self.mesh.as_deref().map(Shape::Mesh));
+        v.extend(self.polygon.as_ref().map(Shape::Polygon));
+        v.extend(self.polygons.as_deref().map(Shape::Polygons));
+        v.extend(self.convex.as_ref().map(Shape::Convex));
+        v
+    }
+}
+
+/// Mean of the distinct vertices of some polygons.
+fn polygon_mean(parts: &[Polygon]) -> Point2<f64> {
+    let mut seen = std::collections::HashSet::new();
+    let (mut sum, mut n) = (Vector2::zeros(), 0usize);
+    for v in parts.iter().flat_map(|p| &p.vertices) {
+        if seen.insert([v.x.to_bits(), v.y.to_bits()]) {
+            sum += v.coords;
+            n += 1;
+        }
+    }
+    Point2::from(sum / n.max(1) as f64)
 }
