@@ -17,7 +17,7 @@
 //! | [`local`] | local methods: straight line, via-point planner, path shortening |
 //! | [`roadmap`] | learning, persistence, queries |
 //! | [`scene`] | TOML scenes, OMPL.app problems, meshes |
-//! | [`bench`] | the seed's experiments and local-method benchmarks |
+//! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
 #![warn(missing_docs)]
 
 pub mod bench;

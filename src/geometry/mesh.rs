@@ -120,20 +120,42 @@ impl TriMesh {
             .fold(0.0, f64::max)
     }
 
-    /// Whether the mesh bounds a solid: every undirected edge is used by an even, non-zero
-    /// number of triangles, and for each edge the two directions occur equally often (every
-    /// oriented edge is matched by its reverse). Open and double-sided soups fail this unless
-    /// their duplicates happen to pair up.
+    /// Whether the mesh bounds a solid: after setting aside every face that occurs with both
+    /// windings (a double-sided sheet, as SketchUp exports every face, bounds nothing), some
+    /// faces remain and every oriented edge among them is matched by its reverse as often as it
+    /// occurs. Open surfaces and double-sided soups fail this.
     pub fn is_closed(&self) -> bool {
-        let mut balance: HashMap<(u32, u32), i64> = HashMap::new();
+        // faces by their sorted vertex triple: +1 per counter-clockwise (even permutation of the
+        // sorted order) occurrence, −1 per clockwise one
+        let mut faces: HashMap<[u32; 3], (u32, u32)> = HashMap::new();
         for t in &self.triangles {
+            let mut s = *t;
+            s.sort_unstable();
+            let even = [s, [s[1], s[2], s[0]], [s[2], s[0], s[1]]].contains(t);
+            let e = faces.entry(s).or_default();
+            if even {
+                e.0 += 1;
+            } else {
+                e.1 += 1;
+            }
+        }
+        let mut balance: HashMap<(u32, u32), i64> = HashMap::new();
+        let mut remaining = 0usize;
+        for t in &self.triangles {
+            let mut s = *t;
+            s.sort_unstable();
+            let (ccw, cw) = faces[&s];
+            if ccw > 0 && cw > 0 {
+                continue;
+            }
+            remaining += 1;
             for k in 0..3 {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 let key = (a.min(b), a.max(b));
                 *balance.entry(key).or_default() += if a < b { 1 } else { -1 };
             }
         }
-        !balance.is_empty() && balance.values().all(|&v| v == 0)
+        remaining > 0 && balance.values().all(|&v| v == 0)
     }
 }
 
@@ -153,6 +175,30 @@ mod tests {
             })
             .sum();
         assert!((vol - 48.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn double_sided_sheets_are_not_closed() {
+        let sheet = TriMesh::new(
+            vec![
+                Point3::new(0.0, 0.0, 0.0),
+                Point3::new(1.0, 0.0, 0.0),
+                Point3::new(0.0, 1.0, 0.0),
+                Point3::new(1.0, 1.0, 0.0),
+            ],
+            vec![[0, 1, 2], [1, 3, 2], [0, 2, 1], [1, 2, 3]],
+        )
+        .unwrap();
+        assert!(!sheet.is_closed());
+        // a closed box stays closed when a double-sided sheet is added to it
+        let cube = TriMesh::cuboid([1.0; 3]).unwrap();
+        let mut both = cube.clone();
+        both.triangles.extend([[0, 1, 2], [0, 2, 1]]);
+        assert!(both.is_closed());
+        // a box with one face missing is open
+        let mut open = cube;
+        open.triangles.truncate(10);
+        assert!(!open.is_closed());
     }
 
     #[test]
