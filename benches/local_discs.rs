@@ -2,7 +2,8 @@
 //! (CHS A.1.3). Inputs come from the seeded problem generator and are built outside the timed
 //! loops; every connection is asserted to succeed, so a broken planner cannot look fast.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
 use viaroad::bench::discs::{problem, DiscProblem, GOAL, SEED_RADIUS, START};
 use viaroad::local::viapoint::{Depth, ViaLimit, ViaPoint, ViaPointOptions};
 use viaroad::local::{LocalMethod, StraightLine};
