@@ -14,7 +14,10 @@ fn oracle_calls(c: &mut Criterion) {
     let p = problem(1, 0, SEED_RADIUS);
     let oracle = p.oracle();
     let segment = Motion::segment(START.to_vec(), Change::Linear(vec![1.0, -1.0]));
-    let line = Motion::line(vec![0.5, 0.5], Change::Linear(vec![0.7071, 0.7071]));
+    let line = Motion::line(
+        vec![0.5, 0.5],
+        Change::Linear(vec![std::f64::consts::FRAC_1_SQRT_2; 2]),
+    );
     let mut g = c.benchmark_group("disc_oracle");
     g.bench_function("intersect_segment_50_discs", |b| {
         b.iter(|| {
