@@ -67,6 +67,9 @@ pub(crate) struct Part {
     pub parity_bvh: Bvh,
     /// Box around the part.
     pub aabb: Aabb,
+    /// A ball around the part: centre and radius (CHS §2.2: "approximations of smallest
+    /// enclosing spheres are computed once for every object").
+    pub sphere: (V3, f64),
     /// The connected pieces of `parity`: containment is tested with one point of each (a body
     /// of two separate boxes may have one inside an obstacle and the other outside).
     pub components: Vec<Component>,
@@ -231,6 +234,12 @@ impl Body {
             let aabb = order.iter().fold(Aabb::EMPTY, |b, t| {
                 b.merge(&Aabb::of_points(t.iter().map(|&i| &vertices[i as usize])))
             });
+            let centre = aabb.centre();
+            let radius = order
+                .iter()
+                .flatten()
+                .map(|&i| (vertices[i as usize] - centre).norm())
+                .fold(0.0, f64::max);
             let solid = mesh.is_closed() && !parity.is_empty();
             let components = components(&parity, &boxes);
             parts.push(Part {
@@ -238,6 +247,7 @@ impl Body {
                 parity_bvh: Bvh::build(&boxes),
                 parity,
                 aabb,
+                sphere: (centre, radius),
                 components,
             });
         }

@@ -147,6 +147,31 @@ impl Aabb {
     }
 }
 
+/// The λ for which the ball of radius `r` about `c + λ·dir` meets the ball of radius `radius`
+/// about `centre`: one quadratic inequality (CHS §2.2, "a simple quadratic inequality can tell
+/// whether the moving sphere intersects the other at some time during the motion").
+pub(crate) fn sphere_sweep(c: &V3, dir: &V3, r: f64, centre: &V3, radius: f64) -> Option<Interval> {
+    let w = c - centre;
+    let s = r + radius;
+    let a = dir.norm_squared();
+    let b = dir.dot(&w);
+    let e = w.norm_squared() - s * s;
+    if a == 0.0 {
+        return (e <= 0.0).then_some(Interval::ALL);
+    }
+    let disc = b * b - a * e;
+    if disc < 0.0 {
+        return None;
+    }
+    // a λ² + 2 b λ + e ≤ 0, roots without cancellation
+    let q = -(b + disc.sqrt().copysign(b));
+    let (l1, l2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
+    Some(Interval {
+        lo: l1.min(l2),
+        hi: l1.max(l2),
+    })
+}
+
 /// The extremes of `a cos φ + b sin φ + c` over `φ ∈ [p0, p1]` (`p1 - p0` may exceed 2π).
 fn trig_range(
     a: f64,
@@ -457,6 +482,26 @@ mod tests {
             V3::new(-1.0, 0.0, 0.0),
         ];
         assert!(f.box_of(&around, 0.0).angle.is_none());
+    }
+
+    #[test]
+    fn moving_sphere_meets_a_sphere() {
+        // centre from (−5, 0.6, 0) along x; radii 1 and 0.5: meet while x² + 0.36 ≤ 2.25
+        let iv = sphere_sweep(
+            &V3::new(-5.0, 0.6, 0.0),
+            &V3::new(1.0, 0.0, 0.0),
+            1.0,
+            &V3::zeros(),
+            0.5,
+        )
+        .unwrap();
+        let x = (2.25f64 - 0.36).sqrt();
+        assert!((iv.lo - (5.0 - x)).abs() < 1e-12 && (iv.hi - (5.0 + x)).abs() < 1e-12);
+        assert!(sphere_sweep(&V3::new(0.0, 2.0, 0.0), &V3::x(), 1.0, &V3::zeros(), 0.5).is_none());
+        assert_eq!(
+            sphere_sweep(&V3::zeros(), &V3::zeros(), 1.0, &V3::x(), 0.5),
+            Some(Interval::ALL)
+        );
     }
 
     #[test]

@@ -151,6 +151,16 @@ pub(crate) fn sweep(
     let margin = 4.0 * tol.dist;
     let axis = pose.body_dir(axis_w).normalize();
     let turning = AngleRange::new(phis.lo, phis.hi);
+    // first level: the robot's ball about the reference point does not move while it turns
+    let reach = robot.radius + margin;
+    if ph.enveloping
+        && !obst
+            .parts
+            .iter()
+            .any(|p| (pose.pos - p.sphere.0).norm() <= reach + p.sphere.1)
+    {
+        return;
+    }
     let swept_world = swept_box(pose, &robot.aabb, robot.radius, axis_w, &turning).grown(margin);
     if !swept_world.overlaps(&obst.aabb) {
         return;

@@ -13,7 +13,7 @@
 //! [`IntervalList::from_unsorted`]: crate::interval::IntervalList::from_unsorted
 
 use super::body::Face;
-use super::envelope::{Aabb, FrameBox, MotionFrame};
+use super::envelope::{sphere_sweep, Aabb, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
 use super::{containment, Polyhedra, Pose, Sink};
 use crate::interval::Interval;
@@ -91,12 +91,35 @@ pub(crate) fn sweep(
     // nothing can happen while the robot's box, moving, misses the obstacles' box; this also
     // makes an unbounded line bounded
     let robot_world = pose.world_box(&robot.aabb);
-    let Some(window) = robot_world
+    let Some(mut window) = robot_world
         .sweep_range(dir_w, &obst.aabb.grown(margin))
         .and_then(|w| w.meet(&range))
     else {
         return;
     };
+    if ph.enveloping {
+        // first level: the robot's ball about its reference point against each obstacle's ball
+        let hull = obst
+            .parts
+            .iter()
+            .filter_map(|p| {
+                sphere_sweep(
+                    &pose.pos,
+                    dir_w,
+                    robot.radius + margin,
+                    &p.sphere.0,
+                    p.sphere.1,
+                )
+            })
+            .reduce(|a, b| Interval {
+                lo: a.lo.min(b.lo),
+                hi: a.hi.max(b.hi),
+            });
+        match hull.and_then(|h| h.meet(&window)) {
+            Some(w) => window = w,
+            None => return,
+        }
+    }
 
     let frame = MotionFrame::new(&dir);
     let mut robot_boxes: Vec<Option<FrameBox>> = vec![None; robot.faces.len()];
