@@ -245,6 +245,11 @@ fn problems() -> Vec<Problem> {
     out
 }
 
+/// A coordinate as `f64`, whether tobj stores `f32` or (with its `use_f64` feature) `f64`.
+fn widen<T: Into<f64>>(x: T) -> f64 {
+    x.into()
+}
+
 fn load_obj(path: &Path) -> Option<TriMesh> {
     let (models, _) = tobj::load_obj(
         path,
@@ -259,7 +264,7 @@ fn load_obj(path: &Path) -> Option<TriMesh> {
     for m in models {
         let base = vertices.len() as u32;
         for p in m.mesh.positions.chunks(3) {
-            vertices.push(Point3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            vertices.push(Point3::new(widen(p[0]), widen(p[1]), widen(p[2])));
         }
         for t in m.mesh.indices.chunks(3) {
             triangles.push([base + t[0], base + t[1], base + t[2]]);

@@ -29,7 +29,7 @@ fn cuboid_at(centre: [f64; 3], half: [f64; 3]) -> TriMesh {
 }
 
 /// Every triangle a second time with the other winding: an open, double-sided soup like
-/// OMPL.app's meshes (it still passes `is_closed`, but has no inside).
+/// OMPL.app's meshes, which has no inside.
 fn double_sided(m: &TriMesh) -> TriMesh {
     let mut tris = m.triangles.clone();
     tris.extend(m.triangles.iter().map(|t| [t[0], t[2], t[1]]));
@@ -74,6 +74,11 @@ fn random_points(rng: &mut ChaCha8Rng, n: usize, centre: [f64; 3], size: f64) ->
         .collect()
 }
 
+/// A coordinate as `f64`, whether tobj stores `f32` or (with its `use_f64` feature) `f64`.
+fn widen<T: Into<f64>>(x: T) -> f64 {
+    x.into()
+}
+
 fn load_obj(name: &str) -> TriMesh {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/polyhedra")
@@ -92,7 +97,7 @@ fn load_obj(name: &str) -> TriMesh {
     for m in models {
         let base = vertices.len() as u32;
         for p in m.mesh.positions.chunks(3) {
-            vertices.push(Point3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            vertices.push(Point3::new(widen(p[0]), widen(p[1]), widen(p[2])));
         }
         for t in m.mesh.indices.chunks(3) {
             triangles.push([base + t[0], base + t[1], base + t[2]]);
