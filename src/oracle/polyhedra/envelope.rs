@@ -1,0 +1,515 @@
+//! Enveloping (CHS §2.2 "Enveloping Techniques", §2.3.2): cheap bounds that rule out most
+//! edge–face pairs before the predicate is evaluated.
+//!
+//! The hierarchy, coarse to fine:
+//! 1. the robot's bounding sphere / box swept over the whole motion against the obstacles'
+//!    bounding box and tree ([`super::bvh`]) — far-away obstacle parts cost nothing;
+//! 2. per-face boxes in a frame aligned with the motion: for a translation, a Cartesian frame
+//!    whose z-axis is the direction of motion (x and y stay fixed, z grows with λ:
+//!    [`MotionFrame`]); for a rotation, cylindrical coordinates about the axis — height and
+//!    radius stay fixed, the angle grows with φ ([`CylBox`]). Two faces can only meet where
+//!    both fixed coordinates overlap, and only for the parameters where the moving coordinate
+//!    overlaps, which also gives a window for the exact computation.
+//!
+//! The seed computes the boxes once per polyhedron and direction; we compute the robot's
+//! lazily per call (a call has one direction) and the obstacle's only for faces the tree
+//! returns.
+
+use crate::interval::Interval;
+use nalgebra::Vector3;
+use std::f64::consts::{PI, TAU};
+
+type V3 = Vector3<f64>;
+
+/// An axis-aligned box `[lo, hi]`; empty when `lo > hi` in some coordinate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Aabb {
+    /// Lower corner.
+    pub lo: V3,
+    /// Upper corner.
+    pub hi: V3,
+}
+
+impl Aabb {
+    /// The empty box (neutral element of [`merge`](Self::merge)).
+    pub const EMPTY: Aabb = Aabb {
+        lo: V3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+        hi: V3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+    };
+
+    /// The box around `points`.
+    pub fn of_points<'a>(points: impl IntoIterator<Item = &'a V3>) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for p in points {
+            b.add_point(p);
+        }
+        b
+    }
+
+    /// Grows the box to contain `p`.
+    pub fn add_point(&mut self, p: &V3) {
+        self.lo = self.lo.inf(p);
+        self.hi = self.hi.sup(p);
+    }
+
+    /// The box around both.
+    pub fn merge(&self, o: &Aabb) -> Aabb {
+        Aabb {
+            lo: self.lo.inf(&o.lo),
+            hi: self.hi.sup(&o.hi),
+        }
+    }
+
+    /// The common part (possibly empty).
+    pub fn meet(&self, o: &Aabb) -> Aabb {
+        Aabb {
+            lo: self.lo.sup(&o.lo),
+            hi: self.hi.inf(&o.hi),
+        }
+    }
+
+    /// No point inside.
+    pub fn is_empty(&self) -> bool {
+        // written with `all` so that NaN ends count as empty
+        !(0..3).all(|k| self.lo[k] <= self.hi[k])
+    }
+
+    /// Centre.
+    pub fn centre(&self) -> V3 {
+        0.5 * (self.lo + self.hi)
+    }
+
+    /// Length of the diagonal (0 for an empty box).
+    pub fn diagonal(&self) -> f64 {
+        if self.is_empty() {
+            0.0
+        } else {
+            (self.hi - self.lo).norm()
+        }
+    }
+
+    /// Grown by `m` on every side.
+    pub fn grown(&self, m: f64) -> Aabb {
+        Aabb {
+            lo: self.lo.add_scalar(-m),
+            hi: self.hi.add_scalar(m),
+        }
+    }
+
+    /// Whether the closed boxes share a point.
+    pub fn overlaps(&self, o: &Aabb) -> bool {
+        (0..3).all(|k| self.lo[k] <= o.hi[k] && o.lo[k] <= self.hi[k])
+    }
+
+    /// The box moved by `d`.
+    pub fn shifted(&self, d: &V3) -> Aabb {
+        Aabb {
+            lo: self.lo + d,
+            hi: self.hi + d,
+        }
+    }
+
+    /// The parameters `s` for which `origin + s·dir` lies in the box (slab test), if any.
+    pub fn line_range(&self, origin: &V3, dir: &V3) -> Option<Interval> {
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for k in 0..3 {
+            if dir[k] == 0.0 {
+                if origin[k] < self.lo[k] || origin[k] > self.hi[k] {
+                    return None;
+                }
+            } else {
+                let a = (self.lo[k] - origin[k]) / dir[k];
+                let b = (self.hi[k] - origin[k]) / dir[k];
+                lo = lo.max(a.min(b));
+                hi = hi.min(a.max(b));
+            }
+        }
+        Interval::new(lo, hi)
+    }
+
+    /// The parameters `λ` for which this box moved by `λ·dir` overlaps `other`.
+    pub fn sweep_range(&self, dir: &V3, other: &Aabb) -> Option<Interval> {
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for k in 0..3 {
+            // other.lo - self.hi <= λ dir <= other.hi - self.lo
+            let (a, b) = (other.lo[k] - self.hi[k], other.hi[k] - self.lo[k]);
+            if dir[k] == 0.0 {
+                if a > 0.0 || b < 0.0 {
+                    return None;
+                }
+            } else {
+                let (x, y) = (a / dir[k], b / dir[k]);
+                lo = lo.max(x.min(y));
+                hi = hi.min(x.max(y));
+            }
+        }
+        Interval::new(lo, hi)
+    }
+}
+
+/// The λ for which the ball of radius `r` about `c + λ·dir` meets the ball of radius `radius`
+/// about `centre`: one quadratic inequality (CHS §2.2, "a simple quadratic inequality can tell
+/// whether the moving sphere intersects the other at some time during the motion").
+pub(crate) fn sphere_sweep(c: &V3, dir: &V3, r: f64, centre: &V3, radius: f64) -> Option<Interval> {
+    let w = c - centre;
+    let s = r + radius;
+    let a = dir.norm_squared();
+    let b = dir.dot(&w);
+    let e = w.norm_squared() - s * s;
+    if a == 0.0 {
+        return (e <= 0.0).then_some(Interval::ALL);
+    }
+    let disc = b * b - a * e;
+    if disc < 0.0 {
+        return None;
+    }
+    // a λ² + 2 b λ + e ≤ 0, roots without cancellation
+    let q = -(b + disc.sqrt().copysign(b));
+    let (l1, l2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
+    Some(Interval {
+        lo: l1.min(l2),
+        hi: l1.max(l2),
+    })
+}
+
+/// The extremes of `a cos φ + b sin φ + c` over `φ ∈ [p0, p1]` (`p1 - p0` may exceed 2π).
+fn trig_range(
+    a: f64,
+    b: f64,
+    c: f64,
+    p0: f64,
+    p1: f64,
+    cs0: (f64, f64),
+    cs1: (f64, f64),
+) -> (f64, f64) {
+    let amp = a.hypot(b);
+    if p1 - p0 >= TAU {
+        return (c - amp, c + amp);
+    }
+    let f0 = a * cs0.0 + b * cs0.1 + c;
+    let f1 = a * cs1.0 + b * cs1.1 + c;
+    let (mut lo, mut hi) = (f0.min(f1), f0.max(f1));
+    if amp > 0.0 {
+        // maximum at θ = atan2(b, a), minimum at θ + π (mod 2π)
+        let theta = b.atan2(a);
+        if angle_in(theta, p0, p1) {
+            hi = c + amp;
+        }
+        if angle_in(theta + PI, p0, p1) {
+            lo = c - amp;
+        }
+    }
+    (lo, hi)
+}
+
+/// Whether some `θ + 2πk` lies in `[p0, p1]`.
+pub(crate) fn angle_in(theta: f64, p0: f64, p1: f64) -> bool {
+    let k = ((p0 - theta) / TAU).ceil();
+    theta + k * TAU <= p1
+}
+
+/// Precomputed cosines and sines of the ends of an angle range, shared by many arcs.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AngleRange {
+    /// Start angle.
+    pub p0: f64,
+    /// End angle (`>= p0`).
+    pub p1: f64,
+    cs0: (f64, f64),
+    cs1: (f64, f64),
+}
+
+impl AngleRange {
+    /// `[p0, p1]`.
+    pub fn new(p0: f64, p1: f64) -> AngleRange {
+        AngleRange {
+            p0,
+            p1,
+            cs0: (p0.cos(), p0.sin()),
+            cs1: (p1.cos(), p1.sin()),
+        }
+    }
+
+    /// The box around the arc that `x` describes when turned about the unit `axis` (through the
+    /// origin) by every angle of the range. By formula (2.1) every coordinate of `x_φ` is
+    /// `a cos φ + b sin φ + c`.
+    pub fn arc_box(&self, x: &V3, axis: &V3) -> Aabb {
+        let rx = axis.dot(x);
+        let c = axis * rx;
+        let a = x - c;
+        let b = axis.cross(x);
+        let mut out = Aabb::EMPTY;
+        for k in 0..3 {
+            let (lo, hi) = trig_range(a[k], b[k], c[k], self.p0, self.p1, self.cs0, self.cs1);
+            out.lo[k] = lo;
+            out.hi[k] = hi;
+        }
+        out
+    }
+}
+
+/// An orthonormal frame whose third axis is the direction of a translation (CHS §2.2: "boxes
+/// in a special orthogonal coordinate system with r as z-axis; x- and y-coordinates remain
+/// fixed under translation").
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MotionFrame {
+    u: V3,
+    w: V3,
+    z: V3,
+}
+
+/// A box in a [`MotionFrame`]: `[min, max]` of the u, w and z coordinates.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FrameBox {
+    /// Lower ends (u, w, z).
+    pub lo: [f64; 3],
+    /// Upper ends (u, w, z).
+    pub hi: [f64; 3],
+}
+
+impl MotionFrame {
+    /// The frame for direction `dir` (not zero).
+    pub fn new(dir: &V3) -> MotionFrame {
+        let z = dir.normalize();
+        let helper = if z.x.abs() < 0.6 {
+            V3::x()
+        } else if z.y.abs() < 0.6 {
+            V3::y()
+        } else {
+            V3::z()
+        };
+        let u = z.cross(&helper).normalize();
+        let w = z.cross(&u);
+        MotionFrame { u, w, z }
+    }
+
+    /// The box of the points in this frame.
+    pub fn box_of(&self, pts: &[V3; 3]) -> FrameBox {
+        let mut b = FrameBox {
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+        };
+        for p in pts {
+            let c = [self.u.dot(p), self.w.dot(p), self.z.dot(p)];
+            for (k, ck) in c.into_iter().enumerate() {
+                b.lo[k] = b.lo[k].min(ck);
+                b.hi[k] = b.hi[k].max(ck);
+            }
+        }
+        b
+    }
+}
+
+impl FrameBox {
+    /// For a face with this box moving by `λ·speed` along z against a fixed face with box `o`:
+    /// the λ for which the boxes overlap (`None` if the fixed coordinates never do), each side
+    /// grown by `margin`.
+    pub fn sweep_window(&self, o: &FrameBox, speed: f64, margin: f64) -> Option<Interval> {
+        for k in 0..2 {
+            if self.lo[k] > o.hi[k] + margin || o.lo[k] > self.hi[k] + margin {
+                return None;
+            }
+        }
+        Interval::new(
+            (o.lo[2] - self.hi[2] - margin) / speed,
+            (o.hi[2] - self.lo[2] + margin) / speed,
+        )
+    }
+}
+
+/// A box in cylindrical coordinates about a rotation axis through the origin (CHS §2.3.2:
+/// "bounding boxes are computed in a cylindrical coordinate system whose axes represent angle,
+/// height, and distance with respect to the fixed rotational axis").
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CylBox {
+    /// Height along the axis.
+    pub h: (f64, f64),
+    /// Distance from the axis.
+    pub rho: (f64, f64),
+    /// Angle about the axis, `lo <= hi < lo + π`; `None` when the face surrounds or touches the
+    /// axis (every angle).
+    pub angle: Option<(f64, f64)>,
+}
+
+/// An orthonormal frame `(e1, e2, axis)` for cylindrical coordinates.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CylFrame {
+    e1: V3,
+    e2: V3,
+    axis: V3,
+}
+
+impl CylFrame {
+    /// The frame about the unit `axis`.
+    pub fn new(axis: &V3) -> CylFrame {
+        let f = MotionFrame::new(axis);
+        CylFrame {
+            e1: f.u,
+            e2: f.w,
+            axis: *axis,
+        }
+    }
+
+    /// The cylindrical box of a triangle; `margin` is added to every radial and height end.
+    pub fn box_of(&self, pts: &[V3; 3], margin: f64) -> CylBox {
+        let mut h = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut xy = [(0.0, 0.0); 3];
+        let mut rho_hi: f64 = 0.0;
+        for (i, p) in pts.iter().enumerate() {
+            let z = self.axis.dot(p);
+            h = (h.0.min(z), h.1.max(z));
+            xy[i] = (self.e1.dot(p), self.e2.dot(p));
+            rho_hi = rho_hi.max(xy[i].0.hypot(xy[i].1));
+        }
+        let rho_lo = origin_distance_2d(&xy);
+        let angle = if rho_lo > 4.0 * margin {
+            let a0 = xy[0].1.atan2(xy[0].0);
+            let (mut lo, mut hi) = (0.0f64, 0.0f64);
+            for p in &xy[1..] {
+                let d = wrap_pi(p.1.atan2(p.0) - a0);
+                lo = lo.min(d);
+                hi = hi.max(d);
+            }
+            // the face stays at least rho_lo from the axis: a margin there is an angle
+            let slack = margin / rho_lo + 1e-12;
+            Some((a0 + lo - slack, a0 + hi + slack))
+        } else {
+            None
+        };
+        CylBox {
+            h: (h.0 - margin, h.1 + margin),
+            rho: ((rho_lo - margin).max(0.0), rho_hi + margin),
+            angle,
+        }
+    }
+}
+
+impl CylBox {
+    /// Whether the fixed coordinates (height and radius) of two faces overlap.
+    pub fn fixed_overlap(&self, o: &CylBox) -> bool {
+        self.h.0 <= o.h.1 && o.h.0 <= self.h.1 && self.rho.0 <= o.rho.1 && o.rho.0 <= self.rho.1
+    }
+
+    /// For this face turned by `+φ` against the fixed face `o`: the angles φ (an arc
+    /// `(start, length)`, length < 2π) for which their angular ranges overlap; `None` if every
+    /// angle may.
+    pub fn turn_window(&self, o: &CylBox) -> Option<(f64, f64)> {
+        let (m, f) = (self.angle?, o.angle?);
+        // m.lo + φ <= f.hi and f.lo <= m.hi + φ
+        let start = f.0 - m.1;
+        let len = (f.1 - f.0) + (m.1 - m.0);
+        (len < TAU).then_some((start, len))
+    }
+}
+
+/// Distance from the origin to the triangle `xy` in the plane (0 if inside).
+fn origin_distance_2d(xy: &[(f64, f64); 3]) -> f64 {
+    let cross = |a: (f64, f64), b: (f64, f64)| a.0 * b.1 - a.1 * b.0;
+    let s: Vec<f64> = (0..3).map(|i| cross(xy[i], xy[(i + 1) % 3])).collect();
+    if (s[0] >= 0.0 && s[1] >= 0.0 && s[2] >= 0.0) || (s[0] <= 0.0 && s[1] <= 0.0 && s[2] <= 0.0) {
+        return 0.0;
+    }
+    (0..3)
+        .map(|i| {
+            let (a, b) = (xy[i], xy[(i + 1) % 3]);
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let l2 = dx * dx + dy * dy;
+            let t = if l2 > 0.0 {
+                (-(a.0 * dx + a.1 * dy) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (a.0 + t * dx).hypot(a.1 + t * dy)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Wraps into `(-π, π]`.
+pub(crate) fn wrap_pi(a: f64) -> f64 {
+    let w = a - TAU * ((a + PI) / TAU).floor();
+    // w in [-π, π); move -π to π
+    if w <= -PI {
+        w + TAU
+    } else {
+        w
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::space::rotation::axis_angle;
+
+    #[test]
+    fn arc_box_contains_sampled_arc_and_is_tight() {
+        let axis = V3::new(0.3, -0.5, 0.8).normalize();
+        let x = V3::new(1.0, 2.0, -0.5);
+        for &(p0, p1) in &[(0.0, 0.3), (-1.0, 2.5), (-PI, PI), (2.0, 7.0)] {
+            let r = AngleRange::new(p0, p1);
+            let b = r.arc_box(&x, &axis);
+            let mut s = Aabb::EMPTY;
+            for i in 0..=2000 {
+                let phi = p0 + (p1 - p0) * i as f64 / 2000.0;
+                let q = axis_angle([axis.x, axis.y, axis.z], phi);
+                let y = q * x;
+                s.add_point(&y);
+            }
+            for k in 0..3 {
+                assert!(b.lo[k] <= s.lo[k] + 1e-12 && s.hi[k] <= b.hi[k] + 1e-12);
+                assert!(s.lo[k] - b.lo[k] < 1e-5 && b.hi[k] - s.hi[k] < 1e-5);
+            }
+        }
+    }
+
+    #[test]
+    fn cylindrical_box_of_a_face_off_the_axis() {
+        let f = CylFrame::new(&V3::z());
+        let pts = [
+            V3::new(2.0, -1.0, 0.0),
+            V3::new(3.0, 1.0, 1.0),
+            V3::new(2.0, 1.0, 2.0),
+        ];
+        let b = f.box_of(&pts, 0.0);
+        assert_eq!(b.h, (0.0, 2.0));
+        assert!((b.rho.0 - 2.0).abs() < 1e-12);
+        assert!((b.rho.1 - 10f64.sqrt()).abs() < 1e-12);
+        let (lo, hi) = b.angle.unwrap();
+        assert!((hi - lo - 2.0 * 0.5f64.atan()).abs() < 1e-9);
+        // a face around the axis has every angle
+        let around = [
+            V3::new(1.0, -1.0, 0.0),
+            V3::new(1.0, 1.0, 0.0),
+            V3::new(-1.0, 0.0, 0.0),
+        ];
+        assert!(f.box_of(&around, 0.0).angle.is_none());
+    }
+
+    #[test]
+    fn moving_sphere_meets_a_sphere() {
+        // centre from (−5, 0.6, 0) along x; radii 1 and 0.5: meet while x² + 0.36 ≤ 2.25
+        let iv = sphere_sweep(
+            &V3::new(-5.0, 0.6, 0.0),
+            &V3::new(1.0, 0.0, 0.0),
+            1.0,
+            &V3::zeros(),
+            0.5,
+        )
+        .unwrap();
+        let x = (2.25f64 - 0.36).sqrt();
+        assert!((iv.lo - (5.0 - x)).abs() < 1e-12 && (iv.hi - (5.0 + x)).abs() < 1e-12);
+        assert!(sphere_sweep(&V3::new(0.0, 2.0, 0.0), &V3::x(), 1.0, &V3::zeros(), 0.5).is_none());
+        assert_eq!(
+            sphere_sweep(&V3::zeros(), &V3::zeros(), 1.0, &V3::x(), 0.5),
+            Some(Interval::ALL)
+        );
+    }
+
+    #[test]
+    fn wrap_is_half_open_at_minus_pi() {
+        assert!((wrap_pi(PI) - PI).abs() < 1e-15);
+        assert!((wrap_pi(-PI) - PI).abs() < 1e-15);
+        assert!((wrap_pi(3.0 * PI + 0.1) - (-PI + 0.1)).abs() < 1e-12);
+        assert!(angle_in(0.1 + 4.0 * PI, 0.0, 0.2));
+        assert!(!angle_in(0.3, 0.0, 0.2));
+    }
+}

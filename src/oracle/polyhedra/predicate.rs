@@ -1,0 +1,194 @@
+//! The edge–face predicate `S(l_{p,q}, f)` of CHS §2.1, and the static overlap test built on it.
+//!
+//! For an edge from `p` to `q` and a convex face `f` with corners `v_0 … v_{k−1}`
+//! (counter-clockwise about its normal `n`, plane `n·x = n_0`) the seed's predicate is
+//!
+//! ```text
+//! S = ( n·(q−p) > 0 ∧ n·q − n_0 ≥ 0 ∧ n·p − n_0 ≤ 0 ∧ ⋀_i det[q−p, v_{i+1}−v_i, p−v_i] ≥ 0 )   "outward"
+//!   ∨ ( n·(p−q) < 0 ∧ n·p − n_0 ≥ 0 ∧ n·q − n_0 ≤ 0 ∧ ⋀_i det[p−q, v_{i+1}−v_i, q−v_i] ≥ 0 )   "inward"
+//! ```
+//!
+//! (the seed's second line reads `n·(p−q) < 0`, which repeats the first case; the text around
+//! it — "inward: n·(q−p) < 0" — makes clear that `n·(q−p) < 0` is meant, and that is what we
+//! use). Since `det[p−q, e, q−v] = −det[q−p, e, p−v]`, both cases test the same three
+//! determinants `D_i = det[d, e_i, p − v_i]` with `d = q − p`, with opposite signs; and
+//! `Σ_i D_i = n·d` for a triangle (the three determinants add up to the case split itself).
+//!
+//! The "parallel" case `n·d = 0` is left out (Lemma 2.1): an edge lying in the plane of a face
+//! of the other body overlaps it only if some other, non-degenerate edge–face pair overlaps
+//! too. The lemma is stated for solids; for two triangles of open soups it holds as long as the
+//! triangles are not coplanar — the only contact we can miss is two coplanar triangles
+//! overlapping with no third triangle touching them (a single flat sheet sliding exactly in
+//! the plane of another).
+//!
+//! Every atom is tested with a tiny tolerance in favour of collision ([`Tolerance`]), so that
+//! contacts exactly at a shared edge of two faces are not lost to rounding in both.
+
+use super::body::Face;
+use nalgebra::Vector3;
+
+type V3 = Vector3<f64>;
+
+/// Relative tolerance of the distance tests, as a fraction of the scene's size.
+pub(crate) const DISTANCE_TOLERANCE: f64 = 1e-11;
+/// Sine of the angle below which an edge counts as parallel to a face (Lemma 2.1).
+pub(crate) const PARALLEL_TOLERANCE: f64 = 1e-10;
+
+/// Numerical tolerances of one oracle.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tolerance {
+    /// A point within this distance of a plane counts as on it (length units).
+    pub dist: f64,
+    /// An edge within this angle (radians, as a sine) of a face's plane counts as parallel.
+    pub parallel: f64,
+}
+
+impl Tolerance {
+    /// Tolerances for a scene of size `scale` (length units).
+    pub fn for_scale(scale: f64) -> Tolerance {
+        Tolerance {
+            dist: DISTANCE_TOLERANCE * scale.max(f64::MIN_POSITIVE),
+            parallel: PARALLEL_TOLERANCE,
+        }
+    }
+}
+
+/// `det[a, b, c] = a · (b × c)`.
+pub(crate) fn det(a: &V3, b: &V3, c: &V3) -> f64 {
+    a.dot(&b.cross(c))
+}
+
+/// `S(l_{p,q}, f)` for a fixed edge and face: whether the closed segment meets the face.
+/// Parallel pairs answer `false` (Lemma 2.1).
+pub(crate) fn edge_meets_face(p: &V3, q: &V3, f: &Face, tol: &Tolerance) -> bool {
+    let d = q - p;
+    let g = f.n.dot(&d);
+    let nn = f.n.norm();
+    if g.abs() <= tol.parallel * nn * d.norm() {
+        return false;
+    }
+    // outward (g > 0) or inward (g < 0): multiply every atom by the sign of g
+    let s = g.signum();
+    let th = tol.dist * nn;
+    if s * (f.n.dot(p) - f.offset) > th || s * (f.n.dot(q) - f.offset) < -th {
+        return false;
+    }
+    let dl = d.norm();
+    let e = f.edges();
+    (0..3).all(|i| s * det(&d, &e[i], &(p - f.v[i])) >= -tol.dist * dl * e[i].norm())
+}
+
+/// Whether two triangles meet (touching counts), by the predicate in both directions: the
+/// edges of each against the other's face.
+pub(crate) fn faces_meet(a: &Face, b: &Face, tol: &Tolerance) -> bool {
+    let edges = |f: &Face| [(f.v[0], f.v[1]), (f.v[1], f.v[2]), (f.v[2], f.v[0])];
+    edges(a).iter().any(|(p, q)| edge_meets_face(p, q, b, tol))
+        || edges(b).iter().any(|(p, q)| edge_meets_face(p, q, a, tol))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tol() -> Tolerance {
+        Tolerance::for_scale(10.0)
+    }
+
+    fn unit_face() -> Face {
+        Face::new([
+            V3::new(0.0, 0.0, 0.0),
+            V3::new(1.0, 0.0, 0.0),
+            V3::new(0.0, 1.0, 0.0),
+        ])
+    }
+
+    #[test]
+    fn piercing_touching_and_missing_edges() {
+        let f = unit_face();
+        let t = tol();
+        // straight through the middle, both directions
+        assert!(edge_meets_face(
+            &V3::new(0.2, 0.2, -1.0),
+            &V3::new(0.2, 0.2, 1.0),
+            &f,
+            &t
+        ));
+        assert!(edge_meets_face(
+            &V3::new(0.2, 0.2, 1.0),
+            &V3::new(0.2, 0.2, -1.0),
+            &f,
+            &t
+        ));
+        // ending exactly on the face
+        assert!(edge_meets_face(
+            &V3::new(0.2, 0.2, 0.0),
+            &V3::new(0.2, 0.2, 1.0),
+            &f,
+            &t
+        ));
+        // through a corner and along the boundary
+        assert!(edge_meets_face(
+            &V3::new(1.0, 0.0, -1.0),
+            &V3::new(1.0, 0.0, 1.0),
+            &f,
+            &t
+        ));
+        assert!(edge_meets_face(
+            &V3::new(0.5, 0.5, -1.0),
+            &V3::new(0.5, 0.5, 1.0),
+            &f,
+            &t
+        ));
+        // outside the triangle, or short of the plane
+        assert!(!edge_meets_face(
+            &V3::new(0.6, 0.6, -1.0),
+            &V3::new(0.6, 0.6, 1.0),
+            &f,
+            &t
+        ));
+        assert!(!edge_meets_face(
+            &V3::new(0.2, 0.2, 0.1),
+            &V3::new(0.2, 0.2, 1.0),
+            &f,
+            &t
+        ));
+        // in the plane: degenerate, ignored (Lemma 2.1)
+        assert!(!edge_meets_face(
+            &V3::new(-1.0, 0.2, 0.0),
+            &V3::new(2.0, 0.2, 0.0),
+            &f,
+            &t
+        ));
+    }
+
+    #[test]
+    fn determinants_add_up_to_the_case_split() {
+        let f = Face::new([
+            V3::new(0.3, -0.2, 0.7),
+            V3::new(1.9, 0.4, -0.1),
+            V3::new(-0.5, 1.3, 0.2),
+        ]);
+        let (p, q) = (V3::new(0.1, 0.2, 0.3), V3::new(-1.0, 2.0, 0.5));
+        let d = q - p;
+        let e = f.edges();
+        let sum: f64 = (0..3).map(|i| det(&d, &e[i], &(p - f.v[i]))).sum();
+        assert!((sum - f.n.dot(&d)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn crossing_triangles_meet_and_separated_ones_do_not() {
+        let a = unit_face();
+        let b = Face::new([
+            V3::new(0.2, 0.2, -1.0),
+            V3::new(0.2, 0.2, 1.0),
+            V3::new(-1.0, -1.0, 0.5),
+        ]);
+        assert!(faces_meet(&a, &b, &tol()));
+        let c = Face::new([
+            V3::new(2.0, 2.0, -1.0),
+            V3::new(2.0, 2.0, 1.0),
+            V3::new(3.0, 1.0, 0.5),
+        ]);
+        assert!(!faces_meet(&a, &c, &tol()));
+    }
+}

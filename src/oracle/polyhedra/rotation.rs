@@ -1,0 +1,335 @@
+//! The rotational case (CHS §2.3.2): the robot turns by φ about a fixed axis through its
+//! reference point.
+//!
+//! With `x_φ` the point `x` turned by φ about the unit axis `r` (formula 2.1:
+//! `x_φ = (1 − cos φ)(rᵀx) r + cos φ x + sin φ r × x`), every atom of the edge–face predicate
+//! becomes `α cos φ + β sin φ + γ R 0` ([`super::trig`]):
+//! - `n·x_φ − c` has `α = n·x − (n·r)(r·x)`, `β = n·(r × x)`, `γ = (n·r)(r·x) − c`;
+//! - `det[d_φ, e, p_φ − v]` splits into `det[d_φ, e, p_φ] − det[d_φ, e, v]`; the first is
+//!   `e·(p × d)_φ` because the cross product turns with its factors, the second `(e × v)·d_φ`
+//!   — both of the first kind (the seed gets the same by turning the parallelepiped back by −φ);
+//! - the case split `n·d_φ` is itself such an atom, so outward and inward are both evaluated,
+//!   each restricted to where its sign holds.
+//!
+//! The edge moves and the face stays: robot edges turn by `+φ` against obstacle faces;
+//! obstacle edges turn by `−φ` (about `−r` by `+φ`) against robot faces, in the robot's frame
+//! ("swap the role of object and obstacle while negating the axis of rotation").
+//!
+//! Each atom gives at most one arc, so at most two intervals in a window of one turn; the
+//! conjunctions are evaluated on small interval lists ([`Spans`]).
+
+use super::body::Face;
+use super::envelope::{Aabb, AngleRange, CylBox, CylFrame};
+use super::predicate::Tolerance;
+use super::spans::Spans;
+use super::trig::{arc_in_window, Arc, Trig};
+use super::{containment, Polyhedra, Pose, Sink};
+use crate::interval::Interval;
+use crate::oracle::CallCounts;
+use nalgebra::Vector3;
+
+type V3 = Vector3<f64>;
+
+/// A piece of a pair's answer shorter than this (radians) …
+const DEGENERATE_SPAN: f64 = 1e-7;
+/// … at whose middle the edge is this close to parallel to the face (as a sine) is a
+/// degenerate instant of Lemma 2.1, not a collision of this pair.
+const DEGENERATE_PARALLEL: f64 = 1e-7;
+
+/// `s·x_φ` for fixed `s` and `x` turning about the unit `axis` (formula 2.1).
+pub(crate) fn lin(s: &V3, x: &V3, axis: &V3) -> Trig {
+    let sr = s.dot(axis);
+    let rx = axis.dot(x);
+    Trig {
+        alpha: s.dot(x) - sr * rx,
+        beta: s.dot(&axis.cross(x)),
+        gamma: sr * rx,
+    }
+}
+
+/// `x` turned by `phi` about the unit `axis` through the origin (formula 2.1).
+pub(crate) fn turn(x: &V3, axis: &V3, phi: f64) -> V3 {
+    let (s, c) = phi.sin_cos();
+    axis * ((1.0 - c) * axis.dot(x)) + x * c + axis.cross(x) * s
+}
+
+fn at_least(f: Trig, slack: f64, hull: Interval) -> Spans {
+    f.plus(slack).nonneg_in(hull)
+}
+
+fn at_most(f: Trig, slack: f64, hull: Interval) -> Spans {
+    f.neg().plus(slack).nonneg_in(hull)
+}
+
+/// `{φ ∈ window : S(l_{p_φ, q_φ}, f)}` for an edge turning by φ about the unit `axis` (through
+/// the origin) against a fixed face. `window` lies within one turn.
+pub(crate) fn edge_face(
+    p: &V3,
+    q: &V3,
+    f: &Face,
+    axis: &V3,
+    window: &Spans,
+    tol: &Tolerance,
+) -> Spans {
+    let (Some(first), Some(last)) = (window.as_slice().first(), window.as_slice().last()) else {
+        return Spans::EMPTY;
+    };
+    let hull = Interval {
+        lo: first.lo,
+        hi: last.hi,
+    };
+    let d = q - p;
+    let nn = f.n.norm();
+    let dl = d.norm();
+    let g = lin(&f.n, &d, axis);
+    let kg = tol.parallel * nn * dl;
+    if g.alpha.abs() <= kg && g.beta.abs() <= kg && g.gamma.abs() <= kg {
+        // parallel throughout the turn: Lemma 2.1
+        return Spans::EMPTY;
+    }
+    let th = tol.dist * nn;
+    let hp = lin(&f.n, p, axis).plus(-f.offset);
+    let hq = lin(&f.n, q, axis).plus(-f.offset);
+    // outward: g ≥ 0, hq ≥ 0, hp ≤ 0, D_i ≥ 0; inward: g ≤ 0, hp ≥ 0, hq ≤ 0, D_i ≤ 0
+    let mut out = window.intersect(&at_least(hq, th, hull));
+    if !out.is_empty() {
+        out = out.intersect(&at_most(hp, th, hull));
+    }
+    let mut inw = window.intersect(&at_least(hp, th, hull));
+    if !inw.is_empty() {
+        inw = inw.intersect(&at_most(hq, th, hull));
+    }
+    if out.is_empty() && inw.is_empty() {
+        return Spans::EMPTY;
+    }
+    if !out.is_empty() {
+        out = out.intersect(&at_least(g, kg, hull));
+    }
+    if !inw.is_empty() {
+        inw = inw.intersect(&at_most(g, kg, hull));
+    }
+    let m = p.cross(&d);
+    let e = f.edges();
+    for (ei, vi) in e.iter().zip(&f.v) {
+        if out.is_empty() && inw.is_empty() {
+            return Spans::EMPTY;
+        }
+        let di = lin(ei, &m, axis).minus(lin(&ei.cross(vi), &d, axis));
+        let slack = tol.dist * dl * ei.norm();
+        if !out.is_empty() {
+            out = out.intersect(&at_least(di, slack, hull));
+        }
+        if !inw.is_empty() {
+            inw = inw.intersect(&at_most(di, slack, hull));
+        }
+    }
+    let both = out.union(&inw);
+    // drop isolated instants at which the edge lies in the face's plane (Lemma 2.1): there
+    // every determinant vanishes and the closed predicate holds whether or not they overlap
+    let mut kept = Spans::EMPTY;
+    for iv in both.as_slice() {
+        let degenerate = iv.hi - iv.lo <= DEGENERATE_SPAN
+            && g.eval(0.5 * (iv.lo + iv.hi)).abs() <= DEGENERATE_PARALLEL * nn * dl;
+        if !degenerate {
+            kept.push(*iv);
+        }
+    }
+    kept
+}
+
+/// All collision pieces (in φ) of the robot at `pose` turning about the unit world `axis_w`
+/// through its reference point, `φ ∈ phis` (at most one turn).
+pub(crate) fn sweep(
+    ph: &Polyhedra,
+    pose: &Pose,
+    axis_w: &V3,
+    phis: Interval,
+    sink: &mut Sink,
+    counts: &mut CallCounts,
+) {
+    let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
+    let margin = 4.0 * tol.dist;
+    let axis = pose.body_dir(axis_w).normalize();
+    let turning = AngleRange::new(phis.lo, phis.hi);
+    // first level: the robot's ball about the reference point does not move while it turns
+    let reach = robot.radius + margin;
+    if ph.enveloping
+        && !obst
+            .parts
+            .iter()
+            .any(|p| (pose.pos - p.sphere.0).norm() <= reach + p.sphere.1)
+    {
+        return;
+    }
+    let swept_world = swept_box(pose, &robot.aabb, robot.radius, axis_w, &turning).grown(margin);
+    if !swept_world.overlaps(&obst.aabb) {
+        return;
+    }
+
+    let cyl = CylFrame::new(&axis);
+    let back = AngleRange::new(-phis.hi, -phis.lo);
+    let whole = Spans::single(phis);
+    let mut robot_boxes: Vec<Option<CylBox>> = vec![None; robot.faces.len()];
+    let mut per_obstacle = |o: u32, sink: &mut Sink, counts: &mut CallCounts| -> bool {
+        let ids = obst.faces[o as usize];
+        let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
+        let obox = cyl.box_of(&of.v, margin);
+        let per_pair = |r: u32| -> bool {
+            let rc = robot.corners(r);
+            let pair_window = if ph.enveloping {
+                let rbox = robot_boxes[r as usize].get_or_insert_with(|| cyl.box_of(&rc, margin));
+                if !rbox.fixed_overlap(&obox) {
+                    return true;
+                }
+                match rbox.turn_window(&obox) {
+                    Some((start, length)) => arc_in_window(Arc::Part { start, length }, phis),
+                    None => whole,
+                }
+            } else {
+                whole
+            };
+            if pair_window.is_empty() {
+                return true;
+            }
+            for &e in robot.owned_edges(r) {
+                let (p, q) = robot.edge(e);
+                counts.pairs_tested += 1;
+                for iv in edge_face(&p, &q, &of, &axis, &pair_window, &tol).as_slice() {
+                    if !sink.add(*iv) {
+                        return false;
+                    }
+                }
+            }
+            let rf = Face::new(rc);
+            for &e in obst.owned_edges(o) {
+                let [a, b] = obst.edges[e as usize];
+                let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
+                let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
+                counts.pairs_tested += 1;
+                for iv in edge_face(&p, &q, &rf, &-axis, &pair_window, &tol).as_slice() {
+                    if !sink.add(*iv) {
+                        return false;
+                    }
+                }
+            }
+            true
+        };
+        if ph.enveloping {
+            // the obstacle face as seen from the robot turns by −φ
+            let swept =
+                of.v.iter()
+                    .fold(Aabb::EMPTY, |b, y| b.merge(&back.arc_box(y, &axis)))
+                    .grown(margin);
+            robot.bvh.visit_overlapping(&swept, per_pair)
+        } else {
+            (0..robot.faces.len() as u32).all(per_pair)
+        }
+    };
+    if ph.enveloping {
+        obst.bvh
+            .visit_overlapping(&swept_world, |o| per_obstacle(o, sink, counts));
+    } else {
+        for o in 0..obst.faces.len() as u32 {
+            if !per_obstacle(o, sink, counts) {
+                break;
+            }
+        }
+    }
+    if !sink.done() {
+        containment::rotation(ph, pose, axis_w, phis, sink, counts);
+    }
+}
+
+/// The world box around everything a body-frame box at `pose` sweeps while turning about the
+/// world `axis` through `pose`'s position: the arcs of its eight corners (a turned convex set
+/// stays in the hull of its turned corners), cut down to the sphere of `radius` about the
+/// reference point (CHS §2.3.2: spheres "can easily be handled even during rotations").
+pub(crate) fn swept_box(
+    pose: &Pose,
+    body_box: &Aabb,
+    radius: f64,
+    axis: &V3,
+    turning: &AngleRange,
+) -> Aabb {
+    if body_box.is_empty() {
+        return *body_box;
+    }
+    let mut b = Aabb::EMPTY;
+    for k in 0..8 {
+        let c = V3::new(
+            if k & 1 == 0 {
+                body_box.lo.x
+            } else {
+                body_box.hi.x
+            },
+            if k & 2 == 0 {
+                body_box.lo.y
+            } else {
+                body_box.hi.y
+            },
+            if k & 4 == 0 {
+                body_box.lo.z
+            } else {
+                body_box.hi.z
+            },
+        );
+        b = b.merge(&turning.arc_box(&(pose.rot * c), axis));
+    }
+    let sphere = Aabb {
+        lo: V3::repeat(-radius),
+        hi: V3::repeat(radius),
+    };
+    b.meet(&sphere).shifted(&pose.pos)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::predicate::edge_meets_face;
+    use super::*;
+    use proptest::prelude::*;
+    use std::f64::consts::PI;
+
+    fn v(a: [f64; 3]) -> V3 {
+        V3::new(a[0], a[1], a[2])
+    }
+
+    #[test]
+    fn lin_matches_turning() {
+        let axis = v([0.2, -0.4, 0.9]).normalize();
+        let (s, x) = (v([1.0, 2.0, -0.5]), v([-0.3, 0.7, 1.1]));
+        let f = lin(&s, &x, &axis);
+        for k in 0..20 {
+            let phi = -3.0 + 0.3 * k as f64;
+            assert!((f.eval(phi) - s.dot(&turn(&x, &axis, phi))).abs() < 1e-12);
+        }
+    }
+
+    proptest! {
+        /// The arcs agree with the static predicate at sampled φ.
+        #[test]
+        fn arcs_match_static_predicate(
+            c in prop::array::uniform9(-1.0f64..1.0),
+            e in prop::array::uniform6(-1.5f64..1.5),
+            a in prop::array::uniform3(-1.0f64..1.0),
+        ) {
+            let f = Face::new([v([c[0], c[1], c[2]]), v([c[3], c[4], c[5]]), v([c[6], c[7], c[8]])]);
+            prop_assume!(f.n.norm() > 1e-3);
+            let axis = v(a);
+            prop_assume!(axis.norm() > 1e-2);
+            let axis = axis.normalize();
+            let (p, q) = (v([e[0], e[1], e[2]]), v([e[3], e[4], e[5]]));
+            let tol = Tolerance::for_scale(1.0);
+            let w = Spans::single(Interval { lo: -PI, hi: PI });
+            let set = edge_face(&p, &q, &f, &axis, &w, &tol);
+            for k in 0..=1000 {
+                let phi = -PI + k as f64 * (2.0 * PI / 1000.0);
+                let (pp, qq) = (turn(&p, &axis, phi), turn(&q, &axis, phi));
+                let stat = edge_meets_face(&pp, &qq, &f, &tol);
+                let near = set.as_slice().iter().any(|iv| iv.lo - 1e-6 <= phi && phi <= iv.hi + 1e-6);
+                let strictly = set.as_slice().iter().any(|iv| iv.lo + 1e-6 < phi && phi < iv.hi - 1e-6);
+                if stat { prop_assert!(near, "φ = {} collides statically, set {:?}", phi, set); }
+                if strictly { prop_assert!(stat, "φ = {} inside {:?} but static says free", phi, set); }
+            }
+        }
+    }
+}
