@@ -895,7 +895,7 @@ fn bad_queries_are_config_errors_naming_the_query() {
 // The two tests below reject a start in collision through the scene's own oracle; they need
 // the exact SE(3)/SE(2) oracles (the stubs answer "free").
 #[test]
-#[ignore = "needs the exact polyhedra oracle (Polyhedra::collides); passes once it is merged"]
+
 fn se3_start_in_collision_is_rejected() {
     let e = parse(&format!(
         "{SE3}[robot]\nbox = {{ half_extents = [0.5, 0.5, 0.5] }}\n\
