@@ -111,7 +111,11 @@ pub fn random_bounce<R: Rng + ?Sized>(
             continue;
         }
         let mut next = motion.at(t);
-        space.normalize(&mut next);
+        if g.kind != GroupKind::Linear {
+            // wrap the angle / renormalise the quaternion; a translation leaves the orientation
+            // bit for bit as it was, so that the step stays within one group
+            space.normalize(&mut next);
+        }
         if next == current {
             continue;
         }

@@ -213,7 +213,8 @@ impl<'s> Work<'s> {
         self.nn.nearest(q, k, radius, |i| self.node(i))
     }
 
-    /// The node at `q`, added if no node has exactly these coordinates.
+    /// The node at `q`, added if no node has exactly these coordinates (bit for bit: an SE(3)
+    /// orientation and its antipode make two nodes, joined by whatever joins them).
     fn add_node(&mut self, q: &[f64]) -> u32 {
         let bits: Vec<u64> = q.iter().map(|v| v.to_bits()).collect();
         if let Some(&i) = self.by_bits.get(&bits) {
@@ -235,6 +236,16 @@ impl<'s> Work<'s> {
         if a == b || !self.edge_set.insert((a.min(b), a.max(b))) {
             return;
         }
+        debug_assert!(
+            !corners.is_empty()
+                || self
+                    .groups
+                    .iter()
+                    .filter(|g| !self.space.same_in_group(self.node(a), self.node(b), g))
+                    .count()
+                    <= 1,
+            "a single-segment edge must change one DOF group (LocalMethod contract)"
+        );
         let length = if corners.is_empty() {
             direct_length(self.space, &self.groups, self.node(a), self.node(b))
         } else {

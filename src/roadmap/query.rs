@@ -3,9 +3,9 @@
 //! A query first tries the local method straight from start to goal. Otherwise start and goal
 //! are *attached*: the local method connects each to its nearest nodes, nearest first, at most
 //! one node per component and side, alternating between the two sides, until both are attached
-//! to one component. A* ([`petgraph::algo::astar`], with the space's distance as the admissible
+//! to one component. A* ([`petgraph::algo::astar()`], with the space's distance as the admissible
 //! heuristic) finds the way through that component, and the path is shortened over its corners
-//! (CHS A.1, [`crate::local::shorten`]).
+//! (CHS A.1, [`crate::local::shorten()`]).
 //!
 //! Queries never change the roadmap, so answers do not depend on the order queries are asked
 //! in, and a batch runs in parallel ([`QueryPlanner::query_batch`]).
