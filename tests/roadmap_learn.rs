@@ -245,3 +245,47 @@ fn progress_is_reported_every_round() {
         .all(|w| w[1].0 == w[0].0 + 1 && w[1].1 >= w[0].1));
     assert_eq!(seen.last().unwrap().1, learnt.roadmap.node_count());
 }
+
+/// Extreme but valid parameters neither panic nor allocate by their value.
+#[test]
+fn extreme_parameters_are_harmless() {
+    let scene = disc_scene(6, 20, 0.05);
+    let params = LearnParams {
+        neighbours: usize::MAX,
+        radius: Some(f64::INFINITY),
+        bounce_steps: 1 << 40,
+        stall_rounds: usize::MAX,
+        ..LearnParams::default()
+    };
+    // bounce walks this long would never end: keep them out with a construction-only split
+    let params = LearnParams {
+        expansion_share: 0.0,
+        ..params
+    };
+    let learnt = learn(&scene, &LocalSpec::Straight, &params, 60, 1);
+    assert!(learnt.roadmap.node_count() >= 60);
+    let oracle = scene.oracle();
+    let planner = viaroad::roadmap::QueryPlanner::new(&learnt.roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(viaroad::roadmap::QueryOptions {
+            attach_candidates: usize::MAX,
+            try_direct: false,
+            shorten: true,
+        });
+    let (s, g) = random_queries(&scene, 1, 4).remove(0);
+    assert!(planner.query(&s, &g).is_ok());
+    let too_big = LearnParams {
+        round_size: LearnParams::MAX_ROUND_SIZE + 1,
+        ..LearnParams::default()
+    };
+    let local = LocalSpec::Straight.build();
+    assert!(matches!(
+        Learner::for_scene(&scene, oracle.as_ref(), local.as_ref()).learn(
+            &too_big,
+            &Budget::nodes(1),
+            0,
+            &mut |_| {}
+        ),
+        Err(LearnError::Params(_))
+    ));
+}

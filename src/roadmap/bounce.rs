@@ -58,7 +58,7 @@ pub fn random_bounce<R: Rng + ?Sized>(
     rng: &mut R,
     counts: &mut CallCounts,
 ) -> Result<Vec<Config>, OracleError> {
-    let mut corners: Vec<Config> = Vec::with_capacity(steps);
+    let mut corners: Vec<Config> = Vec::with_capacity(steps.min(64));
     let mut current = start.to_vec();
     let mut group = rng.random_range(0..groups.len().max(1));
     let reach = space.extent();

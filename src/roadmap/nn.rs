@@ -183,7 +183,8 @@ impl KdTree {
     /// The `k` points nearest to `q` within Euclidean distance `max_dist` (inclusive), as
     /// `(distance, id)`, nearest first; ties are ordered by id.
     pub fn nearest(&self, q: &[f64], k: usize, max_dist: f64) -> Vec<(f64, u32)> {
-        if k == 0 || self.is_empty() {
+        let k = k.min(self.len());
+        if k == 0 {
             return Vec::new();
         }
         let bound2 = if max_dist.is_finite() {
@@ -297,7 +298,8 @@ impl NearestNeighbours {
         radius: Option<f64>,
         config: impl Fn(u32) -> &'c [f64],
     ) -> Vec<(u32, f64)> {
-        if k == 0 || self.is_empty() {
+        let k = k.min(self.len());
+        if k == 0 {
             return Vec::new();
         }
         let exact = matches!(self.space.kind(), SpaceKind::Euclidean(_));

@@ -61,6 +61,10 @@ impl Default for LearnParams {
 }
 
 impl LearnParams {
+    /// Largest [`round_size`](Self::round_size): a round holds all its candidates' results in
+    /// memory at once.
+    pub const MAX_ROUND_SIZE: usize = 1 << 16;
+
     /// Checks that the numbers make sense; returns what is wrong.
     pub fn validate(&self) -> Result<(), String> {
         if self.neighbours == 0 {
@@ -77,8 +81,12 @@ impl LearnParams {
                 self.expansion_share
             ));
         }
-        if self.round_size == 0 {
-            return Err("round_size must be at least 1".into());
+        if !(1..=Self::MAX_ROUND_SIZE).contains(&self.round_size) {
+            return Err(format!(
+                "round_size must lie in 1..={}, got {}",
+                Self::MAX_ROUND_SIZE,
+                self.round_size
+            ));
         }
         if self.sample_attempts == 0 {
             return Err("sample_attempts must be at least 1".into());

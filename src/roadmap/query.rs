@@ -279,7 +279,7 @@ impl<'a> QueryPlanner<'a> {
         let mut at_start: Vec<Attached> = Vec::new();
         let mut at_goal: Vec<Attached> = Vec::new();
         let mut meeting: Option<(usize, usize)> = None;
-        'attach: for i in 0..k {
+        'attach: for i in 0..near_start.len().max(near_goal.len()) {
             for side in [Endpoint::Start, Endpoint::Goal] {
                 let (near, mine, theirs) = match side {
                     Endpoint::Start => (&near_start, &mut at_start, &at_goal),
