@@ -1,8 +1,8 @@
 //! Roadmap benchmarks on a cluttered disc scene (issue 3).
 //!
 //! Criterion groups: learning N nodes, loading a saved roadmap of 10 000 nodes, answering one
-//! query against it. Before them (unless run with `--test`, as `cargo test --benches` does) a
-//! report prints the issue's figures once: learning time and size, load time, the share of
+//! query against it. Before them (under `cargo bench`, unless `VIAROAD_BENCH_NO_REPORT` is set)
+//! a report prints the issue's figures once: learning time and size, load time, the share of
 //! 1000 random queries solved, query latency p50/p95, and how many nodes the default local
 //! method, `--local straight` and `--no-feedback` need for that share.
 //!
@@ -241,8 +241,11 @@ fn bench_load_and_query(c: &mut Criterion) {
 criterion_group!(benches, bench_learn, bench_load_and_query);
 
 fn main() {
-    let testing = std::env::args().any(|a| a == "--test" || a == "--list");
-    if !testing {
+    // criterion runs in test mode unless cargo passed `--bench` (`cargo test --benches`)
+    let args: Vec<String> = std::env::args().collect();
+    let benching =
+        args.iter().any(|a| a == "--bench") && !args.iter().any(|a| a == "--test" || a == "--list");
+    if benching && std::env::var_os("VIAROAD_BENCH_NO_REPORT").is_none() {
         report();
     }
     benches();

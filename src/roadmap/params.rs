@@ -134,3 +134,30 @@ impl Budget {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rounds_split_two_to_one_by_default() {
+        let p = LearnParams::default();
+        let kinds: String = (0..9)
+            .map(|r| if p.is_expansion_round(r) { 'E' } else { 'C' })
+            .collect();
+        assert_eq!(kinds, "CCECCECCE");
+        let never = LearnParams {
+            expansion_share: 0.0,
+            ..p.clone()
+        };
+        assert!((0..1000).all(|r| !never.is_expansion_round(r)));
+        let half = LearnParams {
+            expansion_share: 0.5,
+            ..p
+        };
+        assert_eq!(
+            (0..1000).filter(|&r| half.is_expansion_round(r)).count(),
+            500
+        );
+    }
+}
