@@ -269,3 +269,23 @@ fn batches_answer_like_single_queries_in_any_order() {
         Err(QueryError::OutOfBounds { .. })
     ));
 }
+
+/// Answers serialise to JSON for the command line's `--json`.
+#[test]
+fn answers_serialise_to_json() {
+    let scene = disc_scene(1, 0, 0.1);
+    let roadmap = learn(&scene, &LocalSpec::Straight, &LearnParams::default(), 20, 1).roadmap;
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let r = planner.query(&[0.1, 0.1], &[0.9, 0.8]).unwrap();
+    let v: serde_json::Value = serde_json::to_value(&r).unwrap();
+    assert_eq!(v["outcome"], "direct");
+    assert_eq!(v["path"], serde_json::json!([[0.1, 0.1], [0.9, 0.8]]));
+    assert_eq!(v["counts"]["segment_calls"], r.counts.segment_calls);
+    let info = serde_json::to_value(roadmap.info()).unwrap();
+    assert_eq!(info["nodes"], roadmap.node_count());
+    assert!(roadmap
+        .info()
+        .to_string()
+        .contains("local method     straight"));
+}

@@ -17,6 +17,7 @@ use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
 use petgraph::graph::NodeIndex;
 use rayon::prelude::*;
+use serde::Serialize;
 use std::str::FromStr;
 use std::time::{Duration, Instant};
 
@@ -92,7 +93,8 @@ pub enum QueryError {
 }
 
 /// How a query ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum QueryOutcome {
     /// The local method connected start and goal directly.
     Direct,
@@ -109,8 +111,8 @@ pub enum QueryOutcome {
     Disconnected,
 }
 
-/// The answer to one query.
-#[derive(Clone, Debug, PartialEq)]
+/// The answer to one query (serialisable, for `--json` output).
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct QueryResult {
     /// How it ended; the paths are empty unless it is [`Direct`](QueryOutcome::Direct) or
     /// [`Roadmap`](QueryOutcome::Roadmap).
