@@ -6,9 +6,10 @@
 //! 1000 random queries solved, query latency p50/p95, and how many nodes the default local
 //! method, `--local straight` and `--no-feedback` need for that share.
 //!
-//! The scene is generated (seeded: 200 discs of radius 0.035 in the unit square) unless
-//! `VIAROAD_BENCH_SCENE` names a TOML scene of discs. Queries are drawn uniformly from free
-//! space; a grid flood fill (400 × 400) tells which are solvable at all.
+//! Scenes: the shipped `scenes/discs-cluttered.toml` (when present) and a denser generated one
+//! (seeded: 200 discs of radius 0.035), or the TOML disc scene `VIAROAD_BENCH_SCENE` names;
+//! all in the unit square. Queries are drawn uniformly from free space; a grid flood fill
+//! (400 × 400) tells which are solvable at all.
 
 #[path = "../tests/roadmap_support/mod.rs"]
 mod roadmap_support;
@@ -22,11 +23,21 @@ use viaroad::local::LocalSpec;
 use viaroad::roadmap::{Budget, LearnParams, Learner, Learnt, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::Scene;
 
-fn scene() -> Scene {
-    match std::env::var_os("VIAROAD_BENCH_SCENE") {
-        Some(p) => Scene::load(p.as_ref()).expect("VIAROAD_BENCH_SCENE must be a disc scene"),
-        None => disc_scene(2026, 200, 0.035),
+/// The scenes of the report: `VIAROAD_BENCH_SCENE` if set; otherwise the shipped
+/// `scenes/discs-cluttered.toml` (if present) and a denser generated one.
+fn scenes() -> Vec<Scene> {
+    if let Some(p) = std::env::var_os("VIAROAD_BENCH_SCENE") {
+        return vec![Scene::load(p.as_ref()).expect("VIAROAD_BENCH_SCENE must be a disc scene")];
     }
+    let shipped = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/discs-cluttered.toml");
+    let mut out: Vec<Scene> = Scene::load(&shipped).into_iter().collect();
+    out.push(disc_scene(2026, 200, 0.035));
+    out
+}
+
+/// The scene of the criterion groups: the first of [`scenes`].
+fn scene() -> Scene {
+    scenes().remove(0)
 }
 
 fn learn(scene: &Scene, spec: &LocalSpec, params: &LearnParams, nodes: usize, seed: u64) -> Learnt {
@@ -80,8 +91,8 @@ fn answer_all(
     )
 }
 
-fn report() {
-    let scene = scene();
+fn report(scene: &Scene) {
+    let scene = scene.clone();
     let queries = random_queries(&scene, 1000, 99);
     let grid = GridComponents::new(&scene, 400);
     let solvable: Vec<bool> = queries
@@ -246,7 +257,9 @@ fn main() {
     let benching =
         args.iter().any(|a| a == "--bench") && !args.iter().any(|a| a == "--test" || a == "--list");
     if benching && std::env::var_os("VIAROAD_BENCH_NO_REPORT").is_none() {
-        report();
+        for scene in scenes() {
+            report(&scene);
+        }
     }
     benches();
     criterion::Criterion::default()

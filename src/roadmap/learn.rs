@@ -11,10 +11,12 @@
 //! components.
 //!
 //! **Feedback** (CHS §1.6: "the via points and direct connections it discovers correspond to
-//! nodes and edges"): with [`LearnParams::feedback`] every configuration a connection attempt
-//! met (via points, corners) becomes a node and every certified free segment an edge — also
-//! when the attempt failed as a whole. Identical configurations are one node. Feedback edges
-//! are kept even where they close a cycle: they came at no extra cost.
+//! nodes and edges"): with [`LearnParams::feedback`] every certified free segment a connection
+//! attempt found becomes an edge and its ends (via points, corners) nodes — also when the
+//! attempt failed as a whole (a→q found while q→z failed). Identical configurations are one
+//! node. Via points the search generated but never joined to anything by a free segment are
+//! not kept: they would be isolated nodes that use up the node budget and connect nothing.
+//! Feedback edges are kept even where they close a cycle: they came at no extra cost.
 //!
 //! **Parallel and reproducible.** Learning runs in rounds of [`LearnParams::round_size`]
 //! candidates (or walks). Candidate `i` of round `r` draws from its own ChaCha stream derived
@@ -277,21 +279,24 @@ impl<'s> Work<'s> {
             self.failures[n as usize] += u32::from(!ok);
         }
         if self.feedback {
-            let ids: Vec<u32> = c
-                .discoveries
-                .configs
-                .iter()
-                .enumerate()
-                .map(|(i, q)| match i {
-                    0 => a,
-                    1 => z,
-                    _ => self.add_node(q),
-                })
-                .collect();
+            // a discovered configuration becomes a node when a certified free segment joins it
+            // to something: via points the search made but never connected stay out
+            let configs = &c.discoveries.configs;
+            let mut ids: Vec<Option<u32>> = vec![None; configs.len()];
+            if let Some(first) = ids.first_mut() {
+                *first = Some(a);
+            }
+            if let Some(second) = ids.get_mut(1) {
+                *second = Some(z);
+            }
             for &(i, j) in &c.discoveries.free_segments {
-                if let (Some(&x), Some(&y)) = (ids.get(i as usize), ids.get(j as usize)) {
-                    self.add_edge(x, y, &[]);
+                let (i, j) = (i as usize, j as usize);
+                if i >= configs.len() || j >= configs.len() {
+                    continue;
                 }
+                let x = *ids[i].get_or_insert_with(|| self.add_node(&configs[i]));
+                let y = *ids[j].get_or_insert_with(|| self.add_node(&configs[j]));
+                self.add_edge(x, y, &[]);
             }
             if ok && c.path.len() >= 2 {
                 // the path itself, in case the method did not list all its segments
