@@ -176,7 +176,7 @@ fn report(scene: &Scene) {
             feedback,
             ..LearnParams::default()
         };
-        let mut line = format!("{name:>18}:");
+        let mut line = format!("{name}:");
         for nodes in [250, 500, 1000, 2000, 4000, 8000] {
             let learnt = learn(&scene, &spec, &params, nodes, 1);
             let (share, _, times) = answer_all(
@@ -186,10 +186,20 @@ fn report(scene: &Scene) {
                 &solvable,
                 QueryOptions::default(),
             );
+            // the roadmap alone: no direct connection from start to goal
+            let roadmap_only = QueryOptions {
+                try_direct: false,
+                ..QueryOptions::default()
+            };
+            let (share_roadmap, _, _) =
+                answer_all(&scene, &learnt.roadmap, &queries, &solvable, roadmap_only);
             line += &format!(
-                " {nodes}→{:.1}% ({} comp, {:.0?} learn, p50 {:.2?})",
+                "\n    {nodes:>5} nodes: {:5.1} % solved, {:5.1} % without the direct try; \
+                 {} components, {} intersect calls, learn {:.0?}, query p50 {:.2?}",
                 100.0 * share,
+                100.0 * share_roadmap,
                 learnt.roadmap.component_count(),
+                learnt.roadmap.header().counts.intersect_calls(),
                 learnt.report.elapsed,
                 percentile(&times, 0.5)
             );
