@@ -177,7 +177,7 @@ fn report(scene: &Scene) {
             ..LearnParams::default()
         };
         let mut line = format!("{name}:");
-        for nodes in [250, 500, 1000, 2000, 4000, 8000] {
+        for nodes in [25, 50, 100, 250, 500, 1000, 2000, 4000] {
             let learnt = learn(&scene, &spec, &params, nodes, 1);
             let (share, _, times) = answer_all(
                 &scene,
@@ -194,8 +194,9 @@ fn report(scene: &Scene) {
             let (share_roadmap, _, _) =
                 answer_all(&scene, &learnt.roadmap, &queries, &solvable, roadmap_only);
             line += &format!(
-                "\n    {nodes:>5} nodes: {:5.1} % solved, {:5.1} % without the direct try; \
+                "\n    {nodes:>5} nodes ({:>5}): {:5.1} % solved, {:5.1} % without the direct try; \
                  {} components, {} intersect calls, learn {:.0?}, query p50 {:.2?}",
+                learnt.roadmap.node_count(),
                 100.0 * share,
                 100.0 * share_roadmap,
                 learnt.roadmap.component_count(),

@@ -19,7 +19,7 @@
 //! Feedback edges are kept even where they close a cycle: they came at no extra cost.
 //!
 //! **Parallel and reproducible.** Learning runs in rounds of [`LearnParams::round_size`]
-//! candidates (or walks). Candidate `i` of round `r` draws from its own ChaCha stream derived
+//! candidates (or walks), fewer when the node budget lacks fewer nodes than that. Candidate `i` of round `r` draws from its own ChaCha stream derived
 //! from `(seed, r, i)`; the freedom checks, neighbour searches and local-method calls of a
 //! round run in parallel on the rayon pool against the roadmap as it was when the round began;
 //! the results are then applied one after another in candidate order. Nothing depends on
@@ -395,12 +395,16 @@ impl<'a> Learner<'a> {
                 break StopReason::Stalled;
             }
             let before = work.node_count();
+            // never more candidates than nodes still missing: each one adds at least one
+            let size = budget.nodes.map_or(params.round_size, |n| {
+                params.round_size.min(n.saturating_sub(before).max(1))
+            });
             let phase = if params.is_expansion_round(rounds) && before > 0 {
-                self.expansion_round(&mut work, params, budget, seed, rounds)?;
+                self.expansion_round(&mut work, params, budget, (seed, rounds, size))?;
                 expansion_rounds += 1;
                 Phase::Expansion
             } else {
-                self.construction_round(&mut work, params, budget, seed, rounds)?;
+                self.construction_round(&mut work, params, budget, (seed, rounds, size))?;
                 construction_rounds += 1;
                 Phase::Construction
             };
@@ -477,10 +481,9 @@ impl<'a> Learner<'a> {
         work: &mut Work<'_>,
         params: &LearnParams,
         budget: &Budget,
-        seed: u64,
-        round: u64,
+        (seed, round, size): (u64, u64, usize),
     ) -> Result<(), LearnError> {
-        let samples: Vec<(Option<Config>, CallCounts)> = (0..params.round_size as u64)
+        let samples: Vec<(Option<Config>, CallCounts)> = (0..size as u64)
             .into_par_iter()
             .map(|i| {
                 let mut rng = stream(seed, round, i, SAMPLE_STREAM);
@@ -567,8 +570,7 @@ impl<'a> Learner<'a> {
         work: &mut Work<'_>,
         params: &LearnParams,
         budget: &Budget,
-        seed: u64,
-        round: u64,
+        (seed, round, size): (u64, u64, usize),
     ) -> Result<(), LearnError> {
         // OS94's weights f / (n + 1), as cumulative sums for drawing by weight
         let mut cumulative = Vec::with_capacity(work.node_count());
@@ -579,7 +581,7 @@ impl<'a> Learner<'a> {
         }
         let shared: &Work<'_> = work;
         let n_nodes = shared.node_count() as u32;
-        let walks: Vec<(Result<Walk, OracleError>, CallCounts)> = (0..params.round_size as u64)
+        let walks: Vec<(Result<Walk, OracleError>, CallCounts)> = (0..size as u64)
             .into_par_iter()
             .map(|i| {
                 let mut rng = stream(seed, round, i, WALK_STREAM);

@@ -25,8 +25,9 @@ pub struct LearnParams {
     /// does). Off (OS94): only the walk's end becomes a node, joined to the node the walk left
     /// by one edge that keeps the corners — the walk then costs one node of the budget.
     pub bounce_nodes: bool,
-    /// Candidates (construction) or walks (expansion) per round. The rounds' composition fixes
-    /// the result: the same seed and round size give the same roadmap with any thread count.
+    /// Candidates (construction) or walks (expansion) per round; a round near the end of a node
+    /// budget has only as many as nodes are missing. The rounds' composition fixes the result:
+    /// the same seed and round size give the same roadmap with any thread count.
     pub round_size: usize,
     /// Tries per candidate to draw a collision-free configuration before giving up on it.
     pub sample_attempts: usize,
