@@ -1,1 +1,56 @@
-//! The roadmap: learning, persistence, queries. (In progress.)
+//! The roadmap: Overmars and Švestka's learning approach (OS94) with the via-point planner as
+//! its local method and what that method discovers fed back into the graph (CHS §1.6).
+//!
+//! | file | concept |
+//! |---|---|
+//! | [`params`] | learning parameters (recorded in the file) and the budget |
+//! | [`nn`] | nearest neighbours: an incremental kd-tree over the space's embeddings |
+//! | [`graph`] | nodes, edges, components: the [`Roadmap`] |
+//! | [`bounce`] | random-bounce walks driven by exact free sections |
+//! | [`learn`] | construction and expansion in reproducible parallel rounds |
+//! | [`persist`] | the file: magic, version, header, checksum, atomic save |
+//! | [`query`] | attach, A*, shorten; batches in parallel |
+//! | [`info`] | the summary `viaroad info` prints |
+//!
+//! ```no_run
+//! use viaroad::local::LocalSpec;
+//! use viaroad::roadmap::{Budget, LearnParams, Learner, QueryPlanner, Roadmap};
+//! use viaroad::scene::Scene;
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let scene = Scene::load("scenes/discs.toml".as_ref())?;
+//! let oracle = scene.oracle();
+//! let local = LocalSpec::default().build();
+//! let learnt = Learner::for_scene(&scene, oracle.as_ref(), local.as_ref()).learn(
+//!     &LearnParams::default(),
+//!     &Budget::nodes(2000),
+//!     7,
+//!     &mut |_progress| {},
+//! )?;
+//! learnt.roadmap.save("roadmaps/discs.bin".as_ref())?;
+//!
+//! let roadmap = Roadmap::load("roadmaps/discs.bin".as_ref(), scene.fingerprint())?;
+//! let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?;
+//! let answer = planner.query(&[0.02, 0.98], &[0.98, 0.02])?;
+//! println!("{:?}: length {}", answer.outcome, answer.length);
+//! # Ok(())
+//! # }
+//! ```
+
+pub mod bounce;
+pub mod graph;
+pub mod info;
+pub mod learn;
+pub mod nn;
+pub mod params;
+pub mod persist;
+pub mod query;
+
+pub use graph::{Edge, Roadmap};
+pub use info::RoadmapInfo;
+pub use learn::{LearnError, LearnReport, Learner, Learnt, Phase, Progress, StopReason};
+pub use nn::{KdTree, NearestNeighbours};
+pub use params::{Budget, LearnParams};
+pub use persist::{Header, RoadmapError, FORMAT_VERSION, MAGIC};
+pub use query::{
+    BatchAnswer, Endpoint, QueryError, QueryOptions, QueryOutcome, QueryPlanner, QueryResult,
+};

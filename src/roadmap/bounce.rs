@@ -1,0 +1,126 @@
+//! Random-bounce walks of the expansion step (OS94), driven by exact free sections.
+//!
+//! OS94 walks from a difficult node in a random direction "until an obstacle is hit", then
+//! bounces off in a new random direction. A sampling planner has to discover the obstacle
+//! step by step; with an interval oracle the walk knows at once how far it may go: one
+//! *intersectLine* call on the unbounded line (or full turn) through the current configuration
+//! gives every collision interval along it, and the free section containing the current
+//! configuration is exactly the part it can reach (CHS §1.2). The walk moves to a random point
+//! of that section, so every step is a certified free straight motion in one DOF group.
+//!
+//! Departure from OS94: each step moves in one DOF group (CHS §1.5) — a line in a position
+//! group, a turn about a random axis in a rotation group, alternating between groups — rather
+//! than along a random direction in the whole configuration space, so that every step is a
+//! direct path of the local method and can become a roadmap edge.
+
+use crate::interval::Interval;
+use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::space::{Config, Group, GroupKind, Space};
+use rand::Rng;
+
+/// Share of a free section kept clear at each end when choosing where a step ends: its ends
+/// touch obstacles.
+pub const SECTION_MARGIN: f64 = 0.01;
+
+/// Largest turn of one step, in turns (0.45 · 2π): below half a turn, the shorter way between
+/// the step's ends is the turn that was checked.
+pub const MAX_TURN: f64 = 0.45;
+
+/// A random unit vector in `n` dimensions (Box–Muller normals, normalised).
+pub fn random_direction<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Vec<f64> {
+    loop {
+        let mut v: Vec<f64> = (0..n)
+            .map(|_| {
+                let u1: f64 = 1.0 - rng.random::<f64>(); // (0, 1]
+                let u2: f64 = rng.random::<f64>();
+                (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+            })
+            .collect();
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm > 1e-9 {
+            v.iter_mut().for_each(|x| *x /= norm);
+            return v;
+        }
+    }
+}
+
+/// Walks `steps` single-group straight motions from the free configuration `start` and returns
+/// the configurations reached after each step that moved (`start` excluded). Consecutive
+/// configurations of `[start, result…]` are joined by certified free motions in one of
+/// `groups`. Stops early when the current configuration has no free section around it (it
+/// touches an obstacle).
+pub fn random_bounce<R: Rng + ?Sized>(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    start: &[f64],
+    steps: usize,
+    rng: &mut R,
+    counts: &mut CallCounts,
+) -> Result<Vec<Config>, OracleError> {
+    let mut corners: Vec<Config> = Vec::with_capacity(steps.min(64));
+    let mut current = start.to_vec();
+    let mut group = rng.random_range(0..groups.len().max(1));
+    let reach = space.extent();
+    for step in 0..steps {
+        if step > 0 && groups.len() > 1 {
+            // bounce into another group
+            group = (group + rng.random_range(1..groups.len())) % groups.len();
+        }
+        let g = &groups[group];
+        let (motion, clip) = match g.kind {
+            GroupKind::Linear => {
+                let dir = random_direction(g.len(), rng);
+                let line = space.line_through(&current, g, &dir);
+                (
+                    line,
+                    Interval {
+                        lo: -reach,
+                        hi: reach,
+                    },
+                )
+            }
+            GroupKind::Angle | GroupKind::Quaternion => {
+                let a = random_direction(3, rng);
+                let turn = space.turn_through(&current, g, [a[0], a[1], a[2]]);
+                (
+                    turn,
+                    Interval {
+                        lo: -MAX_TURN,
+                        hi: MAX_TURN,
+                    },
+                )
+            }
+        };
+        let hits = oracle.intersect(&motion, counts)?;
+        let Some(section) = hits
+            .complement_within(motion.range)
+            .iter()
+            .find(|s| s.contains(0.0))
+            .and_then(|s| s.meet(&clip))
+        else {
+            break;
+        };
+        let margin = SECTION_MARGIN * section.length();
+        let (lo, hi) = (section.lo + margin, section.hi - margin);
+        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+            break;
+        }
+        let t = rng.random_range(lo..hi);
+        if t == 0.0 {
+            continue;
+        }
+        let mut next = motion.at(t);
+        if g.kind != GroupKind::Linear {
+            // wrap the angle / renormalise the quaternion; a translation leaves the orientation
+            // bit for bit as it was, so that the step stays within one group
+            space.normalize(&mut next);
+        }
+        if next == current {
+            continue;
+        }
+        corners.push(next.clone());
+        current = next;
+    }
+    Ok(corners)
+}

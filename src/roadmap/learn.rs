@@ -1,0 +1,671 @@
+//! Learning a roadmap: Overmars and Švestka's construction and expansion steps (OS94), with
+//! the local method's discoveries fed back into the graph (CHS §1.6).
+//!
+//! **Construction** (OMPL's `growRoadmap`): sample free configurations uniformly; each new node
+//! tries the local method towards its nearest nodes, skipping nodes in a component it has
+//! already joined. **Expansion** (`expandRoadmap`): nodes are weighted by their failure ratio
+//! `f / (n + 1)` (failed over all connection attempts), a node is drawn by weight and a
+//! [random-bounce walk](super::bounce) leaves it; the walk's end becomes a node (joined to the
+//! node it left by an edge that keeps the walk's corners, or with every corner a node, see
+//! [`LearnParams::bounce_nodes`]) and tries to connect to its nearest nodes in other
+//! components.
+//!
+//! **Feedback** (CHS §1.6: "the via points and direct connections it discovers correspond to
+//! nodes and edges"): with [`LearnParams::feedback`] every certified free segment a connection
+//! attempt found becomes an edge and its ends (via points, corners) nodes — also when the
+//! attempt failed as a whole (a→q found while q→z failed). Identical configurations are one
+//! node. Via points the search generated but never joined to anything by a free segment are
+//! not kept: they would be isolated nodes that use up the node budget and connect nothing.
+//! Feedback edges are kept even where they close a cycle: they came at no extra cost.
+//!
+//! **Parallel and reproducible.** Learning runs in rounds of [`LearnParams::round_size`]
+//! candidates (or walks), fewer when the node budget lacks fewer nodes than that. Candidate `i` of round `r` draws from its own ChaCha stream derived
+//! from `(seed, r, i)`; the freedom checks, neighbour searches and local-method calls of a
+//! round run in parallel on the rayon pool against the roadmap as it was when the round began;
+//! the results are then applied one after another in candidate order. Nothing depends on
+//! which thread ran what, so the same seed gives the same roadmap — byte for byte once saved —
+//! with any number of threads. A node budget is deterministic; a time budget is not.
+//!
+//! Departure from OS94/OMPL, forced by the rounds: a candidate does not see the connections
+//! made by the candidates before it in the same round, so it may try two nodes that those
+//! connections have just joined (its result is then kept only if feedback is on or cycle
+//! edges are wanted). Construction and expansion are split by rounds, not by time.
+
+use super::bounce::random_bounce;
+use super::graph::{Edge, Roadmap};
+use super::nn::NearestNeighbours;
+use super::params::{Budget, LearnParams};
+use super::persist::Header;
+use crate::local::{direct_length, path_length, Connection, LocalMethod};
+use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::scene::Scene;
+use crate::space::{Config, Group, Space};
+use petgraph::unionfind::UnionFind;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use std::collections::{HashMap, HashSet};
+use std::time::{Duration, Instant};
+
+/// Why learning could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum LearnError {
+    /// Neither a node nor a time budget was given.
+    #[error("learning needs a budget: a number of nodes, a time, or both")]
+    NoBudget,
+    /// A parameter out of range.
+    #[error("invalid learning parameter: {0}")]
+    Params(String),
+    /// The oracle cannot answer a motion the learner or the local method asked about.
+    #[error("collision oracle: {0}")]
+    Oracle(#[from] OracleError),
+    /// The local method reported configurations that cannot be stored (not finite numbers):
+    /// a defect of the local method, reported rather than saved.
+    #[error("the local method produced an unusable roadmap: {0}")]
+    Malformed(String),
+}
+
+/// Which step a round ran.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// Sampling new nodes and connecting them.
+    Construction,
+    /// Random-bounce walks from difficult nodes.
+    Expansion,
+}
+
+/// Where learning stands after a round (for progress bars; the library prints nothing).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Progress {
+    /// Rounds finished.
+    pub rounds: u64,
+    /// The step the last round ran.
+    pub phase: Phase,
+    /// Nodes so far.
+    pub nodes: usize,
+    /// Edges so far.
+    pub edges: usize,
+    /// Connected components so far.
+    pub components: usize,
+    /// The node budget, if any.
+    pub node_budget: Option<usize>,
+    /// Wall-clock time since learning began.
+    pub elapsed: Duration,
+    /// Oracle work so far.
+    pub counts: CallCounts,
+}
+
+/// Why learning stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StopReason {
+    /// The roadmap reached the node budget.
+    NodeBudget,
+    /// The time budget ran out.
+    TimeBudget,
+    /// [`LearnParams::stall_rounds`] rounds in a row added no node.
+    Stalled,
+}
+
+/// What learning did, beyond the roadmap (not stored in the file: it holds wall-clock time).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LearnReport {
+    /// Rounds run.
+    pub rounds: u64,
+    /// Of which construction rounds.
+    pub construction_rounds: u64,
+    /// Of which expansion rounds.
+    pub expansion_rounds: u64,
+    /// Local-method connection attempts.
+    pub attempts: u64,
+    /// Of which connected.
+    pub connected: u64,
+    /// Why it stopped.
+    pub stop: StopReason,
+    /// Wall-clock time.
+    pub elapsed: Duration,
+}
+
+/// A learnt roadmap and the report of its learning.
+#[derive(Clone, Debug)]
+pub struct Learnt {
+    /// The roadmap.
+    pub roadmap: Roadmap,
+    /// How learning went.
+    pub report: LearnReport,
+}
+
+/// Learns roadmaps of one scene with one local method.
+pub struct Learner<'a> {
+    space: &'a Space,
+    oracle: &'a dyn CollisionOracle,
+    local: &'a dyn LocalMethod,
+    fingerprint: u64,
+}
+
+/// Separates the random streams of the two steps.
+const SAMPLE_STREAM: u64 = 1;
+const WALK_STREAM: u64 = 2;
+
+/// The random stream of candidate `index` in round `round`: a ChaCha8 generator keyed by
+/// `(seed, round, index, purpose)`, so that every candidate's draws are fixed whatever thread
+/// runs it.
+pub fn stream(seed: u64, round: u64, index: u64, purpose: u64) -> ChaCha8Rng {
+    let mut key = [0u8; 32];
+    key[..8].copy_from_slice(&seed.to_le_bytes());
+    key[8..16].copy_from_slice(&round.to_le_bytes());
+    key[16..24].copy_from_slice(&index.to_le_bytes());
+    key[24..].copy_from_slice(&purpose.to_le_bytes());
+    ChaCha8Rng::from_seed(key)
+}
+
+/// A neighbour of a construction candidate: an existing node, or an earlier candidate of the
+/// same round.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Target {
+    Node(u32),
+    Candidate(usize),
+}
+
+/// A connection attempt made in the parallel part of a round, applied later.
+struct Attempt {
+    target: Target,
+    connection: Connection,
+}
+
+/// A walk made in the parallel part of an expansion round.
+struct Walk {
+    from: u32,
+    corners: Vec<Config>,
+    attempts: Vec<Attempt>,
+}
+
+/// The roadmap while it grows.
+struct Work<'s> {
+    space: &'s Space,
+    groups: Vec<Group>,
+    dim: usize,
+    feedback: bool,
+    cycle_edges: bool,
+    coords: Vec<f64>,
+    edges: Vec<Edge>,
+    edge_set: HashSet<(u32, u32)>,
+    by_bits: HashMap<Vec<u64>, u32>,
+    uf: UnionFind<u32>,
+    components: usize,
+    /// Connection attempts and failures per node (OS94's failure ratio).
+    tries: Vec<u32>,
+    failures: Vec<u32>,
+    nn: NearestNeighbours,
+    counts: CallCounts,
+    attempts: u64,
+    connected: u64,
+}
+
+impl<'s> Work<'s> {
+    fn node_count(&self) -> usize {
+        self.coords.len() / self.dim
+    }
+
+    fn node(&self, i: u32) -> &[f64] {
+        let s = i as usize * self.dim;
+        &self.coords[s..s + self.dim]
+    }
+
+    fn nearest(&self, q: &[f64], k: usize, radius: Option<f64>) -> Vec<(u32, f64)> {
+        self.nn.nearest(q, k, radius, |i| self.node(i))
+    }
+
+    /// The node at `q`, added if no node has exactly these coordinates (bit for bit: an SE(3)
+    /// orientation and its antipode make two nodes, joined by whatever joins them).
+    fn add_node(&mut self, q: &[f64]) -> u32 {
+        let bits: Vec<u64> = q.iter().map(|v| v.to_bits()).collect();
+        if let Some(&i) = self.by_bits.get(&bits) {
+            return i;
+        }
+        let i = self.node_count() as u32;
+        self.by_bits.insert(bits, i);
+        self.coords.extend_from_slice(q);
+        self.uf.new_set();
+        self.components += 1;
+        self.tries.push(0);
+        self.failures.push(0);
+        self.nn.insert(i, q);
+        i
+    }
+
+    /// Adds the edge `a → corners → b` unless it is a loop or the pair is joined already.
+    fn add_edge(&mut self, a: u32, b: u32, corners: &[Config]) {
+        if a == b || !self.edge_set.insert((a.min(b), a.max(b))) {
+            return;
+        }
+        debug_assert!(
+            !corners.is_empty()
+                || self
+                    .groups
+                    .iter()
+                    .filter(|g| !self.space.same_in_group(self.node(a), self.node(b), g))
+                    .count()
+                    <= 1,
+            "a single-segment edge must change one DOF group (LocalMethod contract)"
+        );
+        let length = if corners.is_empty() {
+            direct_length(self.space, &self.groups, self.node(a), self.node(b))
+        } else {
+            let mut path = Vec::with_capacity(corners.len() + 2);
+            path.push(self.node(a).to_vec());
+            path.extend(corners.iter().cloned());
+            path.push(self.node(b).to_vec());
+            path_length(self.space, &self.groups, &path)
+        };
+        self.edges.push(Edge {
+            a,
+            b,
+            length,
+            corners: corners.iter().flatten().copied().collect(),
+        });
+        if self.uf.union(a, b) {
+            self.components -= 1;
+        }
+    }
+
+    /// Records an attempt from node `a` to node `z` and keeps what it found.
+    fn apply(&mut self, a: u32, z: u32, c: &Connection) {
+        self.counts += c.counts;
+        self.attempts += 1;
+        let ok = c.is_connected();
+        self.connected += u64::from(ok);
+        for n in [a, z] {
+            self.tries[n as usize] += 1;
+            self.failures[n as usize] += u32::from(!ok);
+        }
+        if self.feedback {
+            // a discovered configuration becomes a node when a certified free segment joins it
+            // to something: via points the search made but never connected stay out
+            let configs = &c.discoveries.configs;
+            let mut ids: Vec<Option<u32>> = vec![None; configs.len()];
+            if let Some(first) = ids.first_mut() {
+                *first = Some(a);
+            }
+            if let Some(second) = ids.get_mut(1) {
+                *second = Some(z);
+            }
+            for &(i, j) in &c.discoveries.free_segments {
+                let (i, j) = (i as usize, j as usize);
+                if i >= configs.len() || j >= configs.len() {
+                    continue;
+                }
+                let x = *ids[i].get_or_insert_with(|| self.add_node(&configs[i]));
+                let y = *ids[j].get_or_insert_with(|| self.add_node(&configs[j]));
+                self.add_edge(x, y, &[]);
+            }
+            if ok && c.path.len() >= 2 {
+                // the path itself, in case the method did not list all its segments
+                let mut prev = a;
+                for (k, q) in c.path.iter().enumerate().skip(1) {
+                    let id = if k + 1 == c.path.len() {
+                        z
+                    } else {
+                        self.add_node(q)
+                    };
+                    self.add_edge(prev, id, &[]);
+                    prev = id;
+                }
+            }
+        } else if ok && (self.cycle_edges || !self.uf.equiv(a, z)) {
+            let interior = if c.path.len() >= 2 {
+                &c.path[1..c.path.len() - 1]
+            } else {
+                &[]
+            };
+            self.add_edge(a, z, interior);
+        }
+    }
+}
+
+impl<'a> Learner<'a> {
+    /// A learner for `space` (the scene's, with bounds), its oracle, the local method, and the
+    /// scene's fingerprint to record.
+    pub fn new(
+        space: &'a Space,
+        oracle: &'a dyn CollisionOracle,
+        local: &'a dyn LocalMethod,
+        fingerprint: u64,
+    ) -> Self {
+        Learner {
+            space,
+            oracle,
+            local,
+            fingerprint,
+        }
+    }
+
+    /// A learner for `scene` with `oracle` (normally `scene.oracle()`) and `local`.
+    pub fn for_scene(
+        scene: &'a Scene,
+        oracle: &'a dyn CollisionOracle,
+        local: &'a dyn LocalMethod,
+    ) -> Self {
+        Self::new(&scene.space, oracle, local, scene.fingerprint())
+    }
+
+    /// Learns a roadmap within `budget`, reproducibly from `seed` (see the module docs).
+    /// Runs on the current rayon pool; `progress` is called after every round.
+    pub fn learn(
+        &self,
+        params: &LearnParams,
+        budget: &Budget,
+        seed: u64,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Result<Learnt, LearnError> {
+        params.validate().map_err(LearnError::Params)?;
+        if budget.nodes.is_none() && budget.time.is_none() {
+            return Err(LearnError::NoBudget);
+        }
+        let began = Instant::now();
+        let groups = self.local.groups(self.space);
+        let mut work = Work {
+            space: self.space,
+            groups,
+            dim: self.space.dim(),
+            feedback: params.feedback,
+            cycle_edges: params.cycle_edges,
+            coords: Vec::new(),
+            edges: Vec::new(),
+            edge_set: HashSet::new(),
+            by_bits: HashMap::new(),
+            uf: UnionFind::new(0),
+            components: 0,
+            tries: Vec::new(),
+            failures: Vec::new(),
+            nn: NearestNeighbours::new(self.space),
+            counts: CallCounts::default(),
+            attempts: 0,
+            connected: 0,
+        };
+        let (mut rounds, mut construction_rounds, mut expansion_rounds) = (0u64, 0u64, 0u64);
+        let mut stalled = 0usize;
+        let stop = loop {
+            if budget.nodes.is_some_and(|n| work.node_count() >= n) {
+                break StopReason::NodeBudget;
+            }
+            if budget.time.is_some_and(|t| began.elapsed() >= t) {
+                break StopReason::TimeBudget;
+            }
+            if stalled >= params.stall_rounds {
+                break StopReason::Stalled;
+            }
+            let before = work.node_count();
+            // never more candidates than nodes still missing: each one adds at least one
+            let size = budget.nodes.map_or(params.round_size, |n| {
+                params.round_size.min(n.saturating_sub(before).max(1))
+            });
+            let phase = if params.is_expansion_round(rounds) && before > 0 {
+                self.expansion_round(&mut work, params, budget, (seed, rounds, size))?;
+                expansion_rounds += 1;
+                Phase::Expansion
+            } else {
+                self.construction_round(&mut work, params, budget, (seed, rounds, size))?;
+                construction_rounds += 1;
+                Phase::Construction
+            };
+            rounds += 1;
+            stalled = if work.node_count() > before {
+                0
+            } else {
+                stalled + 1
+            };
+            progress(&Progress {
+                rounds,
+                phase,
+                nodes: work.node_count(),
+                edges: work.edges.len(),
+                components: work.components,
+                node_budget: budget.nodes,
+                elapsed: began.elapsed(),
+                counts: work.counts,
+            });
+        };
+        let header = Header {
+            space: self.space.clone(),
+            fingerprint: self.fingerprint,
+            params: params.clone(),
+            local_spec: self.local.spec(),
+            seed,
+            node_budget: budget.nodes.map(|n| n as u64),
+            rounds,
+            counts: work.counts,
+        };
+        let report = LearnReport {
+            rounds,
+            construction_rounds,
+            expansion_rounds,
+            attempts: work.attempts,
+            connected: work.connected,
+            stop,
+            elapsed: began.elapsed(),
+        };
+        let roadmap =
+            Roadmap::assemble(header, work.coords, work.edges).map_err(LearnError::Malformed)?;
+        Ok(Learnt { roadmap, report })
+    }
+
+    /// Tries the local method from `q` towards `targets` (nearest first), skipping targets in a
+    /// component `q` has joined in this attempt sequence unless cycle edges are wanted.
+    /// `component` names a target's component as the round began.
+    fn attempts(
+        &self,
+        q: &[f64],
+        targets: &[(Target, &[f64])],
+        mut joined: Vec<Target>,
+        component: impl Fn(Target) -> Target,
+        cycle_edges: bool,
+    ) -> Result<Vec<Attempt>, OracleError> {
+        let mut out = Vec::with_capacity(targets.len());
+        for &(target, tq) in targets {
+            let comp = component(target);
+            if !cycle_edges && joined.contains(&comp) {
+                continue;
+            }
+            let mut connection = self.local.connect(self.space, self.oracle, q, tq)?;
+            connection.borderlines.clear();
+            if connection.is_connected() {
+                joined.push(comp);
+            }
+            out.push(Attempt { target, connection });
+        }
+        Ok(out)
+    }
+
+    fn construction_round(
+        &self,
+        work: &mut Work<'_>,
+        params: &LearnParams,
+        budget: &Budget,
+        (seed, round, size): (u64, u64, usize),
+    ) -> Result<(), LearnError> {
+        let samples: Vec<(Option<Config>, CallCounts)> = (0..size as u64)
+            .into_par_iter()
+            .map(|i| {
+                let mut rng = stream(seed, round, i, SAMPLE_STREAM);
+                let mut counts = CallCounts::default();
+                for _ in 0..params.sample_attempts {
+                    let mut q = self.space.sample_uniform(&mut rng);
+                    self.space.normalize(&mut q);
+                    if self.oracle.is_free(&q, &mut counts) {
+                        return (Some(q), counts);
+                    }
+                }
+                (None, counts)
+            })
+            .collect();
+        let mut candidates = Vec::with_capacity(samples.len());
+        for (q, counts) in samples {
+            work.counts += counts;
+            candidates.extend(q);
+        }
+        let shared: &Work<'_> = work;
+        let plans: Vec<Result<Vec<Attempt>, OracleError>> = (0..candidates.len())
+            .into_par_iter()
+            .map(|i| {
+                let q = &candidates[i];
+                let mut near: Vec<(f64, Target)> = shared
+                    .nearest(q, params.neighbours, params.radius)
+                    .into_iter()
+                    .map(|(n, d)| (d, Target::Node(n)))
+                    .collect();
+                for (j, c) in candidates[..i].iter().enumerate() {
+                    let d = self.space.distance(q, c);
+                    if params.radius.is_none_or(|r| d <= r) {
+                        near.push((d, Target::Candidate(j)));
+                    }
+                }
+                near.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+                near.truncate(params.neighbours);
+                let targets: Vec<(Target, &[f64])> = near
+                    .iter()
+                    .map(|&(_, t)| {
+                        let tq = match t {
+                            Target::Node(n) => shared.node(n),
+                            Target::Candidate(j) => &candidates[j][..],
+                        };
+                        (t, tq)
+                    })
+                    .collect();
+                let component = |t: Target| match t {
+                    Target::Node(n) => Target::Node(shared.uf.find(n)),
+                    c => c,
+                };
+                self.attempts(q, &targets, Vec::new(), component, params.cycle_edges)
+            })
+            .collect();
+        let mut ids: Vec<u32> = Vec::with_capacity(candidates.len());
+        let mut stopped = false;
+        for (i, plan) in plans.into_iter().enumerate() {
+            if budget.nodes.is_some_and(|n| work.node_count() >= n) {
+                stopped = true;
+            }
+            if stopped {
+                // spent but not applied: still counted
+                if let Ok(plan) = plan {
+                    plan.iter().for_each(|a| work.counts += a.connection.counts);
+                }
+                continue;
+            }
+            let plan = plan?;
+            let id = work.add_node(&candidates[i]);
+            ids.push(id);
+            for a in &plan {
+                let target = match a.target {
+                    Target::Node(n) => n,
+                    Target::Candidate(j) => ids[j],
+                };
+                work.apply(id, target, &a.connection);
+            }
+        }
+        Ok(())
+    }
+
+    fn expansion_round(
+        &self,
+        work: &mut Work<'_>,
+        params: &LearnParams,
+        budget: &Budget,
+        (seed, round, size): (u64, u64, usize),
+    ) -> Result<(), LearnError> {
+        // OS94's weights f / (n + 1), as cumulative sums for drawing by weight
+        let mut cumulative = Vec::with_capacity(work.node_count());
+        let mut total = 0.0;
+        for (f, n) in work.failures.iter().zip(&work.tries) {
+            total += f64::from(*f) / (f64::from(*n) + 1.0);
+            cumulative.push(total);
+        }
+        let shared: &Work<'_> = work;
+        let n_nodes = shared.node_count() as u32;
+        let walks: Vec<(Result<Walk, OracleError>, CallCounts)> = (0..size as u64)
+            .into_par_iter()
+            .map(|i| {
+                let mut rng = stream(seed, round, i, WALK_STREAM);
+                let mut counts = CallCounts::default();
+                let from = if total > 0.0 {
+                    let u = rng.random::<f64>() * total;
+                    (cumulative.partition_point(|&c| c <= u) as u32).min(n_nodes - 1)
+                } else {
+                    rng.random_range(0..n_nodes)
+                };
+                let walk = (|| {
+                    let corners = random_bounce(
+                        self.space,
+                        self.oracle,
+                        &shared.groups,
+                        shared.node(from),
+                        params.bounce_steps,
+                        &mut rng,
+                        &mut counts,
+                    )?;
+                    let attempts = match corners.last() {
+                        None => Vec::new(),
+                        Some(end) => {
+                            let near = shared.nearest(end, params.neighbours, params.radius);
+                            let targets: Vec<(Target, &[f64])> = near
+                                .iter()
+                                .map(|&(n, _)| (Target::Node(n), shared.node(n)))
+                                .collect();
+                            let component = |t: Target| match t {
+                                Target::Node(n) => Target::Node(shared.uf.find(n)),
+                                c => c,
+                            };
+                            let joined = vec![Target::Node(shared.uf.find(from))];
+                            self.attempts(end, &targets, joined, component, params.cycle_edges)?
+                        }
+                    };
+                    Ok(Walk {
+                        from,
+                        corners,
+                        attempts,
+                    })
+                })();
+                (walk, counts)
+            })
+            .collect();
+        let mut stopped = false;
+        for (walk, counts) in walks {
+            work.counts += counts;
+            if budget.nodes.is_some_and(|n| work.node_count() >= n) {
+                stopped = true;
+            }
+            if stopped {
+                if let Ok(walk) = walk {
+                    walk.attempts
+                        .iter()
+                        .for_each(|a| work.counts += a.connection.counts);
+                }
+                continue;
+            }
+            let walk = walk?;
+            work.tries[walk.from as usize] += 1;
+            let Some(last) = walk.corners.last() else {
+                continue;
+            };
+            let end = if params.bounce_nodes {
+                let mut prev = walk.from;
+                for q in &walk.corners {
+                    let id = work.add_node(q);
+                    work.add_edge(prev, id, &[]);
+                    prev = id;
+                }
+                prev
+            } else {
+                let end = work.add_node(last);
+                work.add_edge(walk.from, end, &walk.corners[..walk.corners.len() - 1]);
+                end
+            };
+            for a in &walk.attempts {
+                // walks only target nodes that existed when the round began
+                if let Target::Node(target) = a.target {
+                    work.apply(end, target, &a.connection);
+                }
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,431 @@
+//! The roadmap file: the only place that knows its layout.
+//!
+//! ```text
+//! offset  size  field
+//!      0     8  magic "VIAROADM"
+//!      8     4  format version (u32, little endian)
+//!     12     8  payload length in bytes (u64 LE)
+//!     20     8  payload checksum (u64 LE, see `checksum`)
+//!     28     8  checksum of bytes 0..28 (u64 LE)
+//!     36     …  payload: bincode 2 (standard config) of header, nodes, edges, component labels
+//! ```
+//!
+//! Like OMPL's `PlannerDataStorage` the file is marked and signed: the magic says what it is,
+//! the version how to read it, and the header records the space, the scene's fingerprint
+//! ([`crate::scene::Scene::fingerprint`]), the learning parameters, the local method's spec,
+//! the seed and the oracle calls spent. No wall-clock time is stored, so the same seed gives
+//! the same bytes.
+//!
+//! Loading checks, in order: magic ([`RoadmapError::NotARoadmap`]), version
+//! ([`RoadmapError::WrongVersion`]; every future version keeps magic and version in front),
+//! length ([`RoadmapError::Truncated`]), checksums and consistency
+//! ([`RoadmapError::Corrupted`]), and the scene ([`RoadmapError::ForeignScene`]). The checksums
+//! are verified before anything is decoded, and the decoder runs with a byte limit derived from
+//! the payload's size, so a corrupted length can neither panic nor allocate without bound.
+
+use super::graph::{Edge, Roadmap};
+use super::params::LearnParams;
+use crate::local::LocalSpec;
+use crate::oracle::CallCounts;
+use crate::space::{Space, SpaceKind};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The first eight bytes of every roadmap file.
+pub const MAGIC: [u8; 8] = *b"VIAROADM";
+
+/// The version of the layout written by this build (and the only one it reads).
+pub const FORMAT_VERSION: u32 = 1;
+
+/// Bytes before the payload.
+pub const FIXED_HEADER_LEN: usize = 36;
+
+/// How a roadmap was learnt and for which scene: the signed part of the file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Header {
+    /// The configuration space, with bounds.
+    pub space: Space,
+    /// Fingerprint of the scene learnt ([`crate::scene::Scene::fingerprint`]).
+    pub fingerprint: u64,
+    /// The learning parameters.
+    pub params: LearnParams,
+    /// The local method's spec string ([`crate::local::LocalSpec`]); queries rebuild the method
+    /// from it.
+    pub local_spec: String,
+    /// Seed of the random streams.
+    pub seed: u64,
+    /// The node budget learning ran with, if any (a time budget is not recorded: it is not
+    /// reproducible).
+    pub node_budget: Option<u64>,
+    /// Rounds learning ran.
+    pub rounds: u64,
+    /// Oracle work spent on learning.
+    pub counts: CallCounts,
+}
+
+/// Why a roadmap cannot be saved or loaded. Each kind of bad file has its own variant.
+#[derive(Debug, thiserror::Error)]
+pub enum RoadmapError {
+    /// Reading or writing the file failed.
+    #[error("cannot {action} {path}: {source}")]
+    Io {
+        /// What was being done ("read", "write", "rename to" …).
+        action: &'static str,
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The file does not start with [`MAGIC`].
+    #[error("not a viaroad roadmap: the file does not start with the roadmap marker")]
+    NotARoadmap,
+    /// The file ends early.
+    #[error("roadmap file is truncated: it has {found} bytes, {needed} are needed")]
+    Truncated {
+        /// Bytes present.
+        found: u64,
+        /// Bytes the header announces (or the fixed header's length).
+        needed: u64,
+    },
+    /// A format version this build does not read.
+    #[error(
+        "roadmap format version {found} is not supported; this build reads version {supported}"
+    )]
+    WrongVersion {
+        /// Version in the file.
+        found: u32,
+        /// [`FORMAT_VERSION`].
+        supported: u32,
+    },
+    /// A checksum does not match, or the content does not decode or does not fit together.
+    #[error("roadmap file is corrupted: {0}")]
+    Corrupted(String),
+    /// The roadmap was learnt for another scene.
+    #[error(
+        "roadmap was learnt for another scene: its fingerprint is {found:016x}, \
+         the scene's is {expected:016x}"
+    )]
+    ForeignScene {
+        /// The scene's fingerprint.
+        expected: u64,
+        /// The fingerprint recorded in the roadmap.
+        found: u64,
+    },
+    /// The recorded local method cannot be rebuilt by this build.
+    #[error(
+        "roadmap was learnt with local method `{spec}`, which this build cannot rebuild: {reason}"
+    )]
+    UnknownLocalMethod {
+        /// The recorded spec.
+        spec: String,
+        /// Why it does not parse.
+        reason: String,
+    },
+    /// Encoding failed (does not happen for roadmaps built by this crate).
+    #[error("cannot encode roadmap: {0}")]
+    Encode(String),
+}
+
+/// The payload as written (borrowing the roadmap).
+#[derive(Serialize)]
+struct PayloadRef<'a> {
+    header: &'a Header,
+    nodes: &'a [f64],
+    edges: &'a [Edge],
+    components: &'a [u32],
+}
+
+/// The payload as read.
+#[derive(Deserialize)]
+struct Payload {
+    header: Header,
+    nodes: Vec<f64>,
+    edges: Vec<Edge>,
+    components: Vec<u32>,
+}
+
+/// A 64-bit checksum: words of eight bytes folded in by xor, multiplication by an odd constant
+/// and rotation. Each step is a bijection of the state for a fixed word, so a change confined
+/// to one word (any single flipped byte, any burst of up to eight bytes inside a word) always
+/// changes the result; other corruption goes unnoticed with probability about 2⁻⁶⁴.
+pub fn checksum(bytes: &[u8]) -> u64 {
+    const K: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut h = 0x243f_6a88_85a3_08d3 ^ (bytes.len() as u64).wrapping_mul(K);
+    let mut chunks = bytes.chunks_exact(8);
+    for c in &mut chunks {
+        let w = u64::from_le_bytes(c.try_into().expect("chunks of eight"));
+        h = (h ^ w).wrapping_mul(K).rotate_left(31);
+    }
+    let rest = chunks.remainder();
+    if !rest.is_empty() {
+        let mut last = [0u8; 8];
+        last[..rest.len()].copy_from_slice(rest);
+        h = (h ^ u64::from_le_bytes(last))
+            .wrapping_mul(K)
+            .rotate_left(31);
+    }
+    // final avalanche (the finaliser of MurmurHash3)
+    h ^= h >> 33;
+    h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
+    h ^= h >> 33;
+    h
+}
+
+fn bincode_config() -> bincode::config::Configuration {
+    bincode::config::standard()
+}
+
+/// Decodes the payload with a byte limit of at least eight times its size (the decoder counts
+/// decoded primitives by their size in memory, at most eight bytes per encoded byte), rounded
+/// up to a power of eight: a corrupted length cannot make it allocate more than that.
+fn decode_payload(payload: &[u8]) -> Result<(Payload, usize), bincode::error::DecodeError> {
+    let need = payload.len().saturating_mul(8);
+    macro_rules! with_limits {
+        ($($shift:literal),*) => {$(
+            if need <= (1usize << $shift) {
+                return bincode::serde::decode_from_slice(
+                    payload,
+                    bincode_config().with_limit::<{ 1usize << $shift }>(),
+                );
+            }
+        )*};
+    }
+    with_limits!(12, 15, 18, 21, 24, 27, 30);
+    bincode::serde::decode_from_slice(payload, bincode_config().with_limit::<{ usize::MAX }>())
+}
+
+impl Roadmap {
+    /// The roadmap file's bytes.
+    pub fn to_bytes(&self) -> Result<Vec<u8>, RoadmapError> {
+        let payload = bincode::serde::encode_to_vec(
+            PayloadRef {
+                header: self.header(),
+                nodes: self.coords(),
+                edges: self.edges(),
+                components: self.component_labels(),
+            },
+            bincode_config(),
+        )
+        .map_err(|e| RoadmapError::Encode(e.to_string()))?;
+        let mut out = Vec::with_capacity(FIXED_HEADER_LEN + payload.len());
+        out.extend_from_slice(&MAGIC);
+        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+        out.extend_from_slice(&checksum(&payload).to_le_bytes());
+        let header_sum = checksum(&out);
+        out.extend_from_slice(&header_sum.to_le_bytes());
+        out.extend_from_slice(&payload);
+        Ok(out)
+    }
+
+    /// Reads a roadmap from its bytes and checks that it was learnt for the scene with
+    /// `expected_fingerprint`.
+    pub fn from_bytes(bytes: &[u8], expected_fingerprint: u64) -> Result<Roadmap, RoadmapError> {
+        let roadmap = Self::from_bytes_any_scene(bytes)?;
+        let found = roadmap.header().fingerprint;
+        if found != expected_fingerprint {
+            return Err(RoadmapError::ForeignScene {
+                expected: expected_fingerprint,
+                found,
+            });
+        }
+        Ok(roadmap)
+    }
+
+    /// Reads a roadmap from its bytes without asking which scene it belongs to (for `info`).
+    pub fn from_bytes_any_scene(bytes: &[u8]) -> Result<Roadmap, RoadmapError> {
+        let found = bytes.len() as u64;
+        let truncated = |needed: u64| RoadmapError::Truncated { found, needed };
+        if bytes.len() < MAGIC.len() {
+            return Err(if MAGIC.starts_with(bytes) {
+                truncated(FIXED_HEADER_LEN as u64)
+            } else {
+                RoadmapError::NotARoadmap
+            });
+        }
+        if bytes[..8] != MAGIC {
+            return Err(RoadmapError::NotARoadmap);
+        }
+        if bytes.len() < 12 {
+            return Err(truncated(FIXED_HEADER_LEN as u64));
+        }
+        let word = |at: usize| u64::from_le_bytes(bytes[at..at + 8].try_into().expect("8 bytes"));
+        let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
+        if version != FORMAT_VERSION {
+            return Err(RoadmapError::WrongVersion {
+                found: version,
+                supported: FORMAT_VERSION,
+            });
+        }
+        if bytes.len() < FIXED_HEADER_LEN {
+            return Err(truncated(FIXED_HEADER_LEN as u64));
+        }
+        if checksum(&bytes[..28]) != word(28) {
+            return Err(RoadmapError::Corrupted(
+                "the fixed header's checksum does not match".into(),
+            ));
+        }
+        let payload_len = word(12);
+        let total = payload_len
+            .checked_add(FIXED_HEADER_LEN as u64)
+            .ok_or_else(|| RoadmapError::Corrupted("impossible payload length".into()))?;
+        if found < total {
+            return Err(truncated(total));
+        }
+        if found > total {
+            return Err(RoadmapError::Corrupted(format!(
+                "{} unexpected bytes after the end of the roadmap",
+                found - total
+            )));
+        }
+        let payload = &bytes[FIXED_HEADER_LEN..];
+        if checksum(payload) != word(20) {
+            return Err(RoadmapError::Corrupted(
+                "the payload's checksum does not match".into(),
+            ));
+        }
+        let (p, used) = decode_payload(payload)
+            .map_err(|e| RoadmapError::Corrupted(format!("the payload does not decode: {e}")))?;
+        if used != payload.len() {
+            return Err(RoadmapError::Corrupted(format!(
+                "the payload decodes from {used} of its {} bytes",
+                payload.len()
+            )));
+        }
+        check_space(&p.header.space)?;
+        p.header
+            .params
+            .validate()
+            .map_err(|e| RoadmapError::Corrupted(format!("learning parameters: {e}")))?;
+        if let Err(e) = LocalSpec::from_str(&p.header.local_spec) {
+            return Err(RoadmapError::UnknownLocalMethod {
+                spec: p.header.local_spec.clone(),
+                reason: e.reason,
+            });
+        }
+        let labels = p.components;
+        let roadmap =
+            Roadmap::assemble(p.header, p.nodes, p.edges).map_err(RoadmapError::Corrupted)?;
+        if labels != roadmap.component_labels() {
+            return Err(RoadmapError::Corrupted(
+                "the component labels do not match the edges".into(),
+            ));
+        }
+        Ok(roadmap)
+    }
+
+    /// Saves the roadmap to `path` atomically: the bytes go to a temporary file in the same
+    /// directory ([`temp_path`]), which is flushed to disk and then renamed over `path`. If
+    /// anything fails, `path` keeps its previous content and the temporary file is removed.
+    pub fn save(&self, path: &Path) -> Result<(), RoadmapError> {
+        let bytes = self.to_bytes()?;
+        write_atomically(path, |w| w.write_all(&bytes))
+    }
+
+    /// Loads the roadmap at `path` and checks that it was learnt for the scene with
+    /// `expected_fingerprint`.
+    pub fn load(path: &Path, expected_fingerprint: u64) -> Result<Roadmap, RoadmapError> {
+        Self::from_bytes(&read(path)?, expected_fingerprint)
+    }
+
+    /// Loads the roadmap at `path` whatever scene it was learnt for (for `info`).
+    pub fn load_any_scene(path: &Path) -> Result<Roadmap, RoadmapError> {
+        Self::from_bytes_any_scene(&read(path)?)
+    }
+}
+
+fn read(path: &Path) -> Result<Vec<u8>, RoadmapError> {
+    std::fs::read(path).map_err(|source| RoadmapError::Io {
+        action: "read",
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// A space read from a file must be one its constructors accept.
+fn check_space(space: &Space) -> Result<(), RoadmapError> {
+    let (lower, upper, scale) = (space.lower(), space.upper(), space.rotation_scale());
+    let rebuilt = match space.kind() {
+        SpaceKind::Euclidean(n) if n == lower.len() => {
+            Space::euclidean(lower.to_vec(), upper.to_vec()).map_err(|e| e.to_string())
+        }
+        SpaceKind::Se2 if lower.len() == 2 && upper.len() == 2 => {
+            Space::se2([lower[0], lower[1]], [upper[0], upper[1]], scale).map_err(|e| e.to_string())
+        }
+        SpaceKind::Se3 if lower.len() == 3 && upper.len() == 3 => Space::se3(
+            [lower[0], lower[1], lower[2]],
+            [upper[0], upper[1], upper[2]],
+            scale,
+        )
+        .map_err(|e| e.to_string()),
+        _ => Err("bounds of the wrong dimension".into()),
+    };
+    match rebuilt {
+        Ok(s) if s == *space => Ok(()),
+        Ok(_) => Err(RoadmapError::Corrupted(
+            "the space's rotation scale does not fit its kind".into(),
+        )),
+        Err(e) => Err(RoadmapError::Corrupted(format!("the space: {e}"))),
+    }
+}
+
+/// Where [`write_atomically`] puts the bytes for `target` before renaming: a hidden file next
+/// to it, named after it, the process and a counter (so concurrent saves do not collide).
+pub fn temp_path(target: &Path) -> PathBuf {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let name = target
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "roadmap".into());
+    target.with_file_name(format!(".{name}.{}-{n}.tmp", std::process::id()))
+}
+
+/// Writes a file the way a crash cannot half-do: `write` fills a temporary file in the same
+/// directory, which is synced and renamed over `target` (and the directory synced, where the
+/// platform allows). On any error the temporary file is removed and `target` is untouched.
+pub fn write_atomically(
+    target: &Path,
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), RoadmapError> {
+    let tmp = temp_path(target);
+    let io = |action: &'static str, path: &Path| {
+        let path = path.to_path_buf();
+        move |source| RoadmapError::Io {
+            action,
+            path,
+            source,
+        }
+    };
+    let mut file = std::fs::File::create(&tmp).map_err(io("create", &tmp))?;
+    let written = (|| {
+        let mut buffered = std::io::BufWriter::new(&mut file);
+        write(&mut buffered)?;
+        buffered.flush()?;
+        drop(buffered);
+        file.sync_all()
+    })()
+    .map_err(io("write", &tmp));
+    drop(file);
+    let renamed =
+        written.and_then(|()| std::fs::rename(&tmp, target).map_err(io("replace", target)));
+    if let Err(e) = renamed {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    // Make the rename itself durable; failing here leaves the new file in place, which is fine.
+    if let Some(dir) = target.parent() {
+        let dir = if dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            dir
+        };
+        if let Ok(d) = std::fs::File::open(dir) {
+            let _ = d.sync_all();
+        }
+    }
+    Ok(())
+}

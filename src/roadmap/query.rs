@@ -1,0 +1,412 @@
+//! Answering queries against a learnt roadmap (OS94's query phase).
+//!
+//! A query first tries the local method straight from start to goal. Otherwise start and goal
+//! are *attached*: the local method connects each to its nearest nodes, nearest first, at most
+//! one node per component and side, alternating between the two sides, until both are attached
+//! to one component. A* ([`petgraph::algo::astar()`], with the space's distance as the admissible
+//! heuristic) finds the way through that component, and the path is shortened over its corners
+//! (CHS A.1, [`crate::local::shorten()`]).
+//!
+//! Queries never change the roadmap, so answers do not depend on the order queries are asked
+//! in, and a batch runs in parallel ([`QueryPlanner::query_batch`]).
+
+use super::graph::Roadmap;
+use super::persist::RoadmapError;
+use crate::local::{path_length, shorten, Connection, LocalMethod, LocalSpec};
+use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::space::{Config, Group, SpaceError};
+use petgraph::graph::NodeIndex;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::str::FromStr;
+use std::time::{Duration, Instant};
+
+/// Knobs of the query phase.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QueryOptions {
+    /// Nearest nodes considered for attaching each of start and goal.
+    pub attach_candidates: usize,
+    /// Try the local method from start to goal before using the roadmap.
+    pub try_direct: bool,
+    /// Shorten the path over its corners (CHS A.1).
+    pub shorten: bool,
+}
+
+impl Default for QueryOptions {
+    fn default() -> Self {
+        QueryOptions {
+            attach_candidates: 30,
+            try_direct: true,
+            shorten: true,
+        }
+    }
+}
+
+/// Start or goal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Endpoint {
+    /// The start configuration.
+    Start,
+    /// The goal configuration.
+    Goal,
+}
+
+impl std::fmt::Display for Endpoint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Endpoint::Start => "start",
+            Endpoint::Goal => "goal",
+        })
+    }
+}
+
+/// A query that cannot be asked.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum QueryError {
+    /// Wrong number of coordinates, not finite, or an SE(3) quaternion of length zero.
+    #[error("{endpoint}: {source}")]
+    InvalidConfig {
+        /// Which end.
+        endpoint: Endpoint,
+        /// What is wrong.
+        source: SpaceError,
+    },
+    /// Outside the bounds of the space.
+    #[error("{endpoint} {config:?} lies outside the bounds")]
+    OutOfBounds {
+        /// Which end.
+        endpoint: Endpoint,
+        /// The configuration (normalised).
+        config: Config,
+    },
+    /// In collision.
+    #[error("{endpoint} {config:?} is in collision")]
+    InCollision {
+        /// Which end.
+        endpoint: Endpoint,
+        /// The configuration (normalised).
+        config: Config,
+    },
+    /// The oracle cannot answer a motion asked about.
+    #[error("collision oracle: {0}")]
+    Oracle(#[from] OracleError),
+}
+
+/// How a query ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum QueryOutcome {
+    /// The local method connected start and goal directly.
+    Direct,
+    /// Through the roadmap.
+    Roadmap,
+    /// Start or goal could not be attached to any node.
+    NotAttached {
+        /// Whether the start was attached to some node.
+        start_attached: bool,
+        /// Whether the goal was attached to some node.
+        goal_attached: bool,
+    },
+    /// Both were attached, but never to the same component.
+    Disconnected,
+}
+
+/// The answer to one query (serialisable, for `--json` output).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct QueryResult {
+    /// How it ended; the paths are empty unless it is [`Direct`](QueryOutcome::Direct) or
+    /// [`Roadmap`](QueryOutcome::Roadmap).
+    pub outcome: QueryOutcome,
+    /// The start, normalised.
+    pub start: Config,
+    /// The goal, normalised.
+    pub goal: Config,
+    /// The path before shortening: corners joined by single-group straight motions.
+    pub raw_path: Vec<Config>,
+    /// The shortened path (the raw path if shortening is off).
+    pub path: Vec<Config>,
+    /// Length of the raw path.
+    pub raw_length: f64,
+    /// Length of the path.
+    pub length: f64,
+    /// Oracle work of this query (checks, attaching, shortening).
+    pub counts: CallCounts,
+    /// Deepest recursion of the local connections used in the answer.
+    pub depth: u32,
+    /// Local-method calls made to attach start and goal.
+    pub attach_attempts: u32,
+    /// The node the start was attached to (for a roadmap answer).
+    pub start_node: Option<u32>,
+    /// The node the goal was attached to (for a roadmap answer).
+    pub goal_node: Option<u32>,
+    /// Roadmap nodes on the A* path.
+    pub roadmap_nodes: usize,
+}
+
+impl QueryResult {
+    /// Whether a path was found.
+    pub fn is_solved(&self) -> bool {
+        matches!(self.outcome, QueryOutcome::Direct | QueryOutcome::Roadmap)
+    }
+}
+
+/// One answer of a batch, with the wall-clock time it took.
+#[derive(Clone, Debug)]
+pub struct BatchAnswer {
+    /// The answer.
+    pub result: Result<QueryResult, QueryError>,
+    /// Time spent on this query.
+    pub elapsed: Duration,
+}
+
+/// Answers queries against one roadmap with the scene's oracle and the roadmap's own local
+/// method (rebuilt from the spec recorded in the file, so that the groups of its edges and of
+/// the attaching paths agree).
+pub struct QueryPlanner<'a> {
+    roadmap: &'a Roadmap,
+    oracle: &'a dyn CollisionOracle,
+    local: Box<dyn LocalMethod>,
+    groups: Vec<Group>,
+    options: QueryOptions,
+}
+
+/// An attachment of one end to a node.
+struct Attached {
+    component: u32,
+    node: u32,
+    connection: Connection,
+}
+
+impl<'a> QueryPlanner<'a> {
+    /// A planner for `roadmap`; `oracle` must be the oracle of the roadmap's scene (loading with
+    /// the scene's fingerprint checks that the scene is the right one).
+    pub fn new(
+        roadmap: &'a Roadmap,
+        oracle: &'a dyn CollisionOracle,
+    ) -> Result<QueryPlanner<'a>, RoadmapError> {
+        let spec = &roadmap.header().local_spec;
+        let local = LocalSpec::from_str(spec)
+            .map_err(|e| RoadmapError::UnknownLocalMethod {
+                spec: spec.clone(),
+                reason: e.reason,
+            })?
+            .build();
+        let groups = local.groups(roadmap.space());
+        Ok(QueryPlanner {
+            roadmap,
+            oracle,
+            local,
+            groups,
+            options: QueryOptions::default(),
+        })
+    }
+
+    /// The same planner with other options.
+    pub fn with_options(mut self, options: QueryOptions) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &QueryOptions {
+        &self.options
+    }
+
+    /// The roadmap asked.
+    pub fn roadmap(&self) -> &Roadmap {
+        self.roadmap
+    }
+
+    fn check_endpoint(
+        &self,
+        endpoint: Endpoint,
+        q: &[f64],
+        counts: &mut CallCounts,
+    ) -> Result<Config, QueryError> {
+        let space = self.roadmap.space();
+        space
+            .check(q)
+            .map_err(|source| QueryError::InvalidConfig { endpoint, source })?;
+        let mut q = q.to_vec();
+        space.normalize(&mut q);
+        if !space.in_bounds(&q) {
+            return Err(QueryError::OutOfBounds {
+                endpoint,
+                config: q,
+            });
+        }
+        if !self.oracle.is_free(&q, counts) {
+            return Err(QueryError::InCollision {
+                endpoint,
+                config: q,
+            });
+        }
+        Ok(q)
+    }
+
+    /// Answers one query.
+    pub fn query(&self, start: &[f64], goal: &[f64]) -> Result<QueryResult, QueryError> {
+        let space = self.roadmap.space();
+        let mut counts = CallCounts::default();
+        let start = self.check_endpoint(Endpoint::Start, start, &mut counts)?;
+        let goal = self.check_endpoint(Endpoint::Goal, goal, &mut counts)?;
+        let mut result = QueryResult {
+            outcome: QueryOutcome::Disconnected,
+            start: start.clone(),
+            goal: goal.clone(),
+            raw_path: Vec::new(),
+            path: Vec::new(),
+            raw_length: 0.0,
+            length: 0.0,
+            counts,
+            depth: 0,
+            attach_attempts: 0,
+            start_node: None,
+            goal_node: None,
+            roadmap_nodes: 0,
+        };
+        if self.options.try_direct {
+            let c = self.local.connect(space, self.oracle, &start, &goal)?;
+            result.counts += c.counts;
+            if c.is_connected() {
+                result.outcome = QueryOutcome::Direct;
+                result.depth = c.depth;
+                return self.finish(result, c.path);
+            }
+        }
+        // attach both ends, alternating, one node per component and side
+        let k = self.options.attach_candidates;
+        let near_start = self.roadmap.nearest(&start, k, None);
+        let near_goal = self.roadmap.nearest(&goal, k, None);
+        let mut at_start: Vec<Attached> = Vec::new();
+        let mut at_goal: Vec<Attached> = Vec::new();
+        let mut meeting: Option<(usize, usize)> = None;
+        'attach: for i in 0..near_start.len().max(near_goal.len()) {
+            for side in [Endpoint::Start, Endpoint::Goal] {
+                let (near, mine, theirs) = match side {
+                    Endpoint::Start => (&near_start, &mut at_start, &at_goal),
+                    Endpoint::Goal => (&near_goal, &mut at_goal, &at_start),
+                };
+                let Some(&(node, _)) = near.get(i) else {
+                    continue;
+                };
+                let component = self.roadmap.component(node);
+                if mine.iter().any(|a| a.component == component) {
+                    continue;
+                }
+                let q = self.roadmap.node(node);
+                let connection = match side {
+                    Endpoint::Start => self.local.connect(space, self.oracle, &start, q)?,
+                    Endpoint::Goal => self.local.connect(space, self.oracle, q, &goal)?,
+                };
+                result.counts += connection.counts;
+                result.attach_attempts += 1;
+                if !connection.is_connected() {
+                    continue;
+                }
+                mine.push(Attached {
+                    component,
+                    node,
+                    connection,
+                });
+                if let Some(j) = theirs.iter().position(|a| a.component == component) {
+                    let m = mine.len() - 1;
+                    meeting = Some(match side {
+                        Endpoint::Start => (m, j),
+                        Endpoint::Goal => (j, m),
+                    });
+                    break 'attach;
+                }
+            }
+        }
+        let Some((si, gi)) = meeting else {
+            result.outcome = if at_start.is_empty() || at_goal.is_empty() {
+                QueryOutcome::NotAttached {
+                    start_attached: !at_start.is_empty(),
+                    goal_attached: !at_goal.is_empty(),
+                }
+            } else {
+                QueryOutcome::Disconnected
+            };
+            return Ok(result);
+        };
+        let (s, g) = (&at_start[si], &at_goal[gi]);
+        let Some(nodes) = self.astar(s.node, g.node) else {
+            // attached to one component, so a path exists; kept as a typed outcome regardless
+            result.outcome = QueryOutcome::Disconnected;
+            return Ok(result);
+        };
+        result.outcome = QueryOutcome::Roadmap;
+        result.start_node = Some(s.node);
+        result.goal_node = Some(g.node);
+        result.depth = s.connection.depth.max(g.connection.depth);
+        result.roadmap_nodes = nodes.len();
+        let mut raw = s.connection.path.clone();
+        for w in nodes.windows(2) {
+            let edge = self.cheapest_edge(w[0], w[1]);
+            raw.extend(self.roadmap.edge_path(edge, w[0]).into_iter().skip(1));
+        }
+        raw.extend(g.connection.path.iter().skip(1).cloned());
+        self.finish(result, raw)
+    }
+
+    /// A* from node `s` to node `g`: the nodes on the way, both ends included.
+    fn astar(&self, s: u32, g: u32) -> Option<Vec<u32>> {
+        let goal = self.roadmap.node(g);
+        let space = self.roadmap.space();
+        petgraph::algo::astar(
+            self.roadmap.graph(),
+            NodeIndex::new(s as usize),
+            |n| n.index() == g as usize,
+            |e| *e.weight(),
+            |n| space.distance(self.roadmap.node(n.index() as u32), goal),
+        )
+        .map(|(_, path)| path.into_iter().map(|n| n.index() as u32).collect())
+    }
+
+    /// The shortest edge between adjacent nodes `u` and `v`.
+    fn cheapest_edge(&self, u: u32, v: u32) -> usize {
+        use petgraph::visit::EdgeRef;
+        self.roadmap
+            .graph()
+            .edges_connecting(NodeIndex::new(u as usize), NodeIndex::new(v as usize))
+            .min_by(|a, b| a.weight().total_cmp(b.weight()).then(a.id().cmp(&b.id())))
+            .map(|e| e.id().index())
+            .expect("A* only steps along edges")
+    }
+
+    /// Drops repeated corners, shortens, measures.
+    fn finish(
+        &self,
+        mut result: QueryResult,
+        mut raw: Vec<Config>,
+    ) -> Result<QueryResult, QueryError> {
+        let space = self.roadmap.space();
+        raw.dedup();
+        let path = if self.options.shorten {
+            shorten(space, self.oracle, &self.groups, &raw, &mut result.counts)?
+        } else {
+            raw.clone()
+        };
+        result.raw_length = path_length(space, &self.groups, &raw);
+        result.length = path_length(space, &self.groups, &path);
+        result.raw_path = raw;
+        result.path = path;
+        Ok(result)
+    }
+
+    /// Answers many queries in parallel on the current rayon pool; answers in input order.
+    pub fn query_batch(&self, queries: &[(Config, Config)]) -> Vec<BatchAnswer> {
+        queries
+            .par_iter()
+            .map(|(s, g)| {
+                let began = Instant::now();
+                let result = self.query(s, g);
+                BatchAnswer {
+                    result,
+                    elapsed: began.elapsed(),
+                }
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,301 @@
+//! Queries: every path re-checked by the independent checker, typed errors for bad ends,
+//! A* against an independent Dijkstra, batches equal to single queries in any order.
+
+mod roadmap_support;
+
+use roadmap_support::*;
+use std::collections::BinaryHeap;
+use viaroad::local::LocalSpec;
+use viaroad::roadmap::{
+    Endpoint, LearnParams, QueryError, QueryOptions, QueryOutcome, QueryPlanner, Roadmap,
+};
+use viaroad::scene::Scene;
+
+fn scene_and_roadmap(feedback: bool, nodes: usize) -> (Scene, Roadmap) {
+    let scene = disc_scene(21, 45, 0.06);
+    let params = LearnParams {
+        feedback,
+        ..LearnParams::default()
+    };
+    let roadmap = learn(&scene, &LocalSpec::default(), &params, nodes, 5).roadmap;
+    (scene, roadmap)
+}
+
+/// Shortest path lengths from `s` over the roadmap's edges: a Dijkstra of the test's own.
+fn dijkstra(roadmap: &Roadmap, s: u32) -> Vec<f64> {
+    #[derive(PartialEq)]
+    struct Item(f64, usize);
+    impl Eq for Item {}
+    impl PartialOrd for Item {
+        fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+            Some(self.cmp(o))
+        }
+    }
+    impl Ord for Item {
+        fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+            o.0.total_cmp(&self.0)
+        }
+    }
+    let n = roadmap.node_count();
+    let mut adj = vec![Vec::new(); n];
+    for e in roadmap.edges() {
+        adj[e.a as usize].push((e.b as usize, e.length));
+        adj[e.b as usize].push((e.a as usize, e.length));
+    }
+    let mut dist = vec![f64::INFINITY; n];
+    dist[s as usize] = 0.0;
+    let mut heap = BinaryHeap::from([Item(0.0, s as usize)]);
+    while let Some(Item(d, u)) = heap.pop() {
+        if d > dist[u] {
+            continue;
+        }
+        for &(v, w) in &adj[u] {
+            if d + w < dist[v] {
+                dist[v] = d + w;
+                heap.push(Item(d + w, v));
+            }
+        }
+    }
+    dist
+}
+
+/// Every answer, direct or through the roadmap, is a chain of free segments from start to
+/// goal; shortening never lengthens it. With the direct connection turned off every answer
+/// goes through the roadmap.
+#[test]
+fn every_answer_is_free_and_shortening_never_lengthens() {
+    for feedback in [true, false] {
+        let (scene, roadmap) = scene_and_roadmap(feedback, 3000);
+        let d = discs(&scene);
+        let oracle = scene.oracle();
+        let queries = random_queries(&scene, 150, 77);
+        for try_direct in [true, false] {
+            let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+                .unwrap()
+                .with_options(QueryOptions {
+                    try_direct,
+                    ..QueryOptions::default()
+                });
+            let mut solved = 0;
+            let mut through_roadmap = 0;
+            for (s, g) in &queries {
+                let r = planner.query(s, g).unwrap();
+                if !r.is_solved() {
+                    assert!(r.path.is_empty() && r.raw_path.is_empty());
+                    continue;
+                }
+                solved += 1;
+                through_roadmap += usize::from(r.outcome == QueryOutcome::Roadmap);
+                for path in [&r.raw_path, &r.path] {
+                    assert!(
+                        path_free(path, &d),
+                        "feedback={feedback}: {path:?} collides"
+                    );
+                    assert_eq!(path.first(), Some(s));
+                    assert_eq!(path.last(), Some(g));
+                }
+                assert!((polyline_length(&r.path) - r.length).abs() < 1e-9);
+                assert!((polyline_length(&r.raw_path) - r.raw_length).abs() < 1e-9);
+                assert!(r.length <= r.raw_length + 1e-12);
+            }
+            eprintln!(
+                "feedback={feedback} direct={try_direct}: {solved}/150 solved, \
+                 {through_roadmap} through the roadmap"
+            );
+            if !try_direct {
+                assert_eq!(through_roadmap, solved);
+            }
+            assert!(
+                solved >= 140,
+                "feedback={feedback} direct={try_direct}: only {solved} of 150 solved"
+            );
+        }
+    }
+}
+
+/// The roadmap part of a raw path is a shortest path between the attached nodes (A* with an
+/// admissible heuristic equals Dijkstra).
+#[test]
+fn astar_finds_shortest_roadmap_paths() {
+    let (scene, roadmap) = scene_and_roadmap(true, 600);
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            try_direct: false,
+            shorten: false,
+            ..QueryOptions::default()
+        });
+    let mut checked = 0;
+    for (s, g) in random_queries(&scene, 60, 3) {
+        let r = planner.query(&s, &g).unwrap();
+        if r.outcome != QueryOutcome::Roadmap {
+            continue;
+        }
+        let (a, b) = (r.start_node.unwrap(), r.goal_node.unwrap());
+        assert_eq!(roadmap.component(a), roadmap.component(b));
+        let through = dijkstra(&roadmap, a)[b as usize];
+        // raw = attach(start → a) + roadmap(a → b) + attach(b → goal)
+        let ia = r
+            .raw_path
+            .iter()
+            .position(|q| q == roadmap.node(a))
+            .unwrap();
+        let ib = r
+            .raw_path
+            .iter()
+            .rposition(|q| q == roadmap.node(b))
+            .unwrap();
+        let middle = polyline_length(&r.raw_path[ia..=ib]);
+        assert!(
+            (middle - through).abs() < 1e-9 * (1.0 + through),
+            "A* {middle} vs Dijkstra {through}"
+        );
+        checked += 1;
+    }
+    assert!(checked > 20, "only {checked} roadmap answers");
+}
+
+#[test]
+fn bad_ends_are_typed_errors() {
+    let (scene, roadmap) = scene_and_roadmap(true, 100);
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let free = random_queries(&scene, 1, 1)[0].0.clone();
+    let inside = match &scene.obstacles[0] {
+        viaroad::scene::Obstacle::Disc { centre, .. } => centre.clone(),
+        _ => unreachable!(),
+    };
+    assert!(matches!(
+        planner.query(&[0.5], &free),
+        Err(QueryError::InvalidConfig {
+            endpoint: Endpoint::Start,
+            ..
+        })
+    ));
+    assert!(matches!(
+        planner.query(&free, &[f64::NAN, 0.5]),
+        Err(QueryError::InvalidConfig {
+            endpoint: Endpoint::Goal,
+            ..
+        })
+    ));
+    assert!(matches!(
+        planner.query(&[1.5, 0.5], &free),
+        Err(QueryError::OutOfBounds {
+            endpoint: Endpoint::Start,
+            ..
+        })
+    ));
+    assert!(matches!(
+        planner.query(&free, &inside),
+        Err(QueryError::InCollision {
+            endpoint: Endpoint::Goal,
+            ..
+        })
+    ));
+}
+
+/// A start enclosed by a ring of discs: with roadmap nodes inside the ring it is attached to
+/// a component the goal never reaches ([`QueryOutcome::Disconnected`]); with none inside it
+/// cannot be attached at all, and the outcome says which end failed.
+#[test]
+fn an_enclosed_start_is_disconnected_or_not_attached() {
+    let mut ring = disc_scene(1, 0, 0.1);
+    for k in 0..24 {
+        let a = k as f64 * std::f64::consts::TAU / 24.0;
+        ring.obstacles.push(viaroad::scene::Obstacle::Disc {
+            centre: vec![0.5 + 0.2 * a.cos(), 0.5 + 0.2 * a.sin()],
+            radius: 0.04,
+        });
+    }
+    let oracle = ring.oracle();
+    let params = LearnParams::default();
+    let inside = |q: &[f64]| ((q[0] - 0.5).powi(2) + (q[1] - 0.5).powi(2)).sqrt() < 0.2;
+
+    let roadmap = learn(&ring, &LocalSpec::default(), &params, 300, 1).roadmap;
+    assert!(roadmap.nodes().any(inside));
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let r = planner.query(&[0.5, 0.5], &[0.02, 0.02]).unwrap();
+    assert_eq!(r.outcome, QueryOutcome::Disconnected);
+    assert!(!r.is_solved() && r.path.is_empty() && r.attach_attempts >= 2);
+
+    // learnt with the ring's inside filled: no node inside, the start sees none
+    let mut filled = ring.clone();
+    filled.obstacles.push(viaroad::scene::Obstacle::Disc {
+        centre: vec![0.5, 0.5],
+        radius: 0.2,
+    });
+    let roadmap = learn(&filled, &LocalSpec::default(), &params, 300, 1).roadmap;
+    assert!(!roadmap.nodes().any(inside));
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let r = planner.query(&[0.5, 0.5], &[0.02, 0.02]).unwrap();
+    assert_eq!(
+        r.outcome,
+        QueryOutcome::NotAttached {
+            start_attached: false,
+            goal_attached: true
+        }
+    );
+    assert!(r.path.is_empty());
+}
+
+/// Without obstacles in the way the direct connection answers.
+#[test]
+fn a_free_straight_line_is_answered_directly() {
+    let scene = disc_scene(1, 0, 0.1);
+    let roadmap = learn(&scene, &LocalSpec::Straight, &LearnParams::default(), 50, 1).roadmap;
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let r = planner.query(&[0.1, 0.1], &[0.9, 0.8]).unwrap();
+    assert_eq!(r.outcome, QueryOutcome::Direct);
+    assert_eq!(r.path, vec![vec![0.1, 0.1], vec![0.9, 0.8]]);
+    assert_eq!(r.attach_attempts, 0);
+}
+
+/// A batch gives the answers of single queries, in input order, whatever order it is asked in:
+/// queries do not change the roadmap.
+#[test]
+fn batches_answer_like_single_queries_in_any_order() {
+    let (scene, roadmap) = scene_and_roadmap(true, 500);
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let mut queries = random_queries(&scene, 60, 12);
+    queries.push((vec![2.0, 0.0], queries[0].1.clone()));
+    let single: Vec<_> = queries.iter().map(|(s, g)| planner.query(s, g)).collect();
+    let batch = planner.query_batch(&queries);
+    assert_eq!(batch.len(), queries.len());
+    for (a, b) in single.iter().zip(&batch) {
+        assert_eq!(a, &b.result);
+    }
+    let mut reversed = queries.clone();
+    reversed.reverse();
+    let back = planner.query_batch(&reversed);
+    for (a, b) in single.iter().rev().zip(&back) {
+        assert_eq!(a, &b.result);
+    }
+    assert!(matches!(
+        batch.last().unwrap().result,
+        Err(QueryError::OutOfBounds { .. })
+    ));
+}
+
+/// Answers serialise to JSON for the command line's `--json`.
+#[test]
+fn answers_serialise_to_json() {
+    let scene = disc_scene(1, 0, 0.1);
+    let roadmap = learn(&scene, &LocalSpec::Straight, &LearnParams::default(), 20, 1).roadmap;
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let r = planner.query(&[0.1, 0.1], &[0.9, 0.8]).unwrap();
+    let v: serde_json::Value = serde_json::to_value(&r).unwrap();
+    assert_eq!(v["outcome"], "direct");
+    assert_eq!(v["path"], serde_json::json!([[0.1, 0.1], [0.9, 0.8]]));
+    assert_eq!(v["counts"]["segment_calls"], r.counts.segment_calls);
+    let info = serde_json::to_value(roadmap.info()).unwrap();
+    assert_eq!(info["nodes"], roadmap.node_count());
+    assert!(roadmap
+        .info()
+        .to_string()
+        .contains("local method     straight"));
+}
