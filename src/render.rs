@@ -6,6 +6,7 @@
 
 use crate::geometry::{Polygon, TriMesh};
 use crate::local::Borderline;
+use crate::roadmap::Roadmap;
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::space::{Config, SpaceKind};
 use nalgebra::{Point2, Rotation2};
@@ -206,24 +207,22 @@ impl Picture {
         self
     }
 
-    /// Draws a roadmap: edges as straight lines between the positions of their ends.
-    pub fn roadmap<'a>(
-        &mut self,
-        nodes: impl IntoIterator<Item = &'a Config>,
-        edges: impl IntoIterator<Item = (&'a Config, &'a Config)>,
-    ) -> &mut Self {
-        for (a, b) in edges {
+    /// Draws a roadmap: every edge along its corners, every node as a dot.
+    pub fn roadmap(&mut self, roadmap: &Roadmap) -> &mut Self {
+        for (e, edge) in roadmap.edges().iter().enumerate() {
+            let pts: Vec<Point2<f64>> = roadmap
+                .edge_path(e, edge.a)
+                .iter()
+                .map(|q| Point2::new(q[0], q[1]))
+                .collect();
+            let pts = self.polygon_points(&pts);
             let _ = writeln!(
                 self.body,
-                r#"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" stroke="{}" stroke-width="0.6"/>"#,
-                self.x(a[0]),
-                self.y(a[1]),
-                self.x(b[0]),
-                self.y(b[1]),
+                r#"<polyline points="{pts}" fill="none" stroke="{}" stroke-width="0.6"/>"#,
                 style::ROADMAP_EDGE
             );
         }
-        for n in nodes {
+        for n in roadmap.nodes() {
             let _ = writeln!(
                 self.body,
                 r#"<circle cx="{:.2}" cy="{:.2}" r="1.5" fill="{}"/>"#,

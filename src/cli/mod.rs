@@ -1,9 +1,14 @@
 //! Sub-commands of the `viaroad` binary, one file each.
 
 mod bench;
+mod build;
 mod config_arg;
+mod demo;
+mod info;
+mod learn_args;
 mod local_args;
 mod probe;
+mod query;
 mod render;
 mod solve;
 
@@ -20,6 +25,15 @@ pub struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// The main job end to end: learn a roadmap of a shipped scene, save, reload, answer random
+    /// queries, draw the roadmap and a path.
+    Demo(demo::DemoArgs),
+    /// Learn a roadmap of a scene and save it.
+    Build(build::BuildArgs),
+    /// Answer queries against a saved roadmap.
+    Query(query::QueryArgs),
+    /// Show what a roadmap file holds.
+    Info(info::InfoArgs),
     /// Solve a scene's queries with the local method alone (no roadmap).
     Solve(solve::SolveArgs),
     /// Draw a scene, a solved query with the borderlines and via points tried, as SVG.
@@ -34,6 +48,10 @@ enum Command {
 /// Runs one command.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
+        Command::Demo(a) => demo::run(a),
+        Command::Build(a) => build::run(a),
+        Command::Query(a) => query::run(a),
+        Command::Info(a) => info::run(a),
         Command::Solve(a) => solve::run(a),
         Command::Render(a) => render::run(a),
         Command::Probe(a) => probe::run(a),

@@ -100,7 +100,7 @@ impl fmt::Display for RoadmapInfo {
             None => writeln!(f, "budget           time, {} rounds", self.rounds)?,
         }
         let radius = p.radius.map_or("none".to_string(), |r| r.to_string());
-        write!(
+        writeln!(
             f,
             "parameters       neighbours={} radius={} expansion_share={:.3} bounce_steps={} \
              bounce_nodes={} round_size={} sample_attempts={} cycle_edges={} feedback={} \

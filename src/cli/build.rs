@@ -1,0 +1,96 @@
+//! `viaroad build`: learn a roadmap of a scene offline and save it.
+
+use super::learn_args::LearnArgs;
+use super::local_args::LocalArgs;
+use anyhow::Context;
+use clap::Args;
+use std::path::{Path, PathBuf};
+use viaroad::roadmap::{Learner, Learnt, Progress};
+use viaroad::scene::Scene;
+
+/// Arguments of `build`.
+#[derive(Args)]
+pub struct BuildArgs {
+    /// Scene file (.toml or OMPL.app .cfg).
+    pub scene: PathBuf,
+    /// Where to save the roadmap.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub learn: LearnArgs,
+    #[command(flatten)]
+    pub local: LocalArgs,
+}
+
+/// Learns a roadmap of `scene` with a progress bar; `what` names it on the bar.
+pub fn learn(
+    scene: &Scene,
+    local: &LocalArgs,
+    learn: &LearnArgs,
+    default_nodes: usize,
+) -> anyhow::Result<Learnt> {
+    let spec = local.spec()?;
+    let (params, budget) = learn.resolve(default_nodes)?;
+    let method = spec.build();
+    let oracle = scene.oracle();
+    let learner = Learner::for_scene(scene, oracle.as_ref(), method.as_ref());
+    let bar = match budget.nodes {
+        Some(n) => super::progress_bar(n as u64, "nodes"),
+        None => super::progress_bar(budget.time.map_or(0, |t| t.as_secs().max(1)), "seconds"),
+    };
+    let by_nodes = budget.nodes.is_some();
+    let learnt = learner
+        .learn(&params, &budget, learn.seed, &mut |p: &Progress| {
+            if by_nodes {
+                bar.set_position(p.nodes as u64);
+            } else {
+                bar.set_position(p.elapsed.as_secs());
+            }
+            bar.set_message(format!("{} components", p.components));
+        })
+        .context("learning")?;
+    bar.finish_and_clear();
+    Ok(learnt)
+}
+
+/// Prints what learning did.
+pub fn report(learnt: &Learnt, output: &Path) {
+    let r = &learnt.roadmap;
+    let rep = &learnt.report;
+    let c = r.header().counts;
+    println!(
+        "learnt {} nodes, {} edges, {} components (largest {}) in {:.3} s ({} rounds, {} connection attempts, {} connected; stopped: {:?})",
+        r.node_count(),
+        r.edge_count(),
+        r.component_count(),
+        r.largest_component(),
+        rep.elapsed.as_secs_f64(),
+        rep.rounds,
+        rep.attempts,
+        rep.connected,
+        rep.stop,
+    );
+    println!(
+        "oracle: {} segment calls, {} line calls, {} state checks, {} pairs tested; saved to {}",
+        c.segment_calls,
+        c.line_calls,
+        c.state_checks,
+        c.pairs_tested,
+        output.display()
+    );
+}
+
+/// Runs `build`.
+pub fn run(a: BuildArgs) -> anyhow::Result<()> {
+    let scene = Scene::load(&a.scene)?;
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
+    let learnt = learn(&scene, &a.local, &a.learn, 1000)?;
+    if let Some(dir) = a.output.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    learnt.roadmap.save(&a.output)?;
+    report(&learnt, &a.output);
+    Ok(())
+}

@@ -1,0 +1,56 @@
+//! Command-line knobs of learning, shared by `build` and `demo`.
+
+use anyhow::Context;
+use clap::Args;
+use std::time::Duration;
+use viaroad::roadmap::{Budget, LearnParams};
+
+/// How much to learn and how.
+#[derive(Args, Clone, Debug)]
+pub struct LearnArgs {
+    /// Stop at this many nodes (reproducible).
+    #[arg(long)]
+    pub nodes: Option<usize>,
+    /// Stop after this many seconds (not reproducible: depends on the machine).
+    #[arg(long)]
+    pub time: Option<f64>,
+    /// Seed of learning.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Do not feed the local method's via points and free segments back into the roadmap.
+    #[arg(long)]
+    pub no_feedback: bool,
+    /// Nearest neighbours each new node tries (OMPL's PRM: 10).
+    #[arg(long)]
+    pub neighbours: Option<usize>,
+}
+
+impl LearnArgs {
+    /// The parameters and budget these flags name (`default_nodes` when neither bound is given).
+    pub fn resolve(&self, default_nodes: usize) -> anyhow::Result<(LearnParams, Budget)> {
+        let mut params = LearnParams {
+            feedback: !self.no_feedback,
+            ..LearnParams::default()
+        };
+        if let Some(k) = self.neighbours {
+            params.neighbours = k;
+        }
+        params
+            .validate()
+            .map_err(anyhow::Error::msg)
+            .context("learning parameters")?;
+        let time = match self.time {
+            Some(t) if t.is_finite() && t > 0.0 => Some(Duration::from_secs_f64(t)),
+            Some(t) => anyhow::bail!("--time must be a positive number of seconds, got {t}"),
+            None => None,
+        };
+        if self.nodes == Some(0) {
+            anyhow::bail!("--nodes must be at least 1");
+        }
+        let nodes = match (self.nodes, time) {
+            (None, None) => Some(default_nodes),
+            (n, _) => n,
+        };
+        Ok((params, Budget { nodes, time }))
+    }
+}

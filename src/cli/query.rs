@@ -1,0 +1,143 @@
+//! `viaroad query`: answer queries against a saved roadmap.
+
+use super::config_arg::parse_config;
+use anyhow::Context;
+use clap::Args;
+use serde_json::json;
+use std::path::PathBuf;
+use std::time::Instant;
+use viaroad::roadmap::{BatchAnswer, QueryPlanner, Roadmap};
+use viaroad::scene::{ompl_cfg, Scene};
+use viaroad::space::Config;
+
+/// Arguments of `query`.
+#[derive(Args)]
+pub struct QueryArgs {
+    /// The roadmap file.
+    pub roadmap: PathBuf,
+    /// The scene it was learnt for (checked against the roadmap's fingerprint).
+    #[arg(long)]
+    pub scene: PathBuf,
+    /// Start configuration (numbers separated by commas or spaces).
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "to",
+        conflicts_with = "queries"
+    )]
+    pub from: Option<String>,
+    /// Goal configuration.
+    #[arg(long, allow_hyphen_values = true, requires = "from")]
+    pub to: Option<String>,
+    /// A file with one query per line: start then goal coordinates, whitespace separated.
+    #[arg(long)]
+    pub queries: Option<PathBuf>,
+    /// One JSON object per query on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Percentile `p` (0–1) of sorted values.
+pub fn percentile(sorted: &[f64], p: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    sorted[((sorted.len() - 1) as f64 * p).round() as usize]
+}
+
+/// Prints answers, one line (or JSON object) each, then a summary.
+pub fn print_answers(answers: &[BatchAnswer], json_lines: bool) {
+    let mut ms: Vec<f64> = Vec::with_capacity(answers.len());
+    let mut solved = 0;
+    for (i, a) in answers.iter().enumerate() {
+        let t = a.elapsed.as_secs_f64() * 1e3;
+        ms.push(t);
+        match &a.result {
+            Ok(r) => {
+                solved += r.is_solved() as usize;
+                if json_lines {
+                    println!(
+                        "{}",
+                        json!({
+                            "solved": r.is_solved(),
+                            "path": r.raw_path,
+                            "shortened": r.path,
+                            "calls": r.counts.intersect_calls(),
+                            "depth": r.depth,
+                            "query_ms": t,
+                            "outcome": r.outcome,
+                            "length": r.length,
+                            "raw_length": r.raw_length,
+                        })
+                    );
+                } else if r.is_solved() {
+                    println!(
+                        "query {}: solved ({:?}), length {:.4} (raw {:.4}), {} corners, {} intersect calls, {:.3} ms",
+                        i + 1,
+                        r.outcome,
+                        r.length,
+                        r.raw_length,
+                        r.path.len(),
+                        r.counts.intersect_calls(),
+                        t
+                    );
+                } else {
+                    println!("query {}: not solved ({:?}), {:.3} ms", i + 1, r.outcome, t);
+                }
+            }
+            Err(e) => {
+                if json_lines {
+                    println!(
+                        "{}",
+                        json!({ "solved": false, "error": e.to_string(), "query_ms": t })
+                    );
+                } else {
+                    println!("query {}: error: {e}", i + 1);
+                }
+            }
+        }
+    }
+    ms.sort_by(f64::total_cmp);
+    if !json_lines {
+        println!(
+            "{solved}/{} solved; latency p50 {:.3} ms, p95 {:.3} ms",
+            answers.len(),
+            percentile(&ms, 0.5),
+            percentile(&ms, 0.95)
+        );
+    }
+}
+
+/// Runs `query`.
+pub fn run(a: QueryArgs) -> anyhow::Result<()> {
+    let scene = Scene::load(&a.scene)?;
+    let t = Instant::now();
+    let roadmap = Roadmap::load(&a.roadmap, scene.fingerprint())?;
+    let load_ms = t.elapsed().as_secs_f64() * 1e3;
+    let queries: Vec<(Config, Config)> = match (&a.from, &a.to, &a.queries) {
+        (Some(f), Some(t), None) => vec![(parse_config("--from", f)?, parse_config("--to", t)?)],
+        (None, None, Some(file)) => ompl_cfg::read_query_pairs(file, &scene.space)?
+            .into_iter()
+            .map(|q| (q.start, q.goal))
+            .collect(),
+        _ => anyhow::bail!("give either --from and --to, or --queries FILE"),
+    };
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
+    if !a.json {
+        eprintln!(
+            "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms",
+            a.roadmap.display(),
+            roadmap.node_count(),
+            roadmap.edge_count()
+        );
+    }
+    let answers = planner.query_batch(&queries);
+    if queries.len() == 1 {
+        if let Err(e) = &answers[0].result {
+            anyhow::bail!("{e}");
+        }
+    }
+    print_answers(&answers, a.json);
+    Ok(())
+}

@@ -1,0 +1,287 @@
+//! The `viaroad` binary as users meet it: the JSON formats, one clear error line and a
+//! non-zero exit for every kind of bad input, never a panic. Paths printed are re-checked by
+//! the independent segment–disc test.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn viaroad(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_viaroad"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A failure: non-zero exit, exactly one `error:` line naming `needle`, no panic.
+fn fails_with(args: &[&str], needle: &str) {
+    let o = viaroad(args);
+    let err = stderr(&o);
+    assert!(!o.status.success(), "{args:?} succeeded");
+    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(lines.len(), 1, "{args:?}: {err}");
+    assert!(
+        lines[0].contains(needle),
+        "{args:?}: expected `{needle}` in `{}`",
+        lines[0]
+    );
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("viaroad-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_string_lossy().into_owned()
+}
+
+const EXAMPLE: &str = "scenes/discs-example.toml";
+const CLUTTERED: &str = "scenes/discs-cluttered.toml";
+
+/// The discs of a TOML disc scene, read with `toml` independently of the scene loader.
+fn discs_of(path: &str) -> (Vec<Vec<f64>>, Vec<f64>) {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(path)).unwrap();
+    let v: toml::Value = toml::from_str(&text).unwrap();
+    let mut centres = Vec::new();
+    let mut radii = Vec::new();
+    for o in v["obstacle"].as_array().unwrap() {
+        let d = &o["disc"];
+        centres.push(
+            d["center"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_float().unwrap())
+                .collect(),
+        );
+        radii.push(d["radius"].as_float().unwrap());
+    }
+    (centres, radii)
+}
+
+fn json_path(v: &serde_json::Value) -> Vec<Vec<f64>> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|q| {
+            q.as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn solve_json_prints_checked_paths() {
+    let (centres, radii) = discs_of(CLUTTERED);
+    for local in ["viapoint", "viapoint:depth=deepen,via=all", "straight"] {
+        let o = viaroad(&["solve", CLUTTERED, "--local", local, "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let lines: Vec<serde_json::Value> = stdout(&o)
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        assert_eq!(lines.len(), 5, "one line per query");
+        for v in &lines {
+            for key in ["solved", "path", "shortened", "calls", "depth"] {
+                assert!(v.get(key).is_some(), "{key} missing in {v}");
+            }
+            if v["solved"].as_bool().unwrap() {
+                for key in ["path", "shortened"] {
+                    let p = json_path(&v[key]);
+                    common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9)
+                        .unwrap_or_else(|e| panic!("{local} {key}: {e}"));
+                }
+            }
+        }
+        if local.starts_with("viapoint") {
+            assert!(
+                lines.iter().all(|v| v["solved"].as_bool().unwrap()),
+                "{local}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_scenes_and_configurations_are_one_line_errors() {
+    let d = temp_dir("bad");
+    let base =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(EXAMPLE)).unwrap();
+    let nan = write(
+        &d,
+        "nan.toml",
+        &base.replace("start = [0.02, 0.98]", "start = [nan, 0.98]"),
+    );
+    let inside = write(
+        &d,
+        "inside.toml",
+        &base.replace("start = [0.02, 0.98]", "start = [0.30, 0.40]"),
+    );
+    let negative = write(
+        &d,
+        "negative.toml",
+        &base.replace("radius = 0.05", "radius = -0.05"),
+    );
+    let kind = write(
+        &d,
+        "kind.toml",
+        &base.replace("kind = \"r2\"", "kind = \"r7x\""),
+    );
+    let garbage = write(&d, "garbage.toml", "this is [not toml");
+    fails_with(&["solve", "no/such/scene.toml"], "cannot read");
+    fails_with(&["solve", &nan], "not a finite number");
+    fails_with(&["solve", &inside], "in collision");
+    fails_with(&["solve", &negative], "radius");
+    fails_with(&["solve", &kind], "r7x");
+    fails_with(&["solve", &garbage], "garbage.toml");
+    fails_with(&["solve", EXAMPLE, "--beta", "x"], "beta");
+    fails_with(&["solve", EXAMPLE, "--local", "curved"], "curved");
+    fails_with(&["solve", EXAMPLE, "--via", "0"], "--via");
+    fails_with(
+        &["probe", EXAMPLE, "--from", "0,0.5", "--to", "1,0.5,2"],
+        "coordinates",
+    );
+    fails_with(
+        &["probe", EXAMPLE, "--from", "0,0.5", "--to", "1,x"],
+        "not a number",
+    );
+}
+
+#[test]
+fn build_query_info_and_their_errors() {
+    let d = temp_dir("roadmap");
+    let rm = d.join("r.bin").to_string_lossy().into_owned();
+    let o = viaroad(&[
+        "build", CLUTTERED, "-o", &rm, "--nodes", "300", "--seed", "5",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("learnt"));
+    // the same seed gives the same file
+    let again = d.join("again.bin").to_string_lossy().into_owned();
+    assert!(
+        viaroad(&["build", CLUTTERED, "-o", &again, "--nodes", "300", "--seed", "5"])
+            .status
+            .success()
+    );
+    assert_eq!(std::fs::read(&rm).unwrap(), std::fs::read(&again).unwrap());
+
+    let o = viaroad(&["info", &rm, "--json"]);
+    assert!(o.status.success());
+    let info: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!(info["nodes"].as_u64().unwrap() >= 300);
+    assert_eq!(info["seed"].as_u64(), Some(5));
+
+    let (centres, radii) = discs_of(CLUTTERED);
+    let q = write(
+        &d,
+        "queries.txt",
+        "0.02 0.98 0.98 0.02\n0.05 0.05 0.95 0.95\n0.5 0.97 0.5 0.03\n",
+    );
+    let o = viaroad(&[
+        "query",
+        &rm,
+        "--scene",
+        CLUTTERED,
+        "--queries",
+        &q,
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for l in stdout(&o).lines() {
+        let v: serde_json::Value = serde_json::from_str(l).unwrap();
+        assert!(v["query_ms"].as_f64().unwrap() >= 0.0);
+        if v["solved"].as_bool().unwrap() {
+            let p = json_path(&v["shortened"]);
+            common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9).unwrap();
+        }
+    }
+
+    let truncated = d.join("truncated.bin");
+    std::fs::write(&truncated, &std::fs::read(&rm).unwrap()[..200]).unwrap();
+    fails_with(&["info", &truncated.to_string_lossy()], "truncated");
+    fails_with(&["info", EXAMPLE], "not a viaroad roadmap");
+    fails_with(
+        &[
+            "query",
+            &rm,
+            "--scene",
+            EXAMPLE,
+            "--from",
+            "0.02,0.98",
+            "--to",
+            "0.98,0.02",
+        ],
+        "another scene",
+    );
+    // a missing flag is a usage error, reported by clap with its usage line and exit code 2
+    let o = viaroad(&["query", &rm, "--scene", CLUTTERED, "--from", "0.02,0.98"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--to"));
+    fails_with(
+        &[
+            "query",
+            &rm,
+            "--scene",
+            CLUTTERED,
+            "--from",
+            "2,2",
+            "--to",
+            "0.98,0.02",
+        ],
+        "outside",
+    );
+    fails_with(&["build", CLUTTERED, "-o", &rm, "--nodes", "0"], "--nodes");
+    // a failed save keeps the previous roadmap: the target is a directory
+    fails_with(
+        &[
+            "build",
+            CLUTTERED,
+            "-o",
+            &d.to_string_lossy(),
+            "--nodes",
+            "50",
+        ],
+        "",
+    );
+    assert_eq!(std::fs::read(&rm).unwrap(), std::fs::read(&again).unwrap());
+}
+
+#[test]
+fn demo_writes_a_roadmap_and_a_picture() {
+    let d = temp_dir("demo");
+    let o = viaroad(&[
+        "demo",
+        "--out",
+        &d.to_string_lossy(),
+        "--queries",
+        "200",
+        "--nodes",
+        "400",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("200 random queries"), "{out}");
+    assert!(d.join("discs-cluttered.bin").is_file());
+    let svg = std::fs::read_to_string(d.join("discs-cluttered.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("<polyline"));
+}
