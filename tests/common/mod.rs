@@ -1,4 +1,4 @@
-//! Independent validity checks for paths in disc scenes: plain segment–ball distances, written
+//! Independent validity checks. Disc scenes: plain segment–ball distances, written
 //! here and sharing no code with the library's oracles.
 #![allow(dead_code)]
 
@@ -51,3 +51,5 @@ pub fn check_disc_path(
     }
     Ok(())
 }
+
+pub mod rigid;
