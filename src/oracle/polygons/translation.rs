@@ -1,0 +1,330 @@
+//! Collision intervals of a translating polygonal robot (the planar analogue of CHS §2.2).
+//!
+//! When the robot moves by `t·m`, every orientation test of the static predicate is linear in
+//! `t`, so each atomic test keeps a half-line of `t`, and a conjunction of them keeps one
+//! interval ([`Span`]). For one (moving edge, fixed edge) pair the set of colliding `t` is a
+//! single interval anyway: the edges meet iff `t·m` lies in the parallelogram
+//! `[c, d] ⊖ [a, b]` (a Minkowski difference, convex).
+//!
+//! The closed segments `[a, b]` and `[c, d]` meet iff
+//! 1. `a` and `b` are not strictly on the same side of the line `cd`,
+//! 2. `c` and `d` are not strictly on the same side of the line `ab`, and
+//! 3. the projections of `a` and `b` onto `d − c` are not both before `c` or both after `d`.
+//!
+//! (1) and (2) alone are the textbook test, which is wrong for collinear segments that do not
+//! overlap; (3) repairs exactly that case and is implied by (1) ∧ (2) otherwise. Because both
+//! ends of a translating edge move with the same velocity, "0 between `s(a)` and `s(b)`" is the
+//! pair of linear inequalities `min(s(a), s(b)) ≤ 0 ≤ max(s(a), s(b))` — six in all.
+//!
+//! Containment (CHS §2.2, "containment along the motion direction") uses one reference vertex
+//! per polygon and the triangles of the other polygon: a moving point is in a fixed triangle
+//! for one interval of `t` (three linear inequalities), and likewise a fixed point in a moving
+//! triangle.
+//!
+//! A zero motion (`m = 0`) gives the static test: every pair then keeps all of the range or
+//! nothing, so the same code answers [`CollisionOracle::collides`](super::CollisionOracle).
+
+use super::envelope::SweptBox;
+use super::{dot, perp_dot, Polygons, P};
+use crate::interval::Interval;
+use std::ops::ControlFlow;
+
+/// The `t` of a range that satisfy a conjunction of linear inequalities `k·t + b ≥ 0`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Span {
+    lo: f64,
+    hi: f64,
+}
+
+impl Span {
+    /// All of `range`.
+    pub fn within(range: Interval) -> Span {
+        Span {
+            lo: range.lo,
+            hi: range.hi,
+        }
+    }
+
+    /// Keeps the `t` with `k·t + b ≥ 0`.
+    #[inline]
+    pub fn require(&mut self, k: f64, b: f64) {
+        if k > 0.0 {
+            self.lo = self.lo.max(-b / k);
+        } else if k < 0.0 {
+            self.hi = self.hi.min(-b / k);
+        } else if b < 0.0 {
+            self.lo = f64::INFINITY;
+            self.hi = f64::NEG_INFINITY;
+        }
+    }
+
+    /// Whether no `t` is left.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        !(self.lo <= self.hi)
+    }
+
+    /// What is left, if anything.
+    pub fn get(&self) -> Option<Interval> {
+        Interval::new(self.lo, self.hi)
+    }
+}
+
+/// The `t ∈ span` at which the closed edge `[a + t·m, b + t·m]` meets the closed edge `[c, d]`,
+/// with every orientation test relaxed by `tol` (a length) in favour of collision.
+pub(super) fn edge_edge(
+    a: P,
+    b: P,
+    m: P,
+    c: P,
+    d: P,
+    tol: f64,
+    mut span: Span,
+) -> Option<Interval> {
+    let e = [b[0] - a[0], b[1] - a[1]];
+    let f = [d[0] - c[0], d[1] - c[1]];
+    let lf = f[0].hypot(f[1]);
+    let tf = tol * lf;
+    // (1) sides of a(t), b(t) w.r.t. the line cd: s(t) = f × (x − c) + t · f × m
+    let sa = perp_dot(f, [a[0] - c[0], a[1] - c[1]]);
+    let sb = perp_dot(f, [b[0] - c[0], b[1] - c[1]]);
+    let k = perp_dot(f, m);
+    span.require(-k, tf - sa.min(sb));
+    span.require(k, sa.max(sb) + tf);
+    if span.is_empty() {
+        return None;
+    }
+    // (2) sides of c, d w.r.t. the moving line ab: r(t) = e × (y − a) − t · e × m
+    let te = tol * e[0].hypot(e[1]);
+    let rc = perp_dot(e, [c[0] - a[0], c[1] - a[1]]);
+    let rd = perp_dot(e, [d[0] - a[0], d[1] - a[1]]);
+    let k = -perp_dot(e, m);
+    span.require(-k, te - rc.min(rd));
+    span.require(k, rc.max(rd) + te);
+    if span.is_empty() {
+        return None;
+    }
+    // (3) projections onto f: p(t) = (x − c)·f + t · m·f must reach [0, |f|²]
+    let pa = dot([a[0] - c[0], a[1] - c[1]], f);
+    let pb = dot([b[0] - c[0], b[1] - c[1]], f);
+    let k = dot(m, f);
+    span.require(k, pa.max(pb) + tf);
+    span.require(-k, lf * lf - pa.min(pb) + tf);
+    span.get()
+}
+
+/// The `t ∈ span` at which the point `p + t·m` lies in the closed counter-clockwise triangle
+/// `tri`, every edge test relaxed by `tol` (a length).
+pub(super) fn point_in_triangle(
+    p: P,
+    m: P,
+    tri: &[P; 3],
+    tol: f64,
+    mut span: Span,
+) -> Option<Interval> {
+    for i in 0..3 {
+        let (u, v) = (tri[i], tri[(i + 1) % 3]);
+        let g = [v[0] - u[0], v[1] - u[1]];
+        let b = perp_dot(g, [p[0] - u[0], p[1] - u[1]]) + tol * g[0].hypot(g[1]);
+        span.require(perp_dot(g, m), b);
+        if span.is_empty() {
+            return None;
+        }
+    }
+    span.get()
+}
+
+/// Runs over every primitive pair a translation of the robot by `t·m`, `t ∈ range`, from the
+/// placement `(centre, theta)` can collide in, and hands every pair's collision interval to
+/// `sink` (stopping when it breaks). Counts the pairs evaluated in `pairs`.
+pub(super) fn sweep(
+    oracle: &Polygons,
+    centre: P,
+    theta: f64,
+    m: P,
+    range: Interval,
+    pairs: &mut u64,
+    sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
+) -> ControlFlow<()> {
+    let body = &oracle.body;
+    let world = &oracle.world;
+    let tol = oracle.tolerance_at(centre);
+    let slack = 4.0 * tol;
+    let place = super::placement(centre, theta);
+    let speed = m[0].hypot(m[1]);
+    // frame of the motion: u along it, n across; a static test uses the world axes
+    let (u, n, s_lo, s_hi) = if speed > 0.0 {
+        let u = [m[0] / speed, m[1] / speed];
+        (u, [-u[1], u[0]], range.lo * speed, range.hi * speed)
+    } else {
+        ([1.0, 0.0], [0.0, 1.0], 0.0, 0.0)
+    };
+    let swept = |pts: &[P]| {
+        let (mut ulo, mut uhi, mut nlo, mut nhi) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for &p in pts {
+            let (pu, pn) = (dot(p, u), dot(p, n));
+            ulo = ulo.min(pu);
+            uhi = uhi.max(pu);
+            nlo = nlo.min(pn);
+            nhi = nhi.max(pn);
+        }
+        SweptBox::new(
+            u,
+            n,
+            (ulo + s_lo - slack, uhi + s_hi + slack),
+            (nlo - slack, nhi + slack),
+        )
+    };
+    let full = Span::within(range);
+
+    // edge against edge
+    for edge in &body.edges {
+        let (a, b) = (place(edge[0]), place(edge[1]));
+        let mut test = |j: usize| {
+            *pairs += 1;
+            let [c, d] = world.edges[j];
+            match edge_edge(a, b, m, c, d, tol, full) {
+                Some(iv) => sink(iv),
+                None => ControlFlow::Continue(()),
+            }
+        };
+        if oracle.enveloping {
+            let env = swept(&[a, b]);
+            world.edge_tree.query(|bx| env.overlaps(bx), &mut test)?;
+        } else {
+            (0..world.edges.len()).try_for_each(&mut test)?;
+        }
+    }
+
+    // a reference vertex of every robot part in the obstacles' triangles
+    for &r in &body.refs {
+        let p = place(r);
+        let mut test = |j: usize| {
+            *pairs += 1;
+            match point_in_triangle(p, m, &world.tris[j], tol, full) {
+                Some(iv) => sink(iv),
+                None => ControlFlow::Continue(()),
+            }
+        };
+        if oracle.enveloping {
+            let env = swept(&[p]);
+            world.tri_tree.query(|bx| env.overlaps(bx), &mut test)?;
+        } else {
+            (0..world.tris.len()).try_for_each(&mut test)?;
+        }
+    }
+
+    // a reference vertex of every obstacle in the robot's triangles (moving the other way)
+    let back = [-m[0], -m[1]];
+    let mut robot_test = |w: P, pairs: &mut u64| {
+        for tri in &body.tris {
+            let placed = [place(tri[0]), place(tri[1]), place(tri[2])];
+            if oracle.enveloping && !swept(&placed).contains(w) {
+                continue;
+            }
+            *pairs += 1;
+            if let Some(iv) = point_in_triangle(w, back, &placed, tol, full) {
+                sink(iv)?;
+            }
+        }
+        ControlFlow::Continue(())
+    };
+    if body.tris.is_empty() {
+        return ControlFlow::Continue(());
+    }
+    if oracle.enveloping {
+        let env = swept(&body.vertices.iter().map(|&v| place(v)).collect::<Vec<P>>());
+        world
+            .ref_tree
+            .query(|bx| env.overlaps(bx), |j| robot_test(world.refs[j], pairs))
+    } else {
+        world.refs.iter().try_for_each(|&w| robot_test(w, pairs))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ALL: Interval = Interval::ALL;
+
+    #[test]
+    fn crossing_edges_give_the_exact_interval() {
+        // a vertical unit edge at x = 0 moving right through a vertical edge at x = 2
+        let iv = edge_edge(
+            [0.0, 0.0],
+            [0.0, 1.0],
+            [1.0, 0.0],
+            [2.0, 0.5],
+            [2.0, 3.0],
+            0.0,
+            Span::within(ALL),
+        )
+        .unwrap();
+        assert_eq!(iv, Interval { lo: 2.0, hi: 2.0 });
+        // a horizontal edge moving right through a vertical one: [1, 3]
+        let iv = edge_edge(
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 0.0],
+            [2.0, -1.0],
+            [2.0, 1.0],
+            0.0,
+            Span::within(ALL),
+        )
+        .unwrap();
+        assert_eq!(iv, Interval { lo: 1.0, hi: 2.0 });
+    }
+
+    #[test]
+    fn collinear_edges_meet_only_while_overlapping() {
+        // [0, 1] × {0} sliding along the x axis against [3, 4] × {0}: overlap for t ∈ [2, 4]
+        let iv = edge_edge(
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 0.0],
+            [3.0, 0.0],
+            [4.0, 0.0],
+            0.0,
+            Span::within(ALL),
+        )
+        .unwrap();
+        assert_eq!(iv, Interval { lo: 2.0, hi: 4.0 });
+        // static, collinear, disjoint: the textbook test would say "intersect"
+        assert!(edge_edge(
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [0.0, 0.0],
+            [3.0, 0.0],
+            [4.0, 0.0],
+            0.0,
+            Span::within(ALL)
+        )
+        .is_none());
+        // parallel edges one unit apart moving across: collinear at one instant
+        let iv = edge_edge(
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [0.0, 1.0],
+            [0.5, 1.0],
+            [3.0, 1.0],
+            0.0,
+            Span::within(ALL),
+        )
+        .unwrap();
+        assert_eq!(iv, Interval { lo: 1.0, hi: 1.0 });
+    }
+
+    #[test]
+    fn point_through_triangle() {
+        let tri = [[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]];
+        let iv = point_in_triangle([-1.0, 0.5], [1.0, 0.0], &tri, 0.0, Span::within(ALL)).unwrap();
+        assert_eq!(iv, Interval { lo: 1.0, hi: 2.5 });
+        assert!(point_in_triangle([-1.0, 3.0], [1.0, 0.0], &tri, 0.0, Span::within(ALL)).is_none());
+    }
+}
