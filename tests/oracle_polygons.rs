@@ -717,3 +717,52 @@ fn footprints_of_a_prism_soup() {
     let hits = intervals(&oracle, &m);
     assert_eq!(hits.len(), 2, "{hits:?}");
 }
+
+#[test]
+fn turning_through_a_collinear_placement_is_free() {
+    // Regression: the textbook segment test reports collinear but disjoint edges as meeting.
+    // The bar's lower edge lies on the line y = 0 through the pivot, as does the upper edge of
+    // the block beyond its reach, at φ = 0 and φ = π; the bar reaches only √4.01 < 3.
+    let bar = Polygon::rectangle([1.25, 0.05], [0.75, 0.05]).unwrap();
+    let block = Polygon::rectangle([3.5, -0.5], [0.5, 0.5]).unwrap();
+    let fast = Polygons::new(vec![bar], vec![block]);
+    // without enveloping too, which would otherwise cull the pair by its distance
+    for oracle in [fast.clone(), fast.with_enveloping(false)] {
+        let turn = Motion::turn(vec![0.0, 0.0, 0.0], Change::Linear(vec![0.0, 0.0, TAU]));
+        assert!(intervals(&oracle, &turn).is_empty());
+        let half = Motion::segment(vec![0.0, 0.0, -1.0], Change::Linear(vec![0.0, 0.0, PI]));
+        assert!(intervals(&oracle, &half).is_empty());
+        // sliding along that line, the edges overlap exactly while x ∈ [3 − 2, 4 − 0.5]
+        let slide = Motion::segment(vec![0.0, 0.0, 0.0], Change::Linear(vec![10.0, 0.0, 0.0]));
+        assert_intervals(&intervals(&oracle, &slide), &[(0.1, 0.35)], 1e-9);
+    }
+}
+
+#[test]
+fn a_frame_around_a_fan_meets_it_only_at_shared_edges() {
+    // Regression (for an optimisation that was tried and dropped): the robot is a square cut
+    // into four triangles that share the centre (each triangle's first vertex); the obstacle
+    // is a square frame of four trapezoids whose hole lies inside the robot and whose body
+    // covers the robot's outline. No two outlines meet and no first vertex lies in the other
+    // body: only the edges the triangles share cross the frame's inner edges.
+    let p = |x: f64, y: f64| Point2::new(x, y);
+    let c = p(0.0, 0.0);
+    let corners = [p(-1.0, -1.0), p(1.0, -1.0), p(1.0, 1.0), p(-1.0, 1.0)];
+    let fan: Vec<Polygon> = (0..4)
+        .map(|i| Polygon::new(vec![c, corners[i], corners[(i + 1) % 4]]).unwrap())
+        .collect();
+    let outer = [p(-2.0, -2.0), p(2.0, -2.0), p(2.0, 2.0), p(-2.0, 2.0)];
+    let inner = [p(-0.5, -0.5), p(0.5, -0.5), p(0.5, 0.5), p(-0.5, 0.5)];
+    let frame: Vec<Polygon> = (0..4)
+        .map(|i| {
+            let j = (i + 1) % 4;
+            Polygon::new(vec![outer[i], outer[j], inner[j], inner[i]]).unwrap()
+        })
+        .collect();
+    let reference = Reference::new(&fan, &frame);
+    assert!(reference.collides(&[0.0, 0.0, 0.0]));
+    let oracle = Polygons::new(fan, frame);
+    assert!(oracle.collides(&[0.0, 0.0, 0.0], &mut CallCounts::default()));
+    let spin = Motion::turn(vec![0.0, 0.0, 0.0], Change::Linear(vec![0.0, 0.0, TAU]));
+    assert_intervals(&intervals(&oracle, &spin), &[(-0.5, 0.5)], 0.0);
+}

@@ -43,7 +43,7 @@ pub fn footprint_polygons(mesh: &TriMesh) -> Vec<Polygon> {
         };
         let (a, mut b, mut c) = (corners[0], corners[1], corners[2]);
         let area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-        if !(area2.abs() > min_area2) {
+        if area2.is_nan() || area2.abs() <= min_area2 {
             continue;
         }
         if area2 < 0.0 {

@@ -67,18 +67,18 @@ impl Aabb {
         ]
     }
 
-    /// Smallest distance from `p` to the box (0 inside).
-    pub fn distance_to(&self, p: [f64; 2]) -> f64 {
+    /// Square of the smallest distance from `p` to the box (0 inside).
+    pub fn distance_squared_to(&self, p: [f64; 2]) -> f64 {
         let dx = (self.min[0] - p[0]).max(p[0] - self.max[0]).max(0.0);
         let dy = (self.min[1] - p[1]).max(p[1] - self.max[1]).max(0.0);
-        dx.hypot(dy)
+        dx * dx + dy * dy
     }
 
-    /// Largest distance from `p` to a point of the box (its farthest corner).
-    pub fn farthest_from(&self, p: [f64; 2]) -> f64 {
+    /// Square of the largest distance from `p` to a point of the box (its farthest corner).
+    pub fn farthest_squared_from(&self, p: [f64; 2]) -> f64 {
         let dx = (p[0] - self.min[0]).abs().max((self.max[0] - p[0]).abs());
         let dy = (p[1] - self.min[1]).abs().max((self.max[1] - p[1]).abs());
-        dx.hypot(dy)
+        dx * dx + dy * dy
     }
 }
 
@@ -166,23 +166,29 @@ impl Bvh {
         if self.nodes.is_empty() {
             return ControlFlow::Continue(());
         }
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
-        stack.push(0);
-        while let Some(n) = stack.pop() {
-            let node = &self.nodes[n as usize];
-            if !overlaps(&node.aabb) {
-                continue;
-            }
-            if node.count == 0 {
-                stack.push(node.start);
-                stack.push(node.start + 1);
-            } else {
-                let (s, c) = (node.start as usize, node.count as usize);
-                for &item in &self.order[s..s + c] {
-                    if overlaps(&self.boxes[item as usize]) {
-                        visit(item as usize)?;
-                    }
-                }
+        self.descend(0, &mut overlaps, &mut visit)
+    }
+
+    /// Depth-first below `node`; the recursion is as deep as the tree (median splits keep it
+    /// at `log2(n)`), and needs no heap.
+    fn descend<B>(
+        &self,
+        node: usize,
+        overlaps: &mut impl FnMut(&Aabb) -> bool,
+        visit: &mut impl FnMut(usize) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
+        let n = &self.nodes[node];
+        if !overlaps(&n.aabb) {
+            return ControlFlow::Continue(());
+        }
+        if n.count == 0 {
+            self.descend(n.start as usize, overlaps, visit)?;
+            return self.descend(n.start as usize + 1, overlaps, visit);
+        }
+        let (s, c) = (n.start as usize, n.count as usize);
+        for &item in &self.order[s..s + c] {
+            if overlaps(&self.boxes[item as usize]) {
+                visit(item as usize)?;
             }
         }
         ControlFlow::Continue(())
@@ -258,8 +264,8 @@ mod tests {
             min: [0.0, 0.0],
             max: [2.0, 1.0],
         };
-        assert_eq!(b.distance_to([1.0, 0.5]), 0.0);
-        assert!((b.distance_to([5.0, 5.0]) - 5.0).abs() < 1e-15);
-        assert!((b.farthest_from([0.0, 0.0]) - 5f64.sqrt()).abs() < 1e-15);
+        assert_eq!(b.distance_squared_to([1.0, 0.5]), 0.0);
+        assert_eq!(b.distance_squared_to([5.0, 5.0]), 25.0);
+        assert_eq!(b.farthest_squared_from([0.0, 0.0]), 5.0);
     }
 }

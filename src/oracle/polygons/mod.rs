@@ -11,15 +11,19 @@
 //! - a reference vertex of one polygon lies in the other (containment).
 //!
 //! For a straight motion each of these primitive tests turns into inequalities in the motion
-//! parameter — linear for a translation ([`translation`]), `α cos φ + β sin φ + γ ≥ 0` for a
-//! rotation ([`rotation`], [`trig`]) — whose solution sets are combined as interval lists
-//! (∧ = intersection, ∨ = union), and the union over all pairs is the answer. Enveloping
-//! ([`envelope`], [`index`]): an AABB tree over the obstacle edges, triangles and reference
-//! vertices, queried with the region a robot edge or point sweeps (a box in the frame of a
-//! translation, an annulus about the centre of a rotation), so that far-away obstacle parts
-//! cost nothing; `pairs_tested` counts the primitive pairs that survive it.
+//! parameter — linear for a translation (`translation.rs`), `α cos φ + β sin φ + γ ≥ 0` for a
+//! rotation (`rotation.rs`, solved through `τ = tan(φ/2)` in `trig.rs`) — whose solution sets
+//! are combined as interval lists (∧ = intersection, ∨ = union), and the union over all pairs
+//! is the answer.
 //!
-//! Containment is decided with triangulations (ear clipping, [`triangulate`]) instead of the
+//! Enveloping (`envelope.rs`, `index.rs`): an AABB tree over the obstacle edges, triangles and
+//! reference vertices is queried once per kind of primitive with the region the whole robot
+//! sweeps — a box in the frame of a translation, an annulus about the centre of a rotation —
+//! and every robot primitive is then tested only against the candidates its own swept region
+//! meets, so far-away obstacle parts cost nothing. `pairs_tested` counts the primitive pairs
+//! that survive.
+//!
+//! Containment is decided with triangulations (ear clipping, `triangulate.rs`) instead of the
 //! seed's random rays: "point in polygon" becomes "point in one of its triangles", three
 //! orientation tests that move with the motion like all the others.
 //!
@@ -90,10 +94,16 @@ struct Body {
     vertices: Vec<P>,
     /// Boundary edges of all parts, each segment once.
     edges: Vec<[P; 2]>,
+    /// Length of each edge.
+    edge_len: Vec<f64>,
     /// Distance range `[min, max]` of each edge from the reference point.
     edge_radii: Vec<(f64, f64)>,
+    /// Smallest distance of an edge from the reference point.
+    edge_inner_radius: f64,
     /// Triangles of all parts, counter-clockwise.
     tris: Vec<[P; 3]>,
+    /// Edge lengths of each triangle.
+    tri_len: Vec<[f64; 3]>,
     /// Distance range of each triangle from the reference point.
     tri_radii: Vec<(f64, f64)>,
     /// Smallest distance of a triangle from the reference point.
@@ -108,8 +118,10 @@ struct Body {
 #[derive(Clone, Debug, Default)]
 struct World {
     edges: Vec<[P; 2]>,
+    edge_len: Vec<f64>,
     edge_tree: Bvh,
     tris: Vec<[P; 3]>,
+    tri_len: Vec<[f64; 3]>,
     tri_tree: Bvh,
     /// One reference vertex per obstacle (containment).
     refs: Vec<P>,
@@ -124,6 +136,20 @@ struct Parts {
     tris: Vec<[P; 3]>,
     refs: Vec<P>,
     vertices: Vec<P>,
+}
+
+fn length(a: P, b: P) -> f64 {
+    (b[0] - a[0]).hypot(b[1] - a[1])
+}
+
+fn edge_lengths(edges: &[[P; 2]]) -> Vec<f64> {
+    edges.iter().map(|&[a, b]| length(a, b)).collect()
+}
+
+fn triangle_lengths(tris: &[[P; 3]]) -> Vec<[f64; 3]> {
+    tris.iter()
+        .map(|t| [length(t[0], t[1]), length(t[1], t[2]), length(t[2], t[0])])
+        .collect()
 }
 
 /// Finite vertices without repeats, counter-clockwise.
@@ -146,6 +172,12 @@ fn clean(poly: &Polygon) -> Vec<P> {
     v
 }
 
+/// Edges, triangles and reference vertices of a union of polygons.
+///
+/// Every part keeps all its edges (a segment listed twice is tested once): the containment
+/// argument is per pair of parts, so an edge two parts share inside the union is still needed
+/// — a frame-shaped obstacle whose hole lies inside a fan of robot triangles meets only their
+/// shared edges.
 fn prepare(polys: &[Polygon]) -> Parts {
     let mut parts = Parts::default();
     let mut seen: HashSet<[u64; 4]> = HashSet::new();
@@ -249,10 +281,18 @@ impl Polygons {
             .map(|p| p[0].hypot(p[1]))
             .fold(0.0, f64::max);
         let tri_inner_radius = tri_radii.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
+        let edge_inner_radius = edge_radii.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
         let body = Body {
             vertices: r.vertices,
+            edge_len: edge_lengths(&r.edges),
             edges: r.edges,
             edge_radii,
+            edge_inner_radius: if edge_inner_radius.is_finite() {
+                edge_inner_radius
+            } else {
+                0.0
+            },
+            tri_len: triangle_lengths(&r.tris),
             tris: r.tris,
             tri_radii,
             tri_inner_radius: if tri_inner_radius.is_finite() {
@@ -272,7 +312,9 @@ impl Polygons {
             edge_tree: Bvh::new(o.edges.iter().map(|e| Aabb::of_points(e)).collect()),
             tri_tree: Bvh::new(o.tris.iter().map(|t| Aabb::of_points(t)).collect()),
             ref_tree: Bvh::new(o.refs.iter().map(|p| Aabb::of_points(&[*p])).collect()),
+            edge_len: edge_lengths(&o.edges),
             edges: o.edges,
+            tri_len: triangle_lengths(&o.tris),
             tris: o.tris,
             refs: o.refs,
         };
@@ -350,7 +392,8 @@ impl Polygons {
                 "polygons: a motion with a coordinate that is not a finite number".into(),
             ));
         }
-        if !(motion.range.lo <= motion.range.hi) {
+        let r = motion.range;
+        if r.lo.is_nan() || r.hi.is_nan() || r.lo > r.hi {
             return Err(OracleError::Unsupported(format!(
                 "polygons: the parameter range [{}, {}] is empty",
                 motion.range.lo, motion.range.hi
@@ -414,7 +457,7 @@ impl Polygons {
         }
         let (a, b) = (omega * range.lo, omega * range.hi);
         let (lo, hi) = (a.min(b), a.max(b));
-        if !(hi - lo <= MAX_TURNS * TAU) {
+        if hi - lo > MAX_TURNS * TAU {
             return Err(OracleError::Unsupported(format!(
                 "polygons: a rotation of more than {MAX_TURNS} turns"
             )));

@@ -9,7 +9,7 @@
 
 use crate::interval::Interval;
 
-const CAPACITY: usize = 16;
+const CAPACITY: usize = 6;
 
 /// Sorted, disjoint closed intervals, at most [`CAPACITY`] of them.
 #[derive(Clone, Copy, Debug)]
@@ -26,6 +26,7 @@ impl Default for SmallSet {
 
 impl SmallSet {
     /// The empty set.
+    #[inline]
     pub fn new() -> SmallSet {
         SmallSet {
             len: 0,
@@ -34,17 +35,20 @@ impl SmallSet {
     }
 
     /// The intervals, sorted.
+    #[inline]
     pub fn as_slice(&self) -> &[Interval] {
         &self.items[..self.len]
     }
 
     /// No interval.
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
 
     /// Appends `iv`, which must not start before the last interval starts; touching or
     /// overlapping intervals merge. When full, the last interval is stretched to cover `iv`.
+    #[inline]
     pub fn push(&mut self, iv: Interval) {
         if self.len > 0 {
             let last = &mut self.items[self.len - 1];
@@ -58,6 +62,7 @@ impl SmallSet {
     }
 
     /// `a ∩ b`.
+    #[inline]
     pub fn intersection(a: &SmallSet, b: &SmallSet) -> SmallSet {
         let mut out = SmallSet::new();
         let (x, y) = (a.as_slice(), b.as_slice());
@@ -76,6 +81,7 @@ impl SmallSet {
     }
 
     /// `a ∪ b`.
+    #[inline]
     pub fn union(a: &SmallSet, b: &SmallSet) -> SmallSet {
         let mut out = SmallSet::new();
         let (x, y) = (a.as_slice(), b.as_slice());

@@ -61,7 +61,7 @@ impl Span {
     /// Whether no `t` is left.
     #[inline]
     pub fn is_empty(&self) -> bool {
-        !(self.lo <= self.hi)
+        self.lo.is_nan() || self.hi.is_nan() || self.lo > self.hi
     }
 
     /// What is left, if anything.
@@ -70,20 +70,23 @@ impl Span {
     }
 }
 
-/// The `t ∈ span` at which the closed edge `[a + t·m, b + t·m]` meets the closed edge `[c, d]`,
-/// with every orientation test relaxed by `tol` (a length) in favour of collision.
+/// The `t ∈ span` at which the closed edge `[a + t·m, b + t·m]` (of length `le`) meets the
+/// closed edge `[c, d]` (of length `lf`), with every orientation test relaxed by `tol` (a
+/// length) in favour of collision.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn edge_edge(
     a: P,
     b: P,
+    le: f64,
     m: P,
     c: P,
     d: P,
+    lf: f64,
     tol: f64,
     mut span: Span,
 ) -> Option<Interval> {
     let e = [b[0] - a[0], b[1] - a[1]];
     let f = [d[0] - c[0], d[1] - c[1]];
-    let lf = f[0].hypot(f[1]);
     let tf = tol * lf;
     // (1) sides of a(t), b(t) w.r.t. the line cd: s(t) = f × (x − c) + t · f × m
     let sa = perp_dot(f, [a[0] - c[0], a[1] - c[1]]);
@@ -95,7 +98,7 @@ pub(super) fn edge_edge(
         return None;
     }
     // (2) sides of c, d w.r.t. the moving line ab: r(t) = e × (y − a) − t · e × m
-    let te = tol * e[0].hypot(e[1]);
+    let te = tol * le;
     let rc = perp_dot(e, [c[0] - a[0], c[1] - a[1]]);
     let rd = perp_dot(e, [d[0] - a[0], d[1] - a[1]]);
     let k = -perp_dot(e, m);
@@ -114,18 +117,19 @@ pub(super) fn edge_edge(
 }
 
 /// The `t ∈ span` at which the point `p + t·m` lies in the closed counter-clockwise triangle
-/// `tri`, every edge test relaxed by `tol` (a length).
+/// `tri` (edge lengths `lens`), every edge test relaxed by `tol` (a length).
 pub(super) fn point_in_triangle(
     p: P,
     m: P,
     tri: &[P; 3],
+    lens: &[f64; 3],
     tol: f64,
     mut span: Span,
 ) -> Option<Interval> {
     for i in 0..3 {
         let (u, v) = (tri[i], tri[(i + 1) % 3]);
         let g = [v[0] - u[0], v[1] - u[1]];
-        let b = perp_dot(g, [p[0] - u[0], p[1] - u[1]]) + tol * g[0].hypot(g[1]);
+        let b = perp_dot(g, [p[0] - u[0], p[1] - u[1]]) + tol * lens[i];
         span.require(perp_dot(g, m), b);
         if span.is_empty() {
             return None;
@@ -134,9 +138,68 @@ pub(super) fn point_in_triangle(
     span.get()
 }
 
+/// Ranges of projections onto the two axes of the motion's frame.
+#[derive(Clone, Copy, Debug)]
+struct Ranges {
+    u: (f64, f64),
+    n: (f64, f64),
+}
+
+impl Ranges {
+    fn meets(&self, o: &Ranges) -> bool {
+        self.u.0 <= o.u.1 && o.u.0 <= self.u.1 && self.n.0 <= o.n.1 && o.n.0 <= self.n.1
+    }
+}
+
+/// The frame of a translation: `u` along the motion, `n` across it, and how far along `u`
+/// the motion carries the robot at the ends of the range.
+struct Frame {
+    u: P,
+    n: P,
+    s_lo: f64,
+    s_hi: f64,
+    slack: f64,
+}
+
+impl Frame {
+    /// Projection ranges of `points` where they are.
+    fn bounds(&self, points: &[P]) -> Ranges {
+        let mut r = Ranges {
+            u: (f64::INFINITY, f64::NEG_INFINITY),
+            n: (f64::INFINITY, f64::NEG_INFINITY),
+        };
+        for &p in points {
+            let (pu, pn) = (dot(p, self.u), dot(p, self.n));
+            r.u = (r.u.0.min(pu), r.u.1.max(pu));
+            r.n = (r.n.0.min(pn), r.n.1.max(pn));
+        }
+        r
+    }
+
+    /// Projection ranges of everything `points` sweep over the motion, grown by the slack.
+    fn swept(&self, points: &[P]) -> Ranges {
+        let r = self.bounds(points);
+        Ranges {
+            u: (
+                r.u.0 + self.s_lo - self.slack,
+                r.u.1 + self.s_hi + self.slack,
+            ),
+            n: (r.n.0 - self.slack, r.n.1 + self.slack),
+        }
+    }
+
+    /// The same as a box for the obstacle tree.
+    fn boxed(&self, r: &Ranges) -> SweptBox {
+        SweptBox::new(self.u, self.n, r.u, r.n)
+    }
+}
+
 /// Runs over every primitive pair a translation of the robot by `t·m`, `t ∈ range`, from the
 /// placement `(centre, theta)` can collide in, and hands every pair's collision interval to
 /// `sink` (stopping when it breaks). Counts the pairs evaluated in `pairs`.
+///
+/// Enveloping: one query of the obstacle tree with the box the whole robot sweeps, then, per
+/// robot primitive, the box it sweeps itself against the candidates' projections.
 pub(super) fn sweep(
     oracle: &Polygons,
     centre: P,
@@ -148,103 +211,129 @@ pub(super) fn sweep(
 ) -> ControlFlow<()> {
     let body = &oracle.body;
     let world = &oracle.world;
+    let env = oracle.enveloping;
     let tol = oracle.tolerance_at(centre);
-    let slack = 4.0 * tol;
     let place = super::placement(centre, theta);
-    let speed = m[0].hypot(m[1]);
-    // frame of the motion: u along it, n across; a static test uses the world axes
-    let (u, n, s_lo, s_hi) = if speed > 0.0 {
+    let speed = (m[0] * m[0] + m[1] * m[1]).sqrt();
+    // frame of the motion; a static test uses the world axes
+    let frame = if speed > 0.0 {
         let u = [m[0] / speed, m[1] / speed];
-        (u, [-u[1], u[0]], range.lo * speed, range.hi * speed)
-    } else {
-        ([1.0, 0.0], [0.0, 1.0], 0.0, 0.0)
-    };
-    let swept = |pts: &[P]| {
-        let (mut ulo, mut uhi, mut nlo, mut nhi) = (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        );
-        for &p in pts {
-            let (pu, pn) = (dot(p, u), dot(p, n));
-            ulo = ulo.min(pu);
-            uhi = uhi.max(pu);
-            nlo = nlo.min(pn);
-            nhi = nhi.max(pn);
-        }
-        SweptBox::new(
+        Frame {
             u,
-            n,
-            (ulo + s_lo - slack, uhi + s_hi + slack),
-            (nlo - slack, nhi + slack),
-        )
+            n: [-u[1], u[0]],
+            s_lo: range.lo * speed,
+            s_hi: range.hi * speed,
+            slack: 4.0 * tol,
+        }
+    } else {
+        Frame {
+            u: [1.0, 0.0],
+            n: [0.0, 1.0],
+            s_lo: 0.0,
+            s_hi: 0.0,
+            slack: 4.0 * tol,
+        }
     };
     let full = Span::within(range);
+    let vertices: Vec<P> = body.vertices.iter().map(|&v| place(v)).collect();
+    let robot = frame.boxed(&frame.swept(&vertices));
+    let unculled = Ranges {
+        u: (0.0, 0.0),
+        n: (0.0, 0.0),
+    };
 
     // edge against edge
-    for edge in &body.edges {
+    let mut cands: Vec<(usize, Ranges)> = Vec::new();
+    if env {
+        let _ = world.edge_tree.query::<()>(
+            |bx| robot.overlaps(bx),
+            |j| {
+                cands.push((j, frame.bounds(&world.edges[j])));
+                ControlFlow::Continue(())
+            },
+        );
+    } else {
+        cands.extend((0..world.edges.len()).map(|j| (j, unculled)));
+    }
+    for (edge, &le) in body.edges.iter().zip(&body.edge_len) {
         let (a, b) = (place(edge[0]), place(edge[1]));
-        let mut test = |j: usize| {
+        let swept = frame.swept(&[a, b]);
+        for &(j, r) in &cands {
+            if env && !swept.meets(&r) {
+                continue;
+            }
             *pairs += 1;
             let [c, d] = world.edges[j];
-            match edge_edge(a, b, m, c, d, tol, full) {
-                Some(iv) => sink(iv),
-                None => ControlFlow::Continue(()),
+            if let Some(iv) = edge_edge(a, b, le, m, c, d, world.edge_len[j], tol, full) {
+                sink(iv)?;
             }
-        };
-        if oracle.enveloping {
-            let env = swept(&[a, b]);
-            world.edge_tree.query(|bx| env.overlaps(bx), &mut test)?;
-        } else {
-            (0..world.edges.len()).try_for_each(&mut test)?;
         }
     }
 
     // a reference vertex of every robot part in the obstacles' triangles
-    for &r in &body.refs {
-        let p = place(r);
-        let mut test = |j: usize| {
-            *pairs += 1;
-            match point_in_triangle(p, m, &world.tris[j], tol, full) {
-                Some(iv) => sink(iv),
-                None => ControlFlow::Continue(()),
+    let refs: Vec<P> = body.refs.iter().map(|&r| place(r)).collect();
+    cands.clear();
+    if env {
+        let paths = frame.boxed(&frame.swept(&refs));
+        let _ = world.tri_tree.query::<()>(
+            |bx| paths.overlaps(bx),
+            |j| {
+                cands.push((j, frame.bounds(&world.tris[j])));
+                ControlFlow::Continue(())
+            },
+        );
+    } else {
+        cands.extend((0..world.tris.len()).map(|j| (j, unculled)));
+    }
+    for &p in &refs {
+        let path = frame.swept(&[p]);
+        for &(j, r) in &cands {
+            if env && !path.meets(&r) {
+                continue;
             }
-        };
-        if oracle.enveloping {
-            let env = swept(&[p]);
-            world.tri_tree.query(|bx| env.overlaps(bx), &mut test)?;
-        } else {
-            (0..world.tris.len()).try_for_each(&mut test)?;
+            *pairs += 1;
+            let (tri, lens) = (&world.tris[j], &world.tri_len[j]);
+            if let Some(iv) = point_in_triangle(p, m, tri, lens, tol, full) {
+                sink(iv)?;
+            }
         }
     }
 
     // a reference vertex of every obstacle in the robot's triangles (moving the other way)
-    let back = [-m[0], -m[1]];
-    let mut robot_test = |w: P, pairs: &mut u64| {
-        for tri in &body.tris {
-            let placed = [place(tri[0]), place(tri[1]), place(tri[2])];
-            if oracle.enveloping && !swept(&placed).contains(w) {
-                continue;
-            }
-            *pairs += 1;
-            if let Some(iv) = point_in_triangle(w, back, &placed, tol, full) {
-                sink(iv)?;
-            }
-        }
-        ControlFlow::Continue(())
-    };
     if body.tris.is_empty() {
         return ControlFlow::Continue(());
     }
-    if oracle.enveloping {
-        let env = swept(&body.vertices.iter().map(|&v| place(v)).collect::<Vec<P>>());
-        world
-            .ref_tree
-            .query(|bx| env.overlaps(bx), |j| robot_test(world.refs[j], pairs))
+    let mut points: Vec<(P, Ranges)> = Vec::new();
+    if env {
+        let _ = world.ref_tree.query::<()>(
+            |bx| robot.overlaps(bx),
+            |j| {
+                let w = world.refs[j];
+                points.push((w, frame.bounds(&[w])));
+                ControlFlow::Continue(())
+            },
+        );
     } else {
-        world.refs.iter().try_for_each(|&w| robot_test(w, pairs))
+        points.extend(world.refs.iter().map(|&w| (w, unculled)));
     }
+    if points.is_empty() {
+        return ControlFlow::Continue(());
+    }
+    let back = [-m[0], -m[1]];
+    for (tri, lens) in body.tris.iter().zip(&body.tri_len) {
+        let placed = [place(tri[0]), place(tri[1]), place(tri[2])];
+        let swept = frame.swept(&placed);
+        for &(w, r) in &points {
+            if env && !swept.meets(&r) {
+                continue;
+            }
+            *pairs += 1;
+            if let Some(iv) = point_in_triangle(w, back, &placed, lens, tol, full) {
+                sink(iv)?;
+            }
+        }
+    }
+    ControlFlow::Continue(())
 }
 
 #[cfg(test)]
@@ -252,6 +341,8 @@ mod tests {
     use super::*;
 
     const ALL: Interval = Interval::ALL;
+    /// Edge lengths of the test triangle (they only scale the tolerance, 0 here).
+    const LENS: [f64; 3] = [2.0, 2.83, 2.0];
 
     #[test]
     fn crossing_edges_give_the_exact_interval() {
@@ -259,9 +350,11 @@ mod tests {
         let iv = edge_edge(
             [0.0, 0.0],
             [0.0, 1.0],
+            1.0,
             [1.0, 0.0],
             [2.0, 0.5],
             [2.0, 3.0],
+            2.5,
             0.0,
             Span::within(ALL),
         )
@@ -271,9 +364,11 @@ mod tests {
         let iv = edge_edge(
             [0.0, 0.0],
             [1.0, 0.0],
+            1.0,
             [1.0, 0.0],
             [2.0, -1.0],
             [2.0, 1.0],
+            2.0,
             0.0,
             Span::within(ALL),
         )
@@ -287,9 +382,11 @@ mod tests {
         let iv = edge_edge(
             [0.0, 0.0],
             [1.0, 0.0],
+            1.0,
             [1.0, 0.0],
             [3.0, 0.0],
             [4.0, 0.0],
+            1.0,
             0.0,
             Span::within(ALL),
         )
@@ -299,9 +396,11 @@ mod tests {
         assert!(edge_edge(
             [0.0, 0.0],
             [1.0, 0.0],
+            1.0,
             [0.0, 0.0],
             [3.0, 0.0],
             [4.0, 0.0],
+            1.0,
             0.0,
             Span::within(ALL)
         )
@@ -310,9 +409,11 @@ mod tests {
         let iv = edge_edge(
             [0.0, 0.0],
             [1.0, 0.0],
+            1.0,
             [0.0, 1.0],
             [0.5, 1.0],
             [3.0, 1.0],
+            2.5,
             0.0,
             Span::within(ALL),
         )
@@ -323,8 +424,12 @@ mod tests {
     #[test]
     fn point_through_triangle() {
         let tri = [[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]];
-        let iv = point_in_triangle([-1.0, 0.5], [1.0, 0.0], &tri, 0.0, Span::within(ALL)).unwrap();
+        let iv = point_in_triangle([-1.0, 0.5], [1.0, 0.0], &tri, &LENS, 0.0, Span::within(ALL))
+            .unwrap();
         assert_eq!(iv, Interval { lo: 1.0, hi: 2.5 });
-        assert!(point_in_triangle([-1.0, 3.0], [1.0, 0.0], &tri, 0.0, Span::within(ALL)).is_none());
+        assert!(
+            point_in_triangle([-1.0, 3.0], [1.0, 0.0], &tri, &LENS, 0.0, Span::within(ALL))
+                .is_none()
+        );
     }
 }
