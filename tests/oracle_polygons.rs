@@ -355,15 +355,15 @@ fn run_motions(seed: u64, make: fn(&mut ChaCha8Rng) -> Motion, motions: usize) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 100, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
 
-    /// 1000 random translations (segments and unbounded lines) in 100 random scenes.
+    /// 2000 random translations (segments and unbounded lines) in 200 random scenes.
     #[test]
     fn translations_agree_with_parry(seed in any::<u64>()) {
         run_motions(seed, translation, 10);
     }
 
-    /// 1000 random rotations (short turns, full turns, several turns) in 100 random scenes.
+    /// 2000 random rotations (short turns, full turns, several turns) in 200 random scenes.
     #[test]
     fn rotations_agree_with_parry(seed in any::<u64>()) {
         run_motions(seed, rotation, 10);
@@ -765,4 +765,117 @@ fn a_frame_around_a_fan_meets_it_only_at_shared_edges() {
     assert!(oracle.collides(&[0.0, 0.0, 0.0], &mut CallCounts::default()));
     let spin = Motion::turn(vec![0.0, 0.0, 0.0], Change::Linear(vec![0.0, 0.0, TAU]));
     assert_intervals(&intervals(&oracle, &spin), &[(-0.5, 0.5)], 0.0);
+}
+
+#[test]
+fn empty_scenes_are_free() {
+    let mut c = CallCounts::default();
+    let turn = Motion::turn(vec![0.0, 0.0, 0.0], Change::Linear(vec![0.0, 0.0, TAU]));
+    let line = Motion::line(vec![0.0, 0.0, 0.0], Change::Linear(vec![1.0, 0.0, 0.0]));
+    for oracle in [
+        Polygons::new(vec![], vec![]),
+        Polygons::new(unit_square(), vec![]),
+        Polygons::new(vec![], unit_square()),
+    ] {
+        assert!(!oracle.collides(&[0.0, 0.0, 0.0], &mut c));
+        assert!(intervals(&oracle, &turn).is_empty());
+        assert!(intervals(&oracle, &line).is_empty());
+    }
+}
+
+/// A small triangle whose apex is the reference point, opening towards body +y.
+fn wedge() -> Vec<Polygon> {
+    vec![Polygon::new(vec![
+        Point2::new(0.0, 0.0),
+        Point2::new(0.3, 0.5),
+        Point2::new(-0.3, 0.5),
+    ])
+    .unwrap()]
+}
+
+#[test]
+fn contacts_survive_rounding() {
+    // Regression for the tolerance and the culling slack: a contact computed in floating
+    // point (the robot's apex on an obstacle edge, up to rounding) or closer than the
+    // documented tolerance must always count as collision, with enveloping on and off.
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let mut c = CallCounts::default();
+    for i in 0..400 {
+        // an obstacle triangle; every fourth one axis-aligned at the contact edge
+        let (a, b) = if i % 4 == 0 {
+            (Point2::new(-3.0, 1.0), Point2::new(-2.0, 1.0))
+        } else {
+            (
+                Point2::new(rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0)),
+                Point2::new(rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0)),
+            )
+        };
+        let e = b - a;
+        if e.norm() < 0.5 {
+            continue;
+        }
+        let outward = Vector2::new(e.y, -e.x) / e.norm(); // a → b counter-clockwise: right side
+        let apex_in = a + 0.5 * e - 2.0 * outward;
+        let obstacle = Polygon::new(vec![a, b, apex_in]).unwrap();
+        let s = rng.random_range(0.1..0.9);
+        let gap = if i % 2 == 0 {
+            0.0
+        } else {
+            0.25 * viaroad::oracle::polygons::TOLERANCE * 5.0
+        };
+        let p = a + s * e + gap * outward;
+        // body +y along the outward normal
+        let theta = outward.y.atan2(outward.x) - PI / 2.0;
+        let q = vec![p.x, p.y, theta];
+        let fast = Polygons::new(wedge(), vec![obstacle]);
+        for oracle in [fast.clone(), fast.with_enveloping(false)] {
+            assert!(oracle.collides(&q, &mut c), "case {i}: {q:?}");
+            // arriving at the contact along the normal
+            let start = vec![p.x + outward.x, p.y + outward.y, theta];
+            let arrive = Motion::segment(start, Change::Linear(vec![-outward.x, -outward.y, 0.0]));
+            let hits = intervals(&oracle, &arrive);
+            assert!(
+                hits.last().is_some_and(|iv| iv.hi == 1.0),
+                "case {i}: {hits:?}"
+            );
+            // sliding along the edge, and turning about the apex: touching all the way
+            let slide =
+                Motion::segment(q.clone(), Change::Linear(vec![0.05 * e.x, 0.05 * e.y, 0.0]));
+            assert_eq!(intervals(&oracle, &slide), vec![Interval::UNIT], "case {i}");
+            let turn = Motion::segment(
+                vec![p.x, p.y, theta - 0.2],
+                Change::Linear(vec![0.0, 0.0, 0.4]),
+            );
+            assert_eq!(intervals(&oracle, &turn), vec![Interval::UNIT], "case {i}");
+        }
+    }
+}
+
+#[test]
+fn a_bar_tip_grazing_a_wall() {
+    // Regression for the rotation's tolerance and culling slack: the tip (2, 0) of a thin bar
+    // turning about the origin grazes a wall whose face x = 2 (+ a gap within the documented
+    // tolerance) is tangent to the tip's circle at θ = 0, the middle of the motion.
+    let bar = vec![Polygon::new(vec![
+        Point2::new(0.0, -0.05),
+        Point2::new(2.0, 0.0),
+        Point2::new(0.0, 0.05),
+    ])
+    .unwrap()];
+    for gap in [0.0, 0.25 * viaroad::oracle::polygons::TOLERANCE * 3.0] {
+        let wall = Polygon::rectangle([2.5 + gap, 0.0], [0.5, 1.0]).unwrap();
+        let fast = Polygons::new(bar.clone(), vec![wall]);
+        for oracle in [fast.clone(), fast.with_enveloping(false)] {
+            let turn = Motion::segment(vec![0.0, 0.0, -0.3], Change::Linear(vec![0.0, 0.0, 0.6]));
+            let hits = intervals(&oracle, &turn);
+            assert!(!hits.is_empty(), "gap {gap}");
+            assert!(
+                hits.iter().any(|iv| iv.contains(0.5)),
+                "gap {gap}: {hits:?}"
+            );
+            assert!(hits
+                .iter()
+                .all(|iv| (iv.lo - 0.5).abs() < 1e-4 && (iv.hi - 0.5).abs() < 1e-4));
+        }
+    }
 }
