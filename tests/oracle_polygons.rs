@@ -404,6 +404,14 @@ proptest! {
     }
 }
 
+/// Shrunk proptest cases: turned angles mapped back to `t` missed the ends of the range by
+/// rounding (an interval ending at 0.9999999999999999, one starting at 5.6e-17).
+#[test]
+fn rotations_reach_the_ends_of_the_range_exactly() {
+    run_motions(7341538607560776058, rotation, 10);
+    run_motions(13628586910948642205, rotation, 10);
+}
+
 // ---------------------------------------------------------------------------------------------
 // hand-computed cases
 

@@ -204,6 +204,16 @@ mod tests {
             check(w, 0.0, 1.0, 0.0);
             check(w, 0.0, -3.0, 2.9);
         }
+        // shrunk proptest case (the grid's last point rounded past the window's end)
+        check(
+            Interval {
+                lo: 0.0,
+                hi: 4.322948219244552,
+            },
+            0.0,
+            -3.1456048638721854,
+            0.0,
+        );
     }
 
     #[test]
