@@ -164,6 +164,15 @@ fn run_free(oracle: &impl CollisionOracle, motions: &[Motion]) -> usize {
         .count()
 }
 
+/// Mean primitive pairs evaluated per interval call.
+fn pairs_per_call(oracle: &Polygons, motions: &[Motion]) -> f64 {
+    let mut counts = CallCounts::default();
+    for m in motions {
+        let _ = oracle.intervals(m, &mut counts);
+    }
+    counts.pairs_tested as f64 / motions.len() as f64
+}
+
 /// One interval call against the number of obstacle edges, with and without enveloping.
 fn interval_vs_edges(c: &mut Criterion) {
     let mut group = c.benchmark_group("polygons/interval_vs_edges");
@@ -180,6 +189,11 @@ fn interval_vs_edges(c: &mut Criterion) {
         group.throughput(Throughput::Elements(trans.len() as u64));
         for (on, label) in [(true, "enveloping"), (false, "all_pairs")] {
             let o = oracle.clone().with_enveloping(on);
+            eprintln!(
+                "{edges} obstacle edges, {label}: {:.1} pairs per translation, {:.1} per rotation",
+                pairs_per_call(&o, &trans),
+                pairs_per_call(&o, &rots)
+            );
             group.bench_with_input(
                 BenchmarkId::new(format!("translation/{label}"), edges),
                 &trans,

@@ -54,9 +54,10 @@ use std::f64::consts::TAU;
 use std::ops::ControlFlow;
 
 /// Relative tolerance of the orientation tests: a point within `TOLERANCE × scale` of an edge
-/// counts as touching it, where `scale` is the largest coordinate of the scene (obstacles,
-/// robot radius, robot position). Far above the rounding error of the tests (about `1e-16 ×
-/// scale`), far below anything a planner can resolve.
+/// counts as touching it, where `scale` is the largest obstacle coordinate or the robot's
+/// radius, whichever is larger, plus the largest coordinate of the robot's position. Far above
+/// the rounding error of the tests (about `1e-16 × scale`), far below anything a planner can
+/// resolve.
 pub const TOLERANCE: f64 = 1e-12;
 
 /// Longest rotation answered, in full turns; a longer one is [`OracleError::Unsupported`].
@@ -92,7 +93,7 @@ fn placement(centre: P, theta: f64) -> impl Fn(P) -> P + Copy {
 struct Body {
     /// All vertices (for the swept box of the whole robot).
     vertices: Vec<P>,
-    /// Boundary edges of all parts, each segment once.
+    /// Edges of all parts, each segment once.
     edges: Vec<[P; 2]>,
     /// Length of each edge.
     edge_len: Vec<f64>,
@@ -246,7 +247,7 @@ pub struct Polygons {
     enveloping: bool,
     body: Body,
     world: World,
-    /// Largest coordinate magnitude of the scene (obstacles, robot radius).
+    /// Largest obstacle coordinate magnitude or robot radius.
     scale: f64,
 }
 
@@ -261,8 +262,9 @@ enum Kind {
 impl Polygons {
     /// `robot` parts in the body frame (reference point at the origin), obstacles in the world
     /// frame. Polygons should be simple; either orientation is accepted. Non-finite and repeated
-    /// vertices are skipped, and a polygon with fewer than two distinct vertices left is ignored.
-    /// Enveloping is on.
+    /// vertices are skipped; a polygon left with one vertex acts as a point, with none it is
+    /// ignored. (On a polygon that is not simple, triangulation does its best and containment
+    /// may err towards collision.) Enveloping is on.
     pub fn new(robot: Vec<Polygon>, obstacles: Vec<Polygon>) -> Polygons {
         let r = prepare(&robot);
         let o = prepare(&obstacles);
@@ -480,7 +482,15 @@ impl CollisionOracle for Polygons {
     ) -> Result<IntervalList, OracleError> {
         let mut hits: Vec<Interval> = Vec::new();
         let mut collect = |iv: Interval| {
-            hits.push(iv);
+            // pairs of neighbouring primitives tend to report overlapping runs: merge them
+            // here, which leaves less to sort
+            match hits.last_mut() {
+                Some(last) if iv.lo <= last.hi && last.lo <= iv.hi => {
+                    last.lo = last.lo.min(iv.lo);
+                    last.hi = last.hi.max(iv.hi);
+                }
+                _ => hits.push(iv),
+            }
             ControlFlow::Continue(())
         };
         match Self::classify(motion)? {

@@ -10,18 +10,19 @@
 //! - `(R(φ)u) · v = cos φ · (u · v) + sin φ · (u × v)`
 //!
 //! for a rotating `u` and a fixed `v`. Each such atom holds on one arc of the circle, at most
-//! two intervals of the window, found in the half-angle parameter `τ` ([`trig::HalfAngle`]),
-//! and the pair's predicate is evaluated on those interval lists: `∧` = intersection,
-//! `∨` = union; only the final ends are turned back into angles. Unlike under translation, the two ends of an edge
-//! now move differently, so "0 between `s(a)` and `s(b)`" is kept as the disjunction
-//! `(s(a) ≥ 0 ∧ s(b) ≤ 0) ∨ (s(a) ≤ 0 ∧ s(b) ≥ 0)`.
+//! two intervals of the window, found in the half-angle parameter `τ` ([`trig::HalfAngle`]);
+//! the pair's predicate is evaluated on those interval lists (`∧` = intersection, `∨` =
+//! union) and only the final ends are turned back into angles. Unlike under translation, the
+//! two ends of an edge move differently, so "0 between `s(a)` and `s(b)`" is kept as the
+//! disjunction `(s(a) ≥ 0 ∧ s(b) ≤ 0) ∨ (s(a) ≤ 0 ∧ s(b) ≥ 0)`.
 //!
 //! Containment (CHS §2.3.2: "the circle a point describes"): the reference vertex of every
 //! robot part runs on a circle about the centre and is tested against the obstacles'
 //! triangles; the reference vertex of every obstacle, seen from the robot, runs on a circle
 //! the other way and is tested against the robot's triangles — both as three atoms per
 //! triangle. Enveloping: annuli about the centre (the seed's cylindrical boxes with the angle
-//! neglected), for every robot edge and every reference vertex.
+//! neglected) — one for the whole robot to query the obstacle tree, then one per robot edge
+//! and reference vertex against the candidates' distances from the centre.
 
 use super::envelope::Annulus;
 use super::small_set::SmallSet;
