@@ -1,33 +1,596 @@
-//! A polygonal robot among polygons in SE(2). (In progress.)
+//! A polygonal robot among polygons in SE(2): exact collision intervals of translations and of
+//! rotations about the reference point (CHS Chapter 2, in the plane).
+//!
+//! The robot is a union of simple polygons given in its body frame (reference point at the
+//! origin); a configuration `[x, y, θ]` places a body point `v` at `Rot(θ)·v + (x, y)`. The
+//! obstacles are a union of simple polygons in the world frame. Robot and obstacles collide
+//! iff some robot polygon and some obstacle polygon overlap as closed sets, which holds iff
+//! (CHS §2.1, in the plane)
+//!
+//! - a robot edge meets an obstacle edge (closed segments: touching counts), or
+//! - a reference vertex of one polygon lies in the other (containment).
+//!
+//! For a straight motion each of these primitive tests turns into inequalities in the motion
+//! parameter — linear for a translation (`translation.rs`), `α cos φ + β sin φ + γ ≥ 0` for a
+//! rotation (`rotation.rs`, solved through `τ = tan(φ/2)` in `trig.rs`) — whose solution sets
+//! are combined as interval lists (∧ = intersection, ∨ = union), and the union over all pairs
+//! is the answer.
+//!
+//! Enveloping (`envelope.rs`, `index.rs`): an AABB tree over the obstacle edges, triangles and
+//! reference vertices is queried once per kind of primitive with the region the whole robot
+//! sweeps — a box in the frame of a translation, an annulus about the centre of a rotation —
+//! and every robot primitive is then tested only against the candidates its own swept region
+//! meets, so far-away obstacle parts cost nothing. `pairs_tested` counts the primitive pairs
+//! that survive.
+//!
+//! Containment is decided with triangulations (ear clipping, `triangulate.rs`) instead of the
+//! seed's random rays: "point in polygon" becomes "point in one of its triangles", three
+//! orientation tests that move with the motion like all the others.
+//!
+//! Numerics: every orientation test is relaxed by a tolerance of [`TOLERANCE`] times the size
+//! of the scene, in favour of collision, so intervals are closed and a grazing contact is never
+//! lost to rounding. The answer is conservative by that much, never NaN, and nothing panics.
+//!
+//! OMPL.app's 2D problems ship 3D prisms; [`footprint_polygons`] turns them into triangles.
+
+mod envelope;
+mod footprint;
+mod index;
+mod rotation;
+mod small_set;
+mod translation;
+mod triangulate;
+mod trig;
+
+pub use footprint::footprint_polygons;
 
 use super::{CallCounts, CollisionOracle, OracleError};
 use crate::geometry::Polygon;
-use crate::interval::IntervalList;
-use crate::space::Motion;
+use crate::interval::{Interval, IntervalList};
+use crate::space::{Change, Motion};
+use index::{Aabb, Bvh};
+use std::collections::HashSet;
+use std::f64::consts::TAU;
+use std::ops::ControlFlow;
 
-/// Exact collision intervals of a polygonal robot among polygons.
+/// Relative tolerance of the orientation tests: a point within `TOLERANCE × scale` of an edge
+/// counts as touching it, where `scale` is the largest obstacle coordinate or the robot's
+/// radius, whichever is larger, plus the largest coordinate of the robot's position. Far above
+/// the rounding error of the tests (about `1e-16 × scale`), far below anything a planner can
+/// resolve.
+pub const TOLERANCE: f64 = 1e-12;
+
+/// Longest rotation answered, in full turns; a longer one is [`OracleError::Unsupported`].
+pub const MAX_TURNS: f64 = 4096.0;
+
+/// A point or vector of the plane.
+type P = [f64; 2];
+
+#[inline]
+fn dot(a: P, b: P) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// `a × b`, the z component of the cross product.
+#[inline]
+fn perp_dot(a: P, b: P) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// The map `v ↦ Rot(theta)·v + centre`.
+fn placement(centre: P, theta: f64) -> impl Fn(P) -> P + Copy {
+    let (s, c) = theta.sin_cos();
+    move |v: P| {
+        [
+            centre[0] + c * v[0] - s * v[1],
+            centre[1] + s * v[0] + c * v[1],
+        ]
+    }
+}
+
+/// The robot, prepared in its body frame.
+#[derive(Clone, Debug, Default)]
+struct Body {
+    /// All vertices (for the swept box of the whole robot).
+    vertices: Vec<P>,
+    /// Edges of all parts, each segment once.
+    edges: Vec<[P; 2]>,
+    /// Length of each edge.
+    edge_len: Vec<f64>,
+    /// Distance range `[min, max]` of each edge from the reference point.
+    edge_radii: Vec<(f64, f64)>,
+    /// Smallest distance of an edge from the reference point.
+    edge_inner_radius: f64,
+    /// Triangles of all parts, counter-clockwise.
+    tris: Vec<[P; 3]>,
+    /// Edge lengths of each triangle.
+    tri_len: Vec<[f64; 3]>,
+    /// Distance range of each triangle from the reference point.
+    tri_radii: Vec<(f64, f64)>,
+    /// Smallest distance of a triangle from the reference point.
+    tri_inner_radius: f64,
+    /// One reference vertex per part (containment).
+    refs: Vec<P>,
+    /// Largest distance of a vertex from the reference point.
+    radius: f64,
+}
+
+/// The obstacles, prepared in the world frame, with their search trees.
+#[derive(Clone, Debug, Default)]
+struct World {
+    edges: Vec<[P; 2]>,
+    edge_len: Vec<f64>,
+    edge_tree: Bvh,
+    tris: Vec<[P; 3]>,
+    tri_len: Vec<[f64; 3]>,
+    tri_tree: Bvh,
+    /// One reference vertex per obstacle (containment).
+    refs: Vec<P>,
+    ref_tree: Bvh,
+}
+
+/// Polygon parts prepared for the tests: edges (each segment once), triangles, one reference
+/// vertex per part.
+#[derive(Default)]
+struct Parts {
+    edges: Vec<[P; 2]>,
+    tris: Vec<[P; 3]>,
+    refs: Vec<P>,
+    vertices: Vec<P>,
+}
+
+fn length(a: P, b: P) -> f64 {
+    (b[0] - a[0]).hypot(b[1] - a[1])
+}
+
+fn edge_lengths(edges: &[[P; 2]]) -> Vec<f64> {
+    edges.iter().map(|&[a, b]| length(a, b)).collect()
+}
+
+fn triangle_lengths(tris: &[[P; 3]]) -> Vec<[f64; 3]> {
+    tris.iter()
+        .map(|t| [length(t[0], t[1]), length(t[1], t[2]), length(t[2], t[0])])
+        .collect()
+}
+
+/// Finite vertices without repeats, counter-clockwise.
+fn clean(poly: &Polygon) -> Vec<P> {
+    let mut v: Vec<P> = poly
+        .vertices
+        .iter()
+        .filter(|p| p.x.is_finite() && p.y.is_finite())
+        .map(|p| [p.x + 0.0, p.y + 0.0])
+        .collect();
+    v.dedup();
+    while v.len() > 1 && v.first() == v.last() {
+        v.pop();
+    }
+    let n = v.len();
+    let area2: f64 = (0..n).map(|i| perp_dot(v[i], v[(i + 1) % n])).sum();
+    if area2 < 0.0 {
+        v.reverse();
+    }
+    v
+}
+
+/// Edges, triangles and reference vertices of a union of polygons.
+///
+/// Every part keeps all its edges (a segment listed twice is tested once): the containment
+/// argument is per pair of parts, so an edge two parts share inside the union is still needed
+/// — a frame-shaped obstacle whose hole lies inside a fan of robot triangles meets only their
+/// shared edges.
+fn prepare(polys: &[Polygon]) -> Parts {
+    let mut parts = Parts::default();
+    let mut seen: HashSet<[u64; 4]> = HashSet::new();
+    for poly in polys {
+        let v = clean(poly);
+        let Some(&first) = v.first() else { continue };
+        parts.refs.push(first);
+        parts.vertices.extend_from_slice(&v);
+        let n = v.len();
+        let edge_count = match n {
+            0 | 1 => 0,
+            2 => 1,
+            _ => n,
+        };
+        for i in 0..edge_count {
+            let (a, b) = (v[i], v[(i + 1) % n]);
+            let (p, q) = if (a[0], a[1]) <= (b[0], b[1]) {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            if seen.insert([
+                p[0].to_bits(),
+                p[1].to_bits(),
+                q[0].to_bits(),
+                q[1].to_bits(),
+            ]) {
+                parts.edges.push([a, b]);
+            }
+        }
+        for t in triangulate::triangulate(&v) {
+            parts.tris.push([v[t[0]], v[t[1]], v[t[2]]]);
+        }
+    }
+    parts
+}
+
+/// Exact collision intervals of a polygonal robot among polygons (SE(2), translations and
+/// rotations about the reference point).
+///
+/// Supported motions: `Change::Linear(delta)` with three coordinates that is either a pure
+/// translation (`delta[2] == 0`, bounded or an unbounded line) or a pure rotation about the
+/// reference point (`delta[0] == delta[1] == 0`, a bounded range: a segment or a full turn).
+/// Anything else is [`OracleError::Unsupported`].
+///
+/// ```
+/// use viaroad::geometry::Polygon;
+/// use viaroad::oracle::polygons::Polygons;
+/// use viaroad::oracle::{CallCounts, CollisionOracle};
+/// use viaroad::space::{Change, Motion};
+///
+/// // a unit square sliding along x from 0 to 10 through the box [3, 5] × [−1, 1]:
+/// // it touches the box while its centre is in [2.5, 5.5], i.e. for t ∈ [0.25, 0.55]
+/// let robot = vec![Polygon::rectangle([0.0, 0.0], [0.5, 0.5]).unwrap()];
+/// let wall = vec![Polygon::rectangle([4.0, 0.0], [1.0, 1.0]).unwrap()];
+/// let oracle = Polygons::new(robot, wall);
+/// let motion = Motion::segment(vec![0.0, 0.0, 0.0], Change::Linear(vec![10.0, 0.0, 0.0]));
+/// let hits = oracle.intervals(&motion, &mut CallCounts::default()).unwrap();
+/// let iv = hits.as_slice()[0];
+/// assert!((iv.lo - 0.25).abs() < 1e-9 && (iv.hi - 0.55).abs() < 1e-9);
+/// ```
+#[derive(Clone, Debug)]
 pub struct Polygons {
     robot: Vec<Polygon>,
     obstacles: Vec<Polygon>,
+    enveloping: bool,
+    body: Body,
+    world: World,
+    /// Largest obstacle coordinate magnitude or robot radius.
+    scale: f64,
+}
+
+/// What a motion asks of this oracle.
+enum Kind {
+    /// The robot translates by `t·m` (a zero `m` is the static test over the range).
+    Translation { centre: P, theta: f64, m: P },
+    /// The robot turns about its reference point by `t·omega`.
+    Rotation { centre: P, theta: f64, omega: f64 },
 }
 
 impl Polygons {
-    /// `robot` parts in the body frame (reference point at the origin), obstacles in the world.
+    /// `robot` parts in the body frame (reference point at the origin), obstacles in the world
+    /// frame. Polygons should be simple; either orientation is accepted. Non-finite and repeated
+    /// vertices are skipped; a polygon left with one vertex acts as a point, with none it is
+    /// ignored. (On a polygon that is not simple, triangulation does its best and containment
+    /// may err towards collision.) Enveloping is on.
     pub fn new(robot: Vec<Polygon>, obstacles: Vec<Polygon>) -> Polygons {
-        Polygons { robot, obstacles }
+        let r = prepare(&robot);
+        let o = prepare(&obstacles);
+        let edge_radii: Vec<(f64, f64)> = r
+            .edges
+            .iter()
+            .map(|&[a, b]| {
+                let far = a[0].hypot(a[1]).max(b[0].hypot(b[1]));
+                (rotation::segment_distance(a, b), far)
+            })
+            .collect();
+        let tri_radii: Vec<(f64, f64)> = r.tris.iter().map(rotation::triangle_radii).collect();
+        let radius = r
+            .vertices
+            .iter()
+            .map(|p| p[0].hypot(p[1]))
+            .fold(0.0, f64::max);
+        let tri_inner_radius = tri_radii.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
+        let edge_inner_radius = edge_radii.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
+        let body = Body {
+            vertices: r.vertices,
+            edge_len: edge_lengths(&r.edges),
+            edges: r.edges,
+            edge_radii,
+            edge_inner_radius: if edge_inner_radius.is_finite() {
+                edge_inner_radius
+            } else {
+                0.0
+            },
+            tri_len: triangle_lengths(&r.tris),
+            tris: r.tris,
+            tri_radii,
+            tri_inner_radius: if tri_inner_radius.is_finite() {
+                tri_inner_radius
+            } else {
+                0.0
+            },
+            refs: r.refs,
+            radius,
+        };
+        let scale = o
+            .vertices
+            .iter()
+            .map(|p| p[0].abs().max(p[1].abs()))
+            .fold(radius, f64::max);
+        let world = World {
+            edge_tree: Bvh::new(o.edges.iter().map(|e| Aabb::of_points(e)).collect()),
+            tri_tree: Bvh::new(o.tris.iter().map(|t| Aabb::of_points(t)).collect()),
+            ref_tree: Bvh::new(o.refs.iter().map(|p| Aabb::of_points(&[*p])).collect()),
+            edge_len: edge_lengths(&o.edges),
+            edges: o.edges,
+            tri_len: triangle_lengths(&o.tris),
+            tris: o.tris,
+            refs: o.refs,
+        };
+        Polygons {
+            robot,
+            obstacles,
+            enveloping: true,
+            body,
+            world,
+            scale,
+        }
+    }
+
+    /// Switches enveloping (the obstacle tree and the per-pair culling) on or off. Off, every
+    /// robot primitive is tested against every obstacle primitive: the same answers, slower —
+    /// for benchmarks and cross-checks.
+    pub fn with_enveloping(mut self, on: bool) -> Polygons {
+        self.enveloping = on;
+        self
+    }
+
+    /// Whether enveloping is on.
+    pub fn enveloping(&self) -> bool {
+        self.enveloping
+    }
+
+    /// The robot's parts, in the body frame, as given.
+    pub fn robot(&self) -> &[Polygon] {
+        &self.robot
+    }
+
+    /// The obstacles, as given.
+    pub fn obstacles(&self) -> &[Polygon] {
+        &self.obstacles
+    }
+
+    /// Largest distance of a robot vertex from the reference point.
+    pub fn robot_radius(&self) -> f64 {
+        self.body.radius
+    }
+
+    /// Number of distinct obstacle edges (what one interval call is measured against).
+    pub fn obstacle_edge_count(&self) -> usize {
+        self.world.edges.len()
+    }
+
+    /// Number of distinct robot edges.
+    pub fn robot_edge_count(&self) -> usize {
+        self.body.edges.len()
+    }
+
+    /// The tolerance (a length) of tests with the robot at `centre`.
+    fn tolerance_at(&self, centre: P) -> f64 {
+        TOLERANCE * (self.scale + centre[0].abs().max(centre[1].abs()))
+    }
+
+    fn classify(motion: &Motion) -> Result<Kind, OracleError> {
+        let delta = match &motion.change {
+            Change::Linear(d) => d,
+            Change::Rotation { .. } => {
+                return Err(OracleError::Unsupported(
+                    "polygons: an SE(3) rotation (Change::Rotation) in the plane".into(),
+                ))
+            }
+        };
+        if motion.origin.len() != 3 || delta.len() != 3 {
+            return Err(OracleError::Unsupported(format!(
+                "polygons: SE(2) motions have 3 coordinates, got an origin of {} and a change of {}",
+                motion.origin.len(),
+                delta.len()
+            )));
+        }
+        if !motion.origin.iter().chain(delta).all(|v| v.is_finite()) {
+            return Err(OracleError::Unsupported(
+                "polygons: a motion with a coordinate that is not a finite number".into(),
+            ));
+        }
+        let r = motion.range;
+        if r.lo.is_nan() || r.hi.is_nan() || r.lo > r.hi {
+            return Err(OracleError::Unsupported(format!(
+                "polygons: the parameter range [{}, {}] is empty",
+                motion.range.lo, motion.range.hi
+            )));
+        }
+        let centre = [motion.origin[0], motion.origin[1]];
+        let theta = motion.origin[2];
+        let moves = delta[0] != 0.0 || delta[1] != 0.0;
+        if delta[2] == 0.0 {
+            Ok(Kind::Translation {
+                centre,
+                theta,
+                m: [delta[0], delta[1]],
+            })
+        } else if !moves {
+            Ok(Kind::Rotation {
+                centre,
+                theta,
+                omega: delta[2],
+            })
+        } else {
+            Err(OracleError::Unsupported(
+                "polygons: a simultaneous translation and rotation".into(),
+            ))
+        }
+    }
+
+    /// Maps intervals of turned angle `φ = omega · t` back to `t`. The ends of the angle range
+    /// map exactly to the ends of `range` (a division would miss them by rounding).
+    fn angles_to_parameters(angles: &IntervalList, omega: f64, range: Interval) -> IntervalList {
+        let (a, b) = (omega * range.lo, omega * range.hi);
+        let to_t = |phi: f64| {
+            if phi == a {
+                range.lo
+            } else if phi == b {
+                range.hi
+            } else {
+                (phi / omega).clamp(range.lo, range.hi)
+            }
+        };
+        IntervalList::from_unsorted(
+            angles
+                .iter()
+                .map(|iv| {
+                    let (x, y) = (to_t(iv.lo), to_t(iv.hi));
+                    Interval {
+                        lo: x.min(y),
+                        hi: x.max(y),
+                    }
+                })
+                .collect(),
+        )
+    }
+
+    /// The angle window of a rotation and how far the whole turn reaches beyond it.
+    fn rotation_window(range: Interval, omega: f64) -> Result<(Interval, f64), OracleError> {
+        if !range.is_bounded() {
+            return Err(OracleError::Unsupported(
+                "polygons: a rotation over an unbounded range".into(),
+            ));
+        }
+        let (a, b) = (omega * range.lo, omega * range.hi);
+        let (lo, hi) = (a.min(b), a.max(b));
+        if hi - lo > MAX_TURNS * TAU {
+            return Err(OracleError::Unsupported(format!(
+                "polygons: a rotation of more than {MAX_TURNS} turns"
+            )));
+        }
+        Ok((
+            Interval {
+                lo,
+                hi: hi.min(lo + TAU),
+            },
+            hi,
+        ))
     }
 }
 
 impl CollisionOracle for Polygons {
     fn intervals(
         &self,
-        _motion: &Motion,
-        _counts: &mut CallCounts,
+        motion: &Motion,
+        counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        let _ = (&self.robot, &self.obstacles);
-        Err(OracleError::Unsupported("polygons: not yet".into()))
+        let mut hits: Vec<Interval> = Vec::new();
+        let mut collect = |iv: Interval| {
+            // pairs of neighbouring primitives tend to report overlapping runs: merge them
+            // here, which leaves less to sort
+            match hits.last_mut() {
+                Some(last) if iv.lo <= last.hi && last.lo <= iv.hi => {
+                    last.lo = last.lo.min(iv.lo);
+                    last.hi = last.hi.max(iv.hi);
+                }
+                _ => hits.push(iv),
+            }
+            ControlFlow::Continue(())
+        };
+        match Self::classify(motion)? {
+            Kind::Translation { centre, theta, m } => {
+                let _ = translation::sweep(
+                    self,
+                    centre,
+                    theta,
+                    m,
+                    motion.range,
+                    &mut counts.pairs_tested,
+                    &mut collect,
+                );
+                Ok(IntervalList::from_unsorted(hits).clip(motion.range))
+            }
+            Kind::Rotation {
+                centre,
+                theta,
+                omega,
+            } => {
+                let (window, reach) = Self::rotation_window(motion.range, omega)?;
+                let _ = rotation::sweep(
+                    self,
+                    centre,
+                    theta,
+                    window,
+                    &mut counts.pairs_tested,
+                    &mut collect,
+                );
+                // one turn computed; later turns repeat it
+                let base = IntervalList::from_unsorted(hits);
+                let mut all: Vec<Interval> = base.as_slice().to_vec();
+                let mut k = 1.0;
+                while window.lo + k * TAU <= reach {
+                    let shift = k * TAU;
+                    all.extend(
+                        base.iter().filter_map(|iv| {
+                            Interval::new(iv.lo + shift, (iv.hi + shift).min(reach))
+                        }),
+                    );
+                    k += 1.0;
+                }
+                Ok(Self::angles_to_parameters(
+                    &IntervalList::from_unsorted(all),
+                    omega,
+                    motion.range,
+                ))
+            }
+        }
     }
-    fn collides(&self, _q: &[f64], _counts: &mut CallCounts) -> bool {
-        false
+
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        if q.len() != 3 || !q.iter().all(|v| v.is_finite()) {
+            // not a configuration of this scene: never call it free
+            return true;
+        }
+        translation::sweep(
+            self,
+            [q[0], q[1]],
+            q[2],
+            [0.0, 0.0],
+            Interval { lo: 0.0, hi: 0.0 },
+            &mut counts.pairs_tested,
+            &mut |_| ControlFlow::Break(()),
+        )
+        .is_break()
+    }
+
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        let mut stop = |_| ControlFlow::Break(());
+        let flow = match Self::classify(motion)? {
+            Kind::Translation { centre, theta, m } => translation::sweep(
+                self,
+                centre,
+                theta,
+                m,
+                motion.range,
+                &mut counts.pairs_tested,
+                &mut stop,
+            ),
+            Kind::Rotation {
+                centre,
+                theta,
+                omega,
+            } => {
+                let (window, _) = Self::rotation_window(motion.range, omega)?;
+                rotation::sweep(
+                    self,
+                    centre,
+                    theta,
+                    window,
+                    &mut counts.pairs_tested,
+                    &mut stop,
+                )
+            }
+        };
+        Ok(flow.is_continue())
     }
 }
