@@ -4,8 +4,7 @@
 //! Validity of the shipped scenes is checked against independent geometry: parry's distance
 //! queries on convex pieces (boxes, convex polygons), and for the disc scene a point–disc and
 //! segment–disc distance written here. The collision-dependent checks of se2/se3 loading go
-//! through the scene's own oracle and need the exact polygon/polyhedron oracles; they are
-//! marked `#[ignore = "needs the exact … oracle"]` until those are merged.
+//! through the scene's own oracle (the exact polygon and polyhedron oracles).
 
 use nalgebra::{
     Isometry2, Isometry3, Point2, Point3, Translation3, UnitQuaternion, Vector2, Vector3,
@@ -921,7 +920,7 @@ fn se3_start_in_collision_is_rejected() {
 }
 
 #[test]
-#[ignore = "needs the exact polygons oracle (Polygons::collides); passes once it is merged"]
+
 fn se2_start_in_collision_is_rejected() {
     let e = parse(&format!(
         "{SE2}[robot]\nbox = {{ half_extents = [1.0, 0.2] }}\n\

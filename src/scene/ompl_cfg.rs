@@ -27,10 +27,10 @@
 
 use super::collada;
 use super::mesh_io::{is_dae, load_mesh, vertex_mean};
-use super::shapes::footprint;
 use super::toml_format::{checked_queries, default_name};
 use super::{Obstacle, Query, Robot, Scene, SceneError};
 use crate::geometry::{GeometryError, Polygon};
+use crate::oracle::polygons::footprint_polygons;
 use crate::space::rotation::{ompl_axis_angle, wrap_angle};
 use crate::space::{Config, Space};
 use nalgebra::Vector3;
@@ -135,8 +135,8 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 
     // geometry per kind
     let (robot, obstacles, space) = if planar {
-        let parts = footprint(&robot_mesh);
-        let env = footprint(&world);
+        let parts = footprint_polygons(&robot_mesh);
+        let env = footprint_polygons(&world);
         for (parts, file) in [(&parts, &robot_file), (&env, &world_file)] {
             if parts.is_empty() {
                 return Err(SceneError::Geometry {

@@ -1,45 +1,9 @@
-//! Shapes a scene builds from its inputs: convex hulls given inline, 2D footprints of
-//! OMPL.app's prism meshes, and the check that a polygon is simple.
+//! Shapes a scene builds from its inputs: convex hulls given inline and the check that a
+//! polygon is simple. (Footprints of OMPL.app's 2D prism meshes come from
+//! [`crate::oracle::polygons::footprint_polygons`].)
 
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use nalgebra::{Point2, Point3};
-use std::collections::HashSet;
-
-/// The footprint of a mesh in the xy-plane, as triangles: every triangle whose projection has
-/// a non-negligible area becomes a counter-clockwise triangle polygon; projections that repeat
-/// (the top and bottom of a prism, SketchUp's double-sided faces) are kept once.
-///
-/// OMPL.app's 2D problems are prisms extruded along z that it checks in 3D; a robot prism and
-/// an obstacle prism whose z ranges overlap collide exactly when their footprints do, so the
-/// SE(2) oracle works on footprints. "Negligible" is an area below 1e-8 of the squared
-/// diagonal of the mesh's xy bounding box: the vertical walls, whose projections are segments
-/// up to rounding.
-///
-/// The exact polygon oracle provides the same function (`oracle::polygons::footprint_polygons`);
-/// the scene loaders call this one until the two are merged.
-pub fn footprint(mesh: &TriMesh) -> Vec<Polygon> {
-    let (lo, hi) = mesh.aabb();
-    let diagonal2 = (hi.x - lo.x).powi(2) + (hi.y - lo.y).powi(2);
-    let negligible = 1e-8 * diagonal2;
-    let mut seen = HashSet::new();
-    let mut out = Vec::new();
-    for i in 0..mesh.triangles.len() {
-        let [a, b, c] = mesh.triangle(i).map(|p| Point2::new(p.x, p.y));
-        let area = 0.5 * ((b - a).perp(&(c - a))).abs();
-        if area <= negligible {
-            continue;
-        }
-        let mut key = [a, b, c].map(|p| [(p.x + 0.0).to_bits(), (p.y + 0.0).to_bits()]);
-        key.sort_unstable();
-        if !seen.insert(key) {
-            continue;
-        }
-        if let Ok(p) = Polygon::new(vec![a, b, c]) {
-            out.push(p);
-        }
-    }
-    out
-}
 
 /// The convex hull of points in the plane (Andrew's monotone chain), counter-clockwise,
 /// collinear points dropped. Fails if the points span no area.
@@ -155,17 +119,6 @@ pub fn is_simple(polygon: &Polygon) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn footprint_of_a_box_is_its_rectangle() {
-        let m = TriMesh::cuboid([2.0, 1.0, 3.0]).unwrap();
-        let f = footprint(&m);
-        // the walls project to segments; top and bottom to the same two triangles, kept once
-        assert_eq!(f.len(), 2);
-        let area: f64 = f.iter().map(Polygon::area).sum();
-        assert!((area - 8.0).abs() < 1e-12, "area {area}");
-        assert!(f.iter().all(|p| p.vertices.len() == 3));
-    }
 
     #[test]
     fn hull_2d_drops_interior_and_collinear_points() {

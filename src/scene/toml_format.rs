@@ -58,9 +58,10 @@
 
 use super::collada;
 use super::mesh_io::{self, is_dae, open_mesh_warning, vertex_mean};
-use super::shapes::{convex_hull_2d, convex_hull_3d, footprint, is_simple};
+use super::shapes::{convex_hull_2d, convex_hull_3d, is_simple};
 use super::{Obstacle, Query, Robot, Scene, SceneError};
 use crate::geometry::{GeometryError, Polygon, TriMesh};
+use crate::oracle::polygons::footprint_polygons;
 use crate::space::Space;
 use nalgebra::{Point2, Point3, Vector2, Vector3};
 use serde::Deserialize;
@@ -705,7 +706,7 @@ impl Reader<'_> {
     }
 
     fn footprint(&self, file: &str, mesh: &TriMesh) -> Result<Vec<Polygon>, SceneError> {
-        let f = footprint(mesh);
+        let f = footprint_polygons(mesh);
         if f.is_empty() {
             return Err(SceneError::Geometry {
                 path: self.resolve(file),
