@@ -225,7 +225,7 @@ fn read_obj(path: &Path) -> Option<TriMesh> {
             m.mesh
                 .positions
                 .chunks(3)
-                .map(|p| Point3::new(p[0] as f64, p[1] as f64, p[2] as f64)),
+                .map(|p| Point3::new(p[0], p[1], p[2])),
         );
         triangles.extend(
             m.mesh
