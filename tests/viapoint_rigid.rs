@@ -1,10 +1,12 @@
-//! The via-point planner on rigid bodies in SE(3) with the exact polyhedral oracle: the seed's
+//! The via-point planner on rigid bodies: SE(3) with the exact polyhedral oracle — the seed's
 //! showcase problems (CHS A.2: a cube into a box, the piano movers' problem) and OMPL.app's
-//! problems. Every path is certified collision-free by an independent parry-based check.
+//! problems — and SE(2) with the exact polygon oracle. Every path is certified collision-free by
+//! an independent parry-based check.
 
 mod common;
 
 use common::rigid::RigidChecker;
+use common::rigid2d::PlanarChecker;
 use viaroad::local::viapoint::{Search, ViaPoint, ViaPointOptions};
 use viaroad::local::{shorten, LocalMethod, StraightLine};
 use viaroad::oracle::CallCounts;
@@ -141,4 +143,82 @@ fn the_straight_line_is_blocked_where_the_checker_says_so() {
             assert!(blocked > 0, "{path}: expected a blocked straight query");
         }
     }
+}
+
+fn solve_and_certify_planar(path: &str, expect_solved: usize) {
+    let s = scene(path);
+    let oracle = s.oracle();
+    let checker = PlanarChecker::se2(&s);
+    let method = ViaPoint::default();
+    let groups = method.groups(&s.space);
+    let mut solved = 0;
+    for (i, q) in s.queries.iter().enumerate() {
+        let c = method
+            .connect(&s.space, oracle.as_ref(), &q.start, &q.goal)
+            .unwrap();
+        if !c.is_connected() {
+            continue;
+        }
+        solved += 1;
+        one_group_at_a_time(&s.space, &c.path);
+        checker
+            .certify_path(&c.path)
+            .unwrap_or_else(|e| panic!("{path} query {}: {e}", i + 1));
+        let short = shorten(
+            &s.space,
+            oracle.as_ref(),
+            &groups,
+            &c.path,
+            &mut CallCounts::default(),
+        )
+        .unwrap();
+        checker
+            .certify_path(&short)
+            .unwrap_or_else(|e| panic!("{path} query {}, shortened: {e}", i + 1));
+    }
+    assert!(
+        solved >= expect_solved,
+        "{path}: solved {solved}, expected at least {expect_solved}"
+    );
+}
+
+#[test]
+fn planar_corridor() {
+    solve_and_certify_planar("scenes/se2-corridor.toml", 2);
+}
+
+#[test]
+fn ompl_planar_problems() {
+    for p in ["BugTrap_planar", "Maze_planar", "RandomPolygons_planar"] {
+        solve_and_certify_planar(&format!("scenes/ompl/2D/{p}.cfg"), 1);
+    }
+}
+
+#[test]
+fn the_planar_checker_agrees_with_the_exact_oracle() {
+    // translations from each start to its goal's position (at the start's angle): the exact
+    // oracle and the independent checker must agree, and some must be blocked, so that the
+    // checker is seen to fail where it should
+    let mut blocked = 0;
+    for path in [
+        "scenes/se2-corridor.toml",
+        "scenes/ompl/2D/BugTrap_planar.cfg",
+        "scenes/ompl/2D/Maze_planar.cfg",
+        "scenes/ompl/2D/RandomPolygons_planar.cfg",
+    ] {
+        let s = scene(path);
+        let oracle = s.oracle();
+        let checker = PlanarChecker::se2(&s);
+        for q in &s.queries {
+            let end = vec![q.goal[0], q.goal[1], q.start[2]];
+            let free = StraightLine::exact()
+                .connect(&s.space, oracle.as_ref(), &q.start, &end)
+                .unwrap()
+                .is_connected();
+            let certified = checker.certify_path(&[q.start.clone(), end.clone()]);
+            assert_eq!(free, certified.is_ok(), "{path}: {certified:?}");
+            blocked += !free as usize;
+        }
+    }
+    assert!(blocked >= 2, "only {blocked} blocked translations");
 }

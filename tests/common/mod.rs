@@ -53,3 +53,4 @@ pub fn check_disc_path(
 }
 
 pub mod rigid;
+pub mod rigid2d;
