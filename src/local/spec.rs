@@ -49,6 +49,21 @@ pub struct SpecError {
 }
 
 impl LocalSpec {
+    /// The local method roadmaps are learnt with by default: the via-point planner tuned to the
+    /// fast end — deepening with re-use up to depth 3, at most 1000 intersect calls per
+    /// connection. "By varying the limit on recursion depth, our strategy can be tuned to run as
+    /// fast as possible, rarely finding a path, or to be quite effective in path planning for
+    /// the cost of increased running time" (CHS §1.6): a roadmap calls its local method
+    /// thousands of times and covers the rest itself, while a single query (`viaroad solve`, and
+    /// the roadmap's attaching of difficult ends) can afford the planner's full defaults.
+    pub fn roadmap_default() -> LocalSpec {
+        LocalSpec::ViaPoint(ViaPointOptions {
+            depth: Depth::DeepenReuse { max: 3 },
+            max_calls: Some(1000),
+            ..ViaPointOptions::default()
+        })
+    }
+
     /// Builds the method.
     pub fn build(&self) -> Box<dyn LocalMethod> {
         match self {

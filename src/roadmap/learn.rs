@@ -384,6 +384,10 @@ impl<'a> Learner<'a> {
         };
         let (mut rounds, mut construction_rounds, mut expansion_rounds) = (0u64, 0u64, 0u64);
         let mut stalled = 0usize;
+        // nodes the last round added per candidate: with feedback one connection attempt can
+        // bring dozens of via points and corners, so a full round near the end of a budget
+        // would compute many attempts only to throw them away
+        let mut nodes_per_candidate = 1.0f64;
         let stop = loop {
             if budget.nodes.is_some_and(|n| work.node_count() >= n) {
                 break StopReason::NodeBudget;
@@ -395,10 +399,15 @@ impl<'a> Learner<'a> {
                 break StopReason::Stalled;
             }
             let before = work.node_count();
-            // never more candidates than nodes still missing: each one adds at least one
+            // slow start (8, 16, 32, … candidates) and never more candidates than the nodes
+            // still missing are expected to need, judged by the last round's yield; both depend
+            // only on earlier results, so the schedule is the same with any thread count
+            let slow_start = 8usize.saturating_mul(1 << rounds.min(16));
             let size = budget.nodes.map_or(params.round_size, |n| {
-                params.round_size.min(n.saturating_sub(before).max(1))
+                let missing = n.saturating_sub(before) as f64;
+                ((missing / nodes_per_candidate).ceil() as usize).clamp(1, params.round_size)
             });
+            let size = size.min(slow_start).max(1);
             let phase = if params.is_expansion_round(rounds) && before > 0 {
                 self.expansion_round(&mut work, params, budget, (seed, rounds, size))?;
                 expansion_rounds += 1;
@@ -409,6 +418,7 @@ impl<'a> Learner<'a> {
                 Phase::Construction
             };
             rounds += 1;
+            nodes_per_candidate = ((work.node_count() - before) as f64 / size as f64).max(1.0);
             stalled = if work.node_count() > before {
                 0
             } else {

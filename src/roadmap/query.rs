@@ -12,6 +12,7 @@
 
 use super::graph::Roadmap;
 use super::persist::RoadmapError;
+use crate::local::viapoint::ViaPointOptions;
 use crate::local::{path_length, shorten, Connection, LocalMethod, LocalSpec};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
@@ -30,6 +31,14 @@ pub struct QueryOptions {
     pub try_direct: bool,
     /// Shorten the path over its corners (CHS A.1).
     pub shorten: bool,
+    /// When an end cannot be attached with the roadmap's own local method, try again to this
+    /// many nearest nodes with the via-point planner searching deeper (at least the depth and
+    /// call budget of [`ViaPointOptions::default`]). A roadmap is learnt with a shallow, cheap
+    /// local method; a query calls it only twice, so it can afford the deep search where the
+    /// roadmap did not reach ("the local method can be tuned … to be quite effective in path
+    /// planning for the cost of increased running time", CHS §1.6). Only for via-point
+    /// roadmaps; 0 turns it off.
+    pub escalation_candidates: usize,
 }
 
 impl Default for QueryOptions {
@@ -38,6 +47,7 @@ impl Default for QueryOptions {
             attach_candidates: 30,
             try_direct: true,
             shorten: true,
+            escalation_candidates: 3,
         }
     }
 }
@@ -166,6 +176,8 @@ pub struct QueryPlanner<'a> {
     roadmap: &'a Roadmap,
     oracle: &'a dyn CollisionOracle,
     local: Box<dyn LocalMethod>,
+    /// The deeper search for ends the roadmap's method cannot attach (via-point roadmaps).
+    escalation: Option<Box<dyn LocalMethod>>,
     groups: Vec<Group>,
     options: QueryOptions,
 }
@@ -185,17 +197,36 @@ impl<'a> QueryPlanner<'a> {
         oracle: &'a dyn CollisionOracle,
     ) -> Result<QueryPlanner<'a>, RoadmapError> {
         let spec = &roadmap.header().local_spec;
-        let local = LocalSpec::from_str(spec)
-            .map_err(|e| RoadmapError::UnknownLocalMethod {
-                spec: spec.clone(),
-                reason: e.reason,
-            })?
-            .build();
+        let parsed = LocalSpec::from_str(spec).map_err(|e| RoadmapError::UnknownLocalMethod {
+            spec: spec.clone(),
+            reason: e.reason,
+        })?;
+        let escalation = match &parsed {
+            LocalSpec::ViaPoint(o) => {
+                let full = ViaPointOptions::default();
+                let deeper = ViaPointOptions {
+                    depth: if o.depth.max() >= full.depth.max() {
+                        o.depth
+                    } else {
+                        full.depth
+                    },
+                    max_calls: match (o.max_calls, full.max_calls) {
+                        (Some(a), Some(b)) => Some(a.max(b)),
+                        _ => None,
+                    },
+                    ..o.clone()
+                };
+                (deeper != *o).then(|| LocalSpec::ViaPoint(deeper).build())
+            }
+            _ => None,
+        };
+        let local = parsed.build();
         let groups = local.groups(roadmap.space());
         Ok(QueryPlanner {
             roadmap,
             oracle,
             local,
+            escalation,
             groups,
             options: QueryOptions::default(),
         })
@@ -274,49 +305,26 @@ impl<'a> QueryPlanner<'a> {
                 return self.finish(result, c.path);
             }
         }
-        // attach both ends, alternating, one node per component and side
-        let k = self.options.attach_candidates;
-        let near_start = self.roadmap.nearest(&start, k, None);
-        let near_goal = self.roadmap.nearest(&goal, k, None);
+        // attach both ends, alternating, one node per component and side; ends the roadmap's
+        // method cannot attach get a deeper search to their nearest few nodes
         let mut at_start: Vec<Attached> = Vec::new();
         let mut at_goal: Vec<Attached> = Vec::new();
-        let mut meeting: Option<(usize, usize)> = None;
-        'attach: for i in 0..near_start.len().max(near_goal.len()) {
-            for side in [Endpoint::Start, Endpoint::Goal] {
-                let (near, mine, theirs) = match side {
-                    Endpoint::Start => (&near_start, &mut at_start, &at_goal),
-                    Endpoint::Goal => (&near_goal, &mut at_goal, &at_start),
-                };
-                let Some(&(node, _)) = near.get(i) else {
-                    continue;
-                };
-                let component = self.roadmap.component(node);
-                if mine.iter().any(|a| a.component == component) {
-                    continue;
-                }
-                let q = self.roadmap.node(node);
-                let connection = match side {
-                    Endpoint::Start => self.local.connect(space, self.oracle, &start, q)?,
-                    Endpoint::Goal => self.local.connect(space, self.oracle, q, &goal)?,
-                };
-                result.counts += connection.counts;
-                result.attach_attempts += 1;
-                if !connection.is_connected() {
-                    continue;
-                }
-                mine.push(Attached {
-                    component,
-                    node,
-                    connection,
-                });
-                if let Some(j) = theirs.iter().position(|a| a.component == component) {
-                    let m = mine.len() - 1;
-                    meeting = Some(match side {
-                        Endpoint::Start => (m, j),
-                        Endpoint::Goal => (j, m),
-                    });
-                    break 'attach;
-                }
+        let mut meeting = self.attach(
+            self.local.as_ref(),
+            self.options.attach_candidates,
+            (&start, &goal),
+            (&mut at_start, &mut at_goal),
+            &mut result,
+        )?;
+        if meeting.is_none() && self.options.escalation_candidates > 0 {
+            if let Some(deep) = &self.escalation {
+                meeting = self.attach(
+                    deep.as_ref(),
+                    self.options.escalation_candidates,
+                    (&start, &goal),
+                    (&mut at_start, &mut at_goal),
+                    &mut result,
+                )?;
             }
         }
         let Some((si, gi)) = meeting else {
@@ -348,6 +356,60 @@ impl<'a> QueryPlanner<'a> {
         }
         raw.extend(g.connection.path.iter().skip(1).cloned());
         self.finish(result, raw)
+    }
+
+    /// Attaches start and goal to their `k` nearest nodes with `method`, alternating sides, one
+    /// node per component and side (components already attached on a side are skipped).
+    /// Returns the indices of a start and a goal attachment in one component, if any.
+    fn attach(
+        &self,
+        method: &dyn LocalMethod,
+        k: usize,
+        (start, goal): (&[f64], &[f64]),
+        (at_start, at_goal): (&mut Vec<Attached>, &mut Vec<Attached>),
+        result: &mut QueryResult,
+    ) -> Result<Option<(usize, usize)>, QueryError> {
+        let space = self.roadmap.space();
+        let near_start = self.roadmap.nearest(start, k, None);
+        let near_goal = self.roadmap.nearest(goal, k, None);
+        for i in 0..near_start.len().max(near_goal.len()) {
+            for side in [Endpoint::Start, Endpoint::Goal] {
+                let (near, mine, theirs) = match side {
+                    Endpoint::Start => (&near_start, &mut *at_start, &*at_goal),
+                    Endpoint::Goal => (&near_goal, &mut *at_goal, &*at_start),
+                };
+                let Some(&(node, _)) = near.get(i) else {
+                    continue;
+                };
+                let component = self.roadmap.component(node);
+                if mine.iter().any(|a| a.component == component) {
+                    continue;
+                }
+                let q = self.roadmap.node(node);
+                let connection = match side {
+                    Endpoint::Start => method.connect(space, self.oracle, start, q)?,
+                    Endpoint::Goal => method.connect(space, self.oracle, q, goal)?,
+                };
+                result.counts += connection.counts;
+                result.attach_attempts += 1;
+                if !connection.is_connected() {
+                    continue;
+                }
+                mine.push(Attached {
+                    component,
+                    node,
+                    connection,
+                });
+                if let Some(j) = theirs.iter().position(|a| a.component == component) {
+                    let m = mine.len() - 1;
+                    return Ok(Some(match side {
+                        Endpoint::Start => (m, j),
+                        Endpoint::Goal => (j, m),
+                    }));
+                }
+            }
+        }
+        Ok(None)
     }
 
     /// A* from node `s` to node `g`: the nodes on the way, both ends included.

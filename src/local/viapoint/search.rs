@@ -599,32 +599,75 @@ impl<'a> Search<'a> {
         }
     }
 
-    /// What was learnt, with identical configurations merged (index 0 the start, 1 the goal).
+    /// What was learnt, with identical configurations merged (index 0 the start, 1 the goal):
+    /// the certified free segments connected to the start or to the goal — the partial
+    /// successes "a → q found while q → z failed" and their mirror images — and the via points
+    /// among their ends. Fragments of failed branches that hang off neither end are left out:
+    /// they would only add components of their own to a roadmap.
     pub fn discoveries(&self) -> Discoveries {
         let (a, z) = (self.pt(0), self.pt(1));
         let mut found = Discoveries::new(a, z);
         if !self.recording {
             return found;
         }
+        // merge identical configurations first: the same corner may be reached by several walks
         let mut index: HashMap<Vec<u64>, u32> = HashMap::new();
         index.insert(key(a), 0);
         index.entry(key(z)).or_insert(1);
-        let mut remap = |found: &mut Discoveries, p: Pt| -> u32 {
-            let q = self.pt(p);
-            *index.entry(key(q)).or_insert_with(|| found.add(q.to_vec()))
-        };
-        let mut seen = std::collections::HashSet::new();
-        for &(i, j) in &self.segments {
-            let (i, j) = (remap(&mut found, i), remap(&mut found, j));
-            if i != j && seen.insert((i.min(j), i.max(j))) {
-                found.free_segments.push((i, j));
+        let mut configs: Vec<Pt> = vec![0, 1];
+        let mut canon = |p: Pt| -> u32 {
+            let k = key(self.pt(p));
+            let next = configs.len() as u32;
+            let id = *index.entry(k).or_insert(next);
+            if id == next {
+                configs.push(p);
             }
+            id
+        };
+        let segments: Vec<(u32, u32)> = self
+            .segments
+            .iter()
+            .map(|&(i, j)| (canon(i), canon(j)))
+            .collect();
+        let vias: Vec<u32> = self.vias_found.iter().map(|&v| canon(v)).collect();
+        // components of the segment graph (union–find)
+        let mut parent: Vec<u32> = (0..configs.len() as u32).collect();
+        fn find(p: &mut [u32], mut x: u32) -> u32 {
+            while p[x as usize] != x {
+                p[x as usize] = p[p[x as usize] as usize];
+                x = p[x as usize];
+            }
+            x
+        }
+        for &(i, j) in &segments {
+            let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
+            parent[ri as usize] = rj;
+        }
+        let (ra, rz) = (find(&mut parent, 0), find(&mut parent, 1));
+        let mut keep = |i: u32| {
+            let r = find(&mut parent, i);
+            r == ra || r == rz
+        };
+        let mut new_index: HashMap<u32, u32> = HashMap::from([(0, 0), (1, 1)]);
+        let mut seen = std::collections::HashSet::new();
+        for (i, j) in segments {
+            if i == j || !keep(i) || !seen.insert((i.min(j), i.max(j))) {
+                continue;
+            }
+            let mut map = |c: u32| {
+                *new_index
+                    .entry(c)
+                    .or_insert_with(|| found.add(self.pt(configs[c as usize]).to_vec()))
+            };
+            let (i, j) = (map(i), map(j));
+            found.free_segments.push((i, j));
         }
         let mut vias_seen = std::collections::HashSet::new();
-        for &v in &self.vias_found {
-            let v = remap(&mut found, v);
-            if vias_seen.insert(v) {
-                found.via_points.push(v);
+        for v in vias {
+            if let Some(&n) = new_index.get(&v) {
+                if n > 1 && vias_seen.insert(n) {
+                    found.via_points.push(n);
+                }
             }
         }
         found
