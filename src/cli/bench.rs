@@ -59,10 +59,7 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     let bar = super::progress_bar(a.problems * rows.len() as u64, "problems");
     let start = std::time::Instant::now();
-    for row in &mut rows {
-        bar.set_message(row.spec.clone());
-        tables::run_row(row, a.problems, a.seed, a.radius, &|| bar.inc(1));
-    }
+    tables::run_rows(&mut rows, a.problems, a.seed, a.radius, &|| bar.inc(1));
     bar.finish_and_clear();
     let md = tables::markdown(&rows);
     println!(
