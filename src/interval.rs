@@ -91,14 +91,18 @@ impl IntervalList {
     pub fn from_unsorted(mut items: Vec<Interval>) -> Self {
         items.retain(|iv| iv.lo <= iv.hi);
         items.sort_unstable_by(|a, b| a.lo.total_cmp(&b.lo));
-        let mut out: Vec<Interval> = Vec::with_capacity(items.len());
-        for iv in items {
-            match out.last_mut() {
-                Some(last) if iv.lo <= last.hi => last.hi = last.hi.max(iv.hi),
-                _ => out.push(iv),
+        // merge in place: `w` is the last interval written
+        let mut w = 0;
+        for r in 1..items.len() {
+            if items[r].lo <= items[w].hi {
+                items[w].hi = items[w].hi.max(items[r].hi);
+            } else {
+                w += 1;
+                items[w] = items[r];
             }
         }
-        IntervalList { items: out }
+        items.truncate((w + 1).min(items.len()));
+        IntervalList { items }
     }
 
     /// The intervals, sorted.
@@ -225,6 +229,18 @@ impl IntervalList {
         IntervalList {
             items: self.items.iter().filter_map(|iv| iv.meet(&range)).collect(),
         }
+    }
+
+    /// [`clip`](Self::clip) in place, keeping the allocation.
+    pub fn into_clipped(mut self, range: Interval) -> IntervalList {
+        self.items.retain_mut(|iv| match iv.meet(&range) {
+            Some(m) => {
+                *iv = m;
+                true
+            }
+            None => false,
+        });
+        self
     }
 
     /// The closures of the gaps of this list within `range`: the *free sections* when this list

@@ -15,6 +15,8 @@ pub struct Discs {
     /// Centres, `dim` coordinates each, flattened.
     centres: Vec<f64>,
     radii: Vec<f64>,
+    /// The planar case laid out for a tight loop: centre x, centre y, squared radius.
+    planar: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
 }
 
 impl Discs {
@@ -23,10 +25,18 @@ impl Discs {
     pub fn new(dim: usize, centres: &[Vec<f64>], radii: &[f64]) -> Discs {
         debug_assert_eq!(centres.len(), radii.len());
         debug_assert!(centres.iter().all(|c| c.len() == dim));
+        let planar = (dim == 2).then(|| {
+            (
+                centres.iter().map(|c| c[0]).collect(),
+                centres.iter().map(|c| c[1]).collect(),
+                radii.iter().map(|r| r * r).collect(),
+            )
+        });
         Discs {
             dim,
             centres: centres.iter().flatten().copied().collect(),
             radii: radii.to_vec(),
+            planar,
         }
     }
 
@@ -61,29 +71,37 @@ impl Discs {
     /// root formula.
     fn for_each_hit(&self, o: &[f64], d: &[f64], mut hit: impl FnMut(f64, f64) -> bool) {
         let a: f64 = d.iter().map(|x| x * x).sum();
-        let n = self.dim;
-        for (c, &r) in self.centres.chunks_exact(n).zip(&self.radii) {
-            let (b, e) = if n == 2 {
-                // the seed's planar case, unrolled
-                let (w0, w1) = (o[0] - c[0], o[1] - c[1]);
-                (d[0] * w0 + d[1] * w1, w0 * w0 + w1 * w1)
-            } else {
-                let (mut b, mut e) = (0.0, 0.0);
-                for k in 0..n {
-                    let w = o[k] - c[k];
-                    b += d[k] * w;
-                    e += w * w;
-                }
-                (b, e)
-            };
-            let e = e - r * r;
+        let mut solve = |b: f64, e: f64| -> bool {
             let disc = b * b - a * e;
             if disc < 0.0 {
-                continue;
+                return true;
             }
             let q = -(b + disc.sqrt().copysign(b));
             let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
-            if !hit(t1.min(t2), t1.max(t2)) {
+            hit(t1.min(t2), t1.max(t2))
+        };
+        if let Some((xs, ys, r2)) = &self.planar {
+            // the seed's planar case: one pass over plain arrays
+            let (o0, o1, d0, d1) = (o[0], o[1], d[0], d[1]);
+            for ((x, y), rr) in xs.iter().zip(ys).zip(r2) {
+                let (w0, w1) = (o0 - x, o1 - y);
+                let b = d0 * w0 + d1 * w1;
+                let e = w0 * w0 + w1 * w1 - rr;
+                if b * b >= a * e && !solve(b, e) {
+                    return;
+                }
+            }
+            return;
+        }
+        let n = self.dim;
+        for (c, &r) in self.centres.chunks_exact(n).zip(&self.radii) {
+            let (mut b, mut e) = (0.0, 0.0);
+            for k in 0..n {
+                let w = o[k] - c[k];
+                b += d[k] * w;
+                e += w * w;
+            }
+            if !solve(b, e - r * r) {
                 return;
             }
         }

@@ -110,6 +110,13 @@ pub trait CollisionOracle: Send + Sync {
     ) -> Result<bool, OracleError> {
         Ok(self.intervals(motion, counts)?.is_empty())
     }
+
+    /// Whether asking about an unbounded range costs no more than asking about a bounded one
+    /// (analytic oracles). [`Bounded`] then asks about the motion as it is instead of a copy
+    /// clipped to the bounds. Default `false`: enveloping needs bounded sweeps.
+    fn prefers_unclipped(&self) -> bool {
+        false
+    }
 }
 
 /// Counting access to an oracle: every question goes through here, so that every call is
@@ -152,65 +159,28 @@ impl<T: CollisionOracle + ?Sized> CountedOracle for T {
     }
 }
 
-impl<T: CollisionOracle + ?Sized> CollisionOracle for &T {
-    fn intervals(
-        &self,
-        motion: &Motion,
-        counts: &mut CallCounts,
-    ) -> Result<IntervalList, OracleError> {
-        (**self).intervals(motion, counts)
-    }
-    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
-        (**self).collides(q, counts)
-    }
-    fn motion_is_free(
-        &self,
-        motion: &Motion,
-        counts: &mut CallCounts,
-    ) -> Result<bool, OracleError> {
-        (**self).motion_is_free(motion, counts)
-    }
+/// References and smart pointers to an oracle are oracles (so that `Box<dyn CollisionOracle>`
+/// and `&dyn CollisionOracle` can be wrapped by [`Bounded`] or [`sampled::Sampled`]).
+macro_rules! forward_oracle {
+    ($($ptr:ty),*) => {$(
+        impl<T: CollisionOracle + ?Sized> CollisionOracle for $ptr {
+            fn intervals(&self, motion: &Motion, counts: &mut CallCounts) -> Result<IntervalList, OracleError> {
+                (**self).intervals(motion, counts)
+            }
+            fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+                (**self).collides(q, counts)
+            }
+            fn motion_is_free(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError> {
+                (**self).motion_is_free(motion, counts)
+            }
+            fn prefers_unclipped(&self) -> bool {
+                (**self).prefers_unclipped()
+            }
+        }
+    )*};
 }
 
-impl<T: CollisionOracle + ?Sized> CollisionOracle for Box<T> {
-    fn intervals(
-        &self,
-        motion: &Motion,
-        counts: &mut CallCounts,
-    ) -> Result<IntervalList, OracleError> {
-        (**self).intervals(motion, counts)
-    }
-    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
-        (**self).collides(q, counts)
-    }
-    fn motion_is_free(
-        &self,
-        motion: &Motion,
-        counts: &mut CallCounts,
-    ) -> Result<bool, OracleError> {
-        (**self).motion_is_free(motion, counts)
-    }
-}
-
-impl<T: CollisionOracle + ?Sized> CollisionOracle for std::sync::Arc<T> {
-    fn intervals(
-        &self,
-        motion: &Motion,
-        counts: &mut CallCounts,
-    ) -> Result<IntervalList, OracleError> {
-        (**self).intervals(motion, counts)
-    }
-    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
-        (**self).collides(q, counts)
-    }
-    fn motion_is_free(
-        &self,
-        motion: &Motion,
-        counts: &mut CallCounts,
-    ) -> Result<bool, OracleError> {
-        (**self).motion_is_free(motion, counts)
-    }
-}
+forward_oracle!(&T, Box<T>, std::sync::Arc<T>);
 
 /// Wraps an oracle so that a position outside the space's bounds counts as obstacle.
 ///
@@ -252,7 +222,11 @@ impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
             // the common case of a segment within the bounds: nothing to add, nothing to clip
             return self.inner.intervals(motion, counts);
         }
-        let hits = self.inner.intervals(&motion.with_range(inside), counts)?;
+        let hits = if self.inner.prefers_unclipped() {
+            self.inner.intervals(motion, counts)?.into_clipped(inside)
+        } else {
+            self.inner.intervals(&motion.with_range(inside), counts)?
+        };
         let mut out = IntervalList::new();
         if inside.lo > motion.range.lo {
             out.push(Interval {

@@ -118,12 +118,19 @@ pub fn borderlines(
 }
 
 /// A via point on a borderline and what it is worth.
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct Candidate {
-    /// The via point (normalised).
-    pub q: Config,
+    /// Parameter of the via point on its borderline.
+    pub t: f64,
     /// `V_β(d, l)`; smaller is better.
     pub value: f64,
+}
+
+/// The via point at parameter `t` of a borderline, normalised.
+pub fn via_point(space: &Space, motion: &Motion, t: f64) -> Config {
+    let mut q = motion.at(t);
+    space.normalize(&mut q);
+    q
 }
 
 /// The free sections of a borderline with collision intervals `collisions`: for a full turn the
@@ -146,23 +153,35 @@ pub fn free_sections(motion: &Motion, collisions: &IntervalList) -> Vec<Interval
 
 /// Via points on one borderline: the centres of its bounded free sections, valued by
 /// `V_β(d, l) = d / l^β` (CHS §1.3). A turn that is free all the way round has no centre; it
-/// offers the quarter and half turns instead.
+/// offers the quarter and half turns instead. `scratch` (one configuration long) saves
+/// allocating a configuration per candidate: only the via points kept become configurations.
 pub fn candidates(
     space: &Space,
     motion: &Motion,
     sections: &[Interval],
     base: &[f64],
     beta: f64,
+    scratch: &mut [f64],
 ) -> Vec<Candidate> {
     let period = motion.range.hi - motion.range.lo;
-    let mut ts: Vec<(f64, f64)> = Vec::new(); // (parameter, section length in t)
+    let mut out = Vec::with_capacity(sections.len());
+    let mut add = |t: f64, len: f64, scratch: &mut [f64]| {
+        motion.write_at(t, scratch);
+        space.normalize(scratch);
+        let d = space.distance(scratch, base);
+        let l = space.motion_length(motion, 0.0, len);
+        let value = if beta == 0.0 { d } else { d / l.powf(beta) };
+        if value.is_finite() {
+            out.push(Candidate { t, value });
+        }
+    };
     for s in sections {
         if !s.is_bounded() || s.hi <= s.lo {
             continue;
         }
         if motion.sweep == Sweep::Turn && s.length() >= period {
             for t in [0.25, -0.25, 0.5] {
-                ts.push((t, period));
+                add(t, period, scratch);
             }
             continue;
         }
@@ -170,19 +189,9 @@ pub fn candidates(
         if motion.sweep == Sweep::Turn && c > motion.range.hi {
             c -= period;
         }
-        ts.push((c, s.length()));
+        add(c, s.length(), scratch);
     }
-    ts.into_iter()
-        .map(|(t, len)| {
-            let mut q = motion.at(t);
-            space.normalize(&mut q);
-            let d = space.distance(&q, base);
-            let l = space.motion_length(motion, 0.0, len);
-            let value = if beta == 0.0 { d } else { d / l.powf(beta) };
-            Candidate { q, value }
-        })
-        .filter(|c| c.value.is_finite())
-        .collect()
+    out
 }
 
 #[cfg(test)]
@@ -200,10 +209,10 @@ mod tests {
         let s = free_sections(&m, &hits);
         assert_eq!(s, vec![Interval { lo: 0.2, hi: 0.9 }]);
         let space = Space::se2([-1.0; 2], [1.0; 2], 1.0).unwrap();
-        let c = candidates(&space, &m, &s, &[0.0, 0.0, 0.0], 0.0);
+        let c = candidates(&space, &m, &s, &[0.0, 0.0, 0.0], 0.0, &mut [0.0; 3]);
         assert_eq!(c.len(), 1);
         // the centre of the joined arc [0.2, 0.9] is 0.55, i.e. t = -0.45 of a turn
-        assert!((c[0].q[2] - (-0.45 * std::f64::consts::TAU)).abs() < 1e-12);
+        assert!((via_point(&space, &m, c[0].t)[2] - (-0.45 * std::f64::consts::TAU)).abs() < 1e-12);
         // the via point is 0.45 of a turn from the base, the short way round: 0.55·2π → 0.45·2π
         assert!((c[0].value - 0.45 * std::f64::consts::TAU).abs() < 1e-9);
     }
@@ -216,9 +225,9 @@ mod tests {
             Interval { lo: 1.0, hi: 3.0 },
             Interval { lo: -9.0, hi: -1.0 },
         ];
-        let close = candidates(&space, &m, &sections, &[0.0, 0.0], 0.0);
+        let close = candidates(&space, &m, &sections, &[0.0, 0.0], 0.0, &mut [0.0; 2]);
         assert!(close[0].value < close[1].value); // β = 0: distance only (2 < 5)
-        let wide = candidates(&space, &m, &sections, &[0.0, 0.0], 2.0);
+        let wide = candidates(&space, &m, &sections, &[0.0, 0.0], 2.0, &mut [0.0; 2]);
         assert!(wide[0].value > wide[1].value); // β = 2: 2/4 > 5/64
     }
 }

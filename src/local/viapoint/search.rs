@@ -15,7 +15,9 @@
 //! millions of subproblems in the worst cases of the seed's experiments, and per-node
 //! allocations used to cost more than the oracle.
 
-use super::borderline::{base_parameter, borderlines, candidates, free_sections, Crossing};
+use super::borderline::{
+    base_parameter, borderlines, candidates, free_sections, via_point, Crossing,
+};
 use super::options::{ViaLimit, ViaPointOptions};
 use crate::interval::IntervalList;
 use crate::local::{Borderline, Discoveries};
@@ -319,15 +321,24 @@ impl<'a> Search<'a> {
             self.nodes[id].rounds_exhausted = true;
             return Ok(false);
         }
-        let mut pool = Vec::new();
-        for (motion, dodge_group) in lines {
+        // (borderline index, candidate); ties keep the order of the borderlines and sections
+        let mut pool: Vec<(usize, usize, f64, f64)> = Vec::new();
+        let mut scratch = std::mem::take(&mut self.buf);
+        for (k, (motion, _)) in lines.iter().enumerate() {
             if self.out_of_budget() {
                 self.budget_hit = true;
                 break;
             }
-            let collisions = self.oracle.intersect(&motion, &mut self.counts)?;
-            let sections = free_sections(&motion, &collisions);
-            let cands = candidates(self.space, &motion, &sections, &base, self.options.beta);
+            let collisions = self.oracle.intersect(motion, &mut self.counts)?;
+            let sections = free_sections(motion, &collisions);
+            let cands = candidates(
+                self.space,
+                motion,
+                &sections,
+                &base,
+                self.options.beta,
+                &mut scratch,
+            );
             if self.options.trace {
                 let blocked = self.nodes[id]
                     .walk
@@ -341,24 +352,34 @@ impl<'a> Search<'a> {
                     base: base.clone(),
                     motion: motion.clone(),
                     free: IntervalList::from_unsorted(sections),
-                    via_points: cands.iter().map(|c| c.q.clone()).collect(),
+                    via_points: cands
+                        .iter()
+                        .map(|c| via_point(self.space, motion, c.t))
+                        .collect(),
                 });
             }
-            pool.extend(cands.into_iter().map(|c| (c, dodge_group)));
+            let n = pool.len();
+            pool.extend(
+                cands
+                    .iter()
+                    .enumerate()
+                    .map(|(j, c)| (k, n + j, c.t, c.value)),
+            );
         }
-        // best first; ties keep the order of the borderlines and sections
-        pool.sort_by(|a, b| a.0.value.total_cmp(&b.0.value));
+        self.buf = scratch;
+        pool.sort_unstable_by(|a, b| a.3.total_cmp(&b.3).then(a.1.cmp(&b.1)));
         if let ViaLimit::Best(k) = self.options.via {
             pool.truncate(k);
         }
-        for (c, dodge_group) in pool {
-            let q = self.push_pt(&c.q);
+        for (k, _, t, _) in pool {
+            let (motion, dodge_group) = &lines[k];
+            let q = self.push_pt(&via_point(self.space, motion, t));
             if self.recording {
                 self.vias_found.push(q);
             }
             self.nodes[id].vias.push(Via {
                 q,
-                group: dodge_group,
+                group: *dodge_group,
                 left: None,
                 right: None,
             });
