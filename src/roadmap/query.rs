@@ -31,8 +31,9 @@ pub struct QueryOptions {
     pub try_direct: bool,
     /// Shorten the path over its corners (CHS A.1).
     pub shorten: bool,
-    /// When an end cannot be attached with the roadmap's own local method, try again to this
-    /// many nearest nodes with the via-point planner searching deeper (at least the depth and
+    /// When the roadmap's own local method can neither connect start and goal directly nor
+    /// attach both, try the direct connection and then this many nearest nodes per end again
+    /// with the via-point planner searching deeper (at least the depth and
     /// call budget of [`ViaPointOptions::default`]). A roadmap is learnt with a shallow, cheap
     /// local method; a query calls it only twice, so it can afford the deep search where the
     /// roadmap did not reach ("the local method can be tuned … to be quite effective in path
@@ -318,6 +319,17 @@ impl<'a> QueryPlanner<'a> {
         )?;
         if meeting.is_none() && self.options.escalation_candidates > 0 {
             if let Some(deep) = &self.escalation {
+                // the deep search straight from start to goal first: one attempt, and the
+                // planner's own strength where the roadmap has not reached (a narrow goal)
+                if self.options.try_direct {
+                    let c = deep.connect(space, self.oracle, &start, &goal)?;
+                    result.counts += c.counts;
+                    if c.is_connected() {
+                        result.outcome = QueryOutcome::Direct;
+                        result.depth = c.depth;
+                        return self.finish(result, c.path);
+                    }
+                }
                 meeting = self.attach(
                     deep.as_ref(),
                     self.options.escalation_candidates,

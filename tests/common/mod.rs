@@ -52,5 +52,26 @@ pub fn check_disc_path(
     Ok(())
 }
 
+/// Conservative advancement over `t ∈ [0, 1]`: a piece `[t₀, t₁]` is certified free when the
+/// clearance at `t₀` exceeds `rate · (t₁ − t₀)`, the farthest any point of the robot can move
+/// on it; uncertified pieces are halved. Fails where the clearance is zero, or where a piece
+/// shorter than 1e-10 still cannot be certified (the robot comes within rounding of touching).
+pub fn certify_by_advancement(rate: f64, clearance_at: impl Fn(f64) -> f64) -> Result<(), String> {
+    let mut stack = vec![(0.0f64, 1.0f64)];
+    while let Some((t0, t1)) = stack.pop() {
+        let d = clearance_at(t0);
+        if d > rate * (t1 - t0) {
+            continue;
+        }
+        if d <= 0.0 || t1 - t0 < 1e-10 {
+            return Err(format!("touches an obstacle near t = {t0} (clearance {d})"));
+        }
+        let m = 0.5 * (t0 + t1);
+        stack.push((m, t1));
+        stack.push((t0, m));
+    }
+    Ok(())
+}
+
 pub mod rigid;
 pub mod rigid2d;

@@ -124,23 +124,8 @@ impl RigidChecker {
             ]
         };
         let rate = dp.norm() + self.robot_radius * angle;
-        let mut stack = vec![(0.0f64, 1.0f64)];
-        while let Some((t0, t1)) = stack.pop() {
-            let q = at(t0);
-            let d = self.clearance(&q);
-            if d > rate * (t1 - t0) {
-                continue;
-            }
-            if d <= 0.0 || t1 - t0 < 1e-10 {
-                return Err(format!(
-                    "touches an obstacle near t = {t0} of {a:?} → {b:?} (clearance {d})"
-                ));
-            }
-            let m = 0.5 * (t0 + t1);
-            stack.push((m, t1));
-            stack.push((t0, m));
-        }
-        Ok(())
+        super::certify_by_advancement(rate, |t| self.clearance(&at(t)))
+            .map_err(|e| format!("{e} of {a:?} → {b:?}"))
     }
 
     /// Certifies a whole path: bounds, containment at the start, every motion.

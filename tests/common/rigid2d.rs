@@ -106,22 +106,8 @@ impl PlanarChecker {
         }
         let rate = dp + self.radius * dt.abs();
         let at = |t: f64| [a[0] + t * dx, a[1] + t * dy, a[2] + t * dt];
-        let mut stack = vec![(0.0f64, 1.0f64)];
-        while let Some((t0, t1)) = stack.pop() {
-            let d = self.clearance(&at(t0));
-            if d > rate * (t1 - t0) {
-                continue;
-            }
-            if d <= 0.0 || t1 - t0 < 1e-10 {
-                return Err(format!(
-                    "touches an obstacle near t = {t0} of {a:?} → {b:?} (clearance {d})"
-                ));
-            }
-            let m = 0.5 * (t0 + t1);
-            stack.push((m, t1));
-            stack.push((t0, m));
-        }
-        Ok(())
+        super::certify_by_advancement(rate, |t| self.clearance(&at(t)))
+            .map_err(|e| format!("{e} of {a:?} → {b:?}"))
     }
 
     /// Certifies a path: position bounds and every motion.
