@@ -285,3 +285,68 @@ fn demo_writes_a_roadmap_and_a_picture() {
     let svg = std::fs::read_to_string(d.join("discs-cluttered.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("<polyline"));
 }
+
+#[test]
+fn probe_reports_intervals_the_independent_check_confirms() {
+    use common::rigid::RigidChecker;
+    let scene = viaroad::scene::Scene::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/ompl/3D/Easy.cfg"),
+    )
+    .unwrap();
+    let checker = RigidChecker::se3(&scene);
+    for (from, to) in [
+        ("270,160,-200,0,0,0,1", "270,160,-400,0,0,0,1"),
+        ("270,160,-200,0,0,0,1", "270,160,-250,0,0,0,1"),
+        (
+            "270,160,-200,0,0,0,1",
+            "270,160,-200,0,0,0.7071067811865476,0.7071067811865476",
+        ),
+    ] {
+        let o = viaroad(&[
+            "probe",
+            "scenes/ompl/3D/Easy.cfg",
+            "--from",
+            from,
+            "--to",
+            to,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+        assert_eq!(v["calls"].as_u64(), Some(1));
+        let ivs = json_path(&v["intervals"]);
+        let parse = |s: &str| {
+            s.split(',')
+                .map(|x| x.parse::<f64>().unwrap())
+                .collect::<Vec<f64>>()
+        };
+        let (a, b) = (parse(from), parse(to));
+        // free exactly when the independent check certifies the whole motion
+        assert_eq!(
+            ivs.is_empty(),
+            checker.certify_motion(&a, &b).is_ok(),
+            "{from} → {to}: {ivs:?}"
+        );
+        for iv in &ivs {
+            assert!(0.0 <= iv[0] && iv[0] <= iv[1] && iv[1] <= 1.0);
+            // the robot collides at the middle of every interval (parry's distance is zero)
+            let space = &scene.space;
+            let m = space.direct_motion(&a, &b).unwrap();
+            assert!(
+                checker.clearance(&m.at(0.5 * (iv[0] + iv[1]))) <= 1e-9,
+                "{from} → {to}: {iv:?}"
+            );
+        }
+    }
+    fails_with(
+        &[
+            "probe",
+            "scenes/ompl/3D/Easy.cfg",
+            "--from",
+            "270,160,-200,0,0,0,1",
+            "--to",
+            "260,160,-200,0,0,1,0",
+        ],
+        "both position and orientation",
+    );
+}
