@@ -120,6 +120,18 @@ impl TriMesh {
             .fold(0.0, f64::max)
     }
 
+    /// Signed volume enclosed (divergence theorem over the triangles): positive for a closed
+    /// mesh with outward (counter-clockwise seen from outside) triangles; meaningless for an
+    /// open one.
+    pub fn volume(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|i| {
+                let [a, b, c] = self.triangle(i);
+                a.coords.dot(&b.coords.cross(&c.coords)) / 6.0
+            })
+            .sum()
+    }
+
     /// Whether the mesh bounds a solid: after setting aside every face that occurs with both
     /// windings (a double-sided sheet, as SketchUp exports every face, bounds nothing), some
     /// faces remain and every oriented edge among them is matched by its reverse as often as it
@@ -168,13 +180,7 @@ mod tests {
         let m = TriMesh::cuboid([1.0, 2.0, 3.0]).unwrap();
         assert!(m.is_closed());
         // outward: the signed volume is positive
-        let vol: f64 = (0..m.triangles.len())
-            .map(|i| {
-                let [a, b, c] = m.triangle(i);
-                a.coords.dot(&b.coords.cross(&c.coords)) / 6.0
-            })
-            .sum();
-        assert!((vol - 48.0).abs() < 1e-12);
+        assert!((m.volume() - 48.0).abs() < 1e-12);
     }
 
     #[test]

@@ -20,7 +20,7 @@
 //! mean of assimp's imported vertices ([`ColladaMesh::assimp_centre`], z zeroed in 2D); for
 //! other formats the mean of the distinct vertices (an approximation of assimp's, which OMPL.app
 //! does not ship). The world is not moved. In 2D both meshes are prisms along z; they become
-//! their xy footprints ([`footprint`]). The rotation scale is the robot's radius about its
+//! their xy footprints ([`crate::oracle::polygons::footprint_polygons`]). The rotation scale is the robot's radius about its
 //! reference point. The scene's one query is (start, goal).
 //!
 //! [`ColladaMesh::assimp_centre`]: super::collada::ColladaMesh::assimp_centre

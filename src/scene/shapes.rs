@@ -145,13 +145,7 @@ mod tests {
             .collect();
         let m = convex_hull_3d(&pts).unwrap();
         assert!(m.is_closed());
-        let vol: f64 = (0..m.triangles.len())
-            .map(|i| {
-                let [a, b, c] = m.triangle(i);
-                a.coords.dot(&b.coords.cross(&c.coords)) / 6.0
-            })
-            .sum();
-        assert!((vol - 1.0).abs() < 1e-9);
+        assert!((m.volume() - 1.0).abs() < 1e-9);
         let flat: Vec<Point3<f64>> = pts.iter().map(|p| Point3::new(p.x, p.y, 0.0)).collect();
         assert!(convex_hull_3d(&flat).is_err());
     }

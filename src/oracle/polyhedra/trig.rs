@@ -244,7 +244,10 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    /// Brute-force membership on a fine grid, with slack around the zeros.
+    /// Brute-force membership on a fine grid, with slack around the zeros. (Regression: the
+    /// slack once widened the forbidden zone instead of narrowing it, so a correct answer whose
+    /// zero lay within 1e-6 of a grid point failed, e.g. α = −2.2167, β = −0.4133,
+    /// γ = −0.5114.)
     fn check(f: Trig) {
         let w = Interval { lo: -PI, hi: PI };
         let set = f.nonneg_in(w);
@@ -260,16 +263,27 @@ mod tests {
                 );
             }
             if v < -1e-9 {
-                let near = set
+                // the set may be slightly larger than the true one (conservative, in favour of
+                // collision), so only a point well inside an interval is wrong
+                let well_inside = set
                     .as_slice()
                     .iter()
-                    .any(|iv| iv.lo - 1e-6 <= phi && phi <= iv.hi + 1e-6);
+                    .any(|iv| iv.lo + 1e-6 < phi && phi < iv.hi - 1e-6);
                 assert!(
-                    !near,
+                    !well_inside,
                     "{f:?}: φ = {phi} has f = {v} < 0 but is inside {set:?}"
                 );
             }
         }
+    }
+
+    #[test]
+    fn zero_near_a_grid_point() {
+        check(Trig {
+            alpha: -2.2166605983332395,
+            beta: -0.4133090059105891,
+            gamma: -0.5113824325021508,
+        });
     }
 
     #[test]
