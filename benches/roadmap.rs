@@ -110,7 +110,7 @@ fn report(scene: &Scene) {
 
     // learning 10 000 nodes, saving, loading
     let params = LearnParams::default();
-    let spec = LocalSpec::default();
+    let spec = LocalSpec::roadmap_default();
     let learnt = learn(&scene, &spec, &params, 10_000, 1);
     let r = &learnt.roadmap;
     let path = scratch("discs-10k.bin");
@@ -166,10 +166,11 @@ fn report(scene: &Scene) {
     );
 
     // how many nodes each variant needs
-    let variants: [(&str, LocalSpec, bool); 3] = [
-        ("default", LocalSpec::default(), true),
+    let variants: [(&str, LocalSpec, bool); 4] = [
+        ("default (viapoint:max=3,calls=1000)", LocalSpec::roadmap_default(), true),
+        ("--local viapoint (depth 6, 5000 calls)", LocalSpec::default(), true),
         ("--local straight", LocalSpec::Straight, true),
-        ("--no-feedback", LocalSpec::default(), false),
+        ("--no-feedback", LocalSpec::roadmap_default(), false),
     ];
     for (name, spec, feedback) in variants {
         let params = LearnParams {
@@ -216,7 +217,7 @@ fn bench_learn(c: &mut Criterion) {
     g.sample_size(10);
     for nodes in [1000, 4000] {
         for (name, spec) in [
-            ("default", LocalSpec::default()),
+            ("default", LocalSpec::roadmap_default()),
             ("straight", LocalSpec::Straight),
         ] {
             g.bench_with_input(BenchmarkId::new(name, nodes), &nodes, |b, &n| {
@@ -231,7 +232,7 @@ fn bench_load_and_query(c: &mut Criterion) {
     let scene = scene();
     let roadmap = learn(
         &scene,
-        &LocalSpec::default(),
+        &LocalSpec::roadmap_default(),
         &LearnParams::default(),
         10_000,
         1,
