@@ -167,8 +167,16 @@ fn report(scene: &Scene) {
 
     // how many nodes each variant needs
     let variants: [(&str, LocalSpec, bool); 4] = [
-        ("default (viapoint:max=3,calls=1000)", LocalSpec::roadmap_default(), true),
-        ("--local viapoint (depth 6, 5000 calls)", LocalSpec::default(), true),
+        (
+            "default (viapoint:max=3,calls=1000)",
+            LocalSpec::roadmap_default(),
+            true,
+        ),
+        (
+            "--local viapoint (depth 6, 5000 calls)",
+            LocalSpec::default(),
+            true,
+        ),
         ("--local straight", LocalSpec::Straight, true),
         ("--no-feedback", LocalSpec::roadmap_default(), false),
     ];
