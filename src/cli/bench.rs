@@ -290,10 +290,19 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     let jobs = plan.jobs();
     let bar = super::progress_bar(jobs.len() as u64, "runs");
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{prefix:>12} [{bar:40}] {pos}/{len} {elapsed_precise} eta {eta} {msg}",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
+    );
+    let label = |job: &RunJob| format!("{} / {} / run {}", job.scene, job.method.label(), job.run);
     let results: Vec<Mutex<Option<Result<RunRecord, String>>>> =
         jobs.iter().map(|_| Mutex::new(None)).collect();
     if a.in_process {
         for (k, job) in jobs.iter().enumerate() {
+            bar.set_message(label(job));
             let (scene, set) = &loaded[plan
                 .scenes
                 .iter()
@@ -312,6 +321,7 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
                 scope.spawn(|| loop {
                     let k = next.fetch_add(1, Ordering::SeqCst);
                     let Some(job) = jobs.get(k) else { break };
+                    bar.set_message(label(job));
                     let r = run_child(job, threads).map_err(|e| format!("{e:#}"));
                     *results[k].lock().expect("no poisoned lock") = Some(r);
                     bar.inc(1);

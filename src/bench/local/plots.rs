@@ -107,7 +107,8 @@ pub fn box_plot(title: &str, y_label: &str, data: &[BoxData]) -> String {
         .flat_map(|d| d.values.iter().copied())
         .filter(|x| x.is_finite())
         .collect();
-    let (w_box, left, right, top, bottom) = (90.0, 90.0, 20.0, 50.0, 170.0);
+    // the right margin leaves room for the last rotated label
+    let (w_box, left, right, top, bottom) = (90.0, 90.0, 150.0, 50.0, 170.0);
     let width = left + right + w_box * data.len().max(1) as f64;
     let height = 480.0;
     let plot_h = height - top - bottom;

@@ -477,8 +477,20 @@ impl Report {
         );
         let _ = writeln!(o, "|{}", "---|".repeat(18));
         for m in &s.methods {
-            let mut ends: Vec<&str> = m.stops.iter().map(|x| x.description()).collect();
-            ends.dedup();
+            let mut ends: Vec<String> = Vec::new();
+            for stop in [
+                RunStop::Target,
+                RunStop::NodeCap,
+                RunStop::TimeLimit,
+                RunStop::Stalled,
+            ] {
+                let n = m.stops.iter().filter(|&&x| x == stop).count();
+                if n == m.stops.len() {
+                    ends.push(stop.description().to_string());
+                } else if n > 0 {
+                    ends.push(format!("{n}× {}", stop.description()));
+                }
+            }
             let _ = writeln!(
                 o,
                 "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {}/{} | {} | {} | {} | {} | {} |",
