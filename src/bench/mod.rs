@@ -2,6 +2,9 @@
 //!
 //! - [`discs`]: the random disc problems of CHS Appendix A.1.3 and the runner that regenerates
 //!   Tables A.1–A.4 ([`tables`]).
+//! - [`local`]: local methods compared inside the same learner on the same scenes and queries
+//!   (time and nodes to 99 % of the queries, Planner Arena database, plots).
 
 pub mod discs;
+pub mod local;
 pub mod tables;

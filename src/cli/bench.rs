@@ -1,9 +1,18 @@
-//! `viaroad bench`: the seed's experiments.
+//! `viaroad bench`: the seed's experiments, and local methods compared inside the same
+//! learner (`bench local`, see [`viaroad::bench::local`]).
 
 use anyhow::Context;
-use clap::{Args, Subcommand};
+use clap::{Args, Subcommand, ValueEnum};
+use std::io::{Read, Write};
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 use viaroad::bench::discs::SEED_RADIUS;
+use viaroad::bench::local::report::SceneInfo;
+use viaroad::bench::local::{
+    machine, plots, sqlite, Method, Plan, QueryChoice, QuerySet, Report, RunJob, RunRecord,
+    SceneReport, SceneSource, Schedule,
+};
 use viaroad::bench::tables;
 
 /// Benchmarks.
@@ -11,6 +20,91 @@ use viaroad::bench::tables;
 pub enum BenchCommand {
     /// Regenerate the seed's Tables A.1–A.4 on random disc problems.
     Discs(DiscsArgs),
+    /// Compare local methods inside the same learner on the same scenes and queries: time and
+    /// nodes to 99 % of the queries, oracle calls, memory; Markdown on stdout, CSV, JSON, an
+    /// SQLite database in OMPL's benchmark schema (Planner Arena) and SVG box plots in --out.
+    Local(BenchLocalArgs),
+    /// One run of `bench local` (internal): reads the job as JSON on stdin and prints the
+    /// record as JSON on stdout.
+    #[command(hide = true)]
+    LocalRun,
+}
+
+/// Feedback of via points for methods without a `+feedback` / `+nofeedback` suffix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FeedbackChoice {
+    /// Feedback on (the default of `LearnParams`).
+    On,
+    /// Feedback off.
+    Off,
+    /// Both variants of every method.
+    Both,
+}
+
+/// Arguments of `bench local`.
+#[derive(Args)]
+pub struct BenchLocalArgs {
+    /// Scenes: TOML or OMPL.app `.cfg` files, or generated discs such as
+    /// `gen:discs:n=200,r=0.035,seed=2026`. Give them before --methods.
+    #[arg(required = true)]
+    pub scenes: Vec<String>,
+    /// Methods: spec strings such as `straight`, `sampled:res=0.01`,
+    /// `viapoint:depth=deepen-reuse,beta=0.667,via=2`, or grids like
+    /// `viapoint:beta=0,0.5,0.667,1`; a suffix `+nofeedback`, `+feedback` or `+both` picks
+    /// the feedback variants of one method.
+    #[arg(long, num_args = 1.., default_values = ["straight", "sampled:res=0.01", "viapoint", "viapoint+nofeedback"])]
+    pub methods: Vec<String>,
+    /// Runs per scene and method (run r learns with seed S + r).
+    #[arg(long, default_value_t = 5)]
+    pub runs: u32,
+    /// Benchmark seed S; also the seed of random query sets.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Directory for summary.md, runs.csv, report.json, results.db and the SVG plots.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Learning-time limit per run in seconds (counts then depend on the machine).
+    #[arg(long)]
+    pub time: Option<f64>,
+    /// Node cap: the last stage of a run.
+    #[arg(long, default_value_t = 10_000)]
+    pub nodes: usize,
+    /// Nodes of the first stage.
+    #[arg(long, default_value_t = 25)]
+    pub first: usize,
+    /// Factor between stages (default √2: two stages per doubling).
+    #[arg(long, default_value_t = std::f64::consts::SQRT_2)]
+    pub growth: f64,
+    /// Size of a random query set (scenes without an OMPL query file).
+    #[arg(long, default_value_t = 100)]
+    pub queries: usize,
+    /// Random queries even for scenes that have an OMPL query file.
+    #[arg(long)]
+    pub random_queries: bool,
+    /// Query pairs from this file for every scene (one pair per line, OMPL's layout).
+    #[arg(long, conflicts_with = "random_queries")]
+    pub query_file: Option<PathBuf>,
+    /// Share of the scored queries at which a run stops.
+    #[arg(long, default_value_t = 0.99)]
+    pub target: f64,
+    /// Queries use the roadmap only: no try of the local method straight from start to goal
+    /// (which the via-point planner often wins on its own).
+    #[arg(long)]
+    pub no_direct: bool,
+    /// Nearest nodes a query tries to attach start and goal to (each side).
+    #[arg(long, default_value_t = viaroad::roadmap::QueryOptions::default().attach_candidates)]
+    pub attach: usize,
+    /// Feedback for methods without a suffix.
+    #[arg(long, value_enum, default_value_t = FeedbackChoice::On)]
+    pub feedback: FeedbackChoice,
+    /// Runs at once, each in its own process with cores / J rayon threads (J > 1: more
+    /// throughput, the same counts, but the runs share the machine, so times are not fair).
+    #[arg(long, default_value_t = 1)]
+    pub jobs: usize,
+    /// Run everything in this process, one run after another (no child processes; the peak
+    /// memory of a run is then measured by resetting the process's high-water mark).
+    #[arg(long)]
+    pub in_process: bool,
 }
 
 /// Arguments of `bench discs`.
@@ -41,6 +135,8 @@ pub struct DiscsArgs {
 pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
     match cmd {
         BenchCommand::Discs(a) => discs(a),
+        BenchCommand::Local(a) => local(a),
+        BenchCommand::LocalRun => local_run(),
     }
 }
 
@@ -91,5 +187,226 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
         "wrote tables.md, tables.csv, tables.json to {}",
         a.out.display()
     );
+    Ok(())
+}
+
+fn local_run() -> anyhow::Result<()> {
+    let mut input = String::new();
+    std::io::stdin()
+        .read_to_string(&mut input)
+        .context("reading the job from stdin")?;
+    let job: RunJob = serde_json::from_str(&input).context("the job is not valid JSON")?;
+    let record = viaroad::bench::local::run_job(&job)?;
+    let mut out = std::io::stdout().lock();
+    serde_json::to_writer(&mut out, &record)?;
+    writeln!(out)?;
+    Ok(())
+}
+
+/// Runs one job in a child process (`viaroad bench local-run`), with `threads` rayon threads
+/// if given.
+fn run_child(job: &RunJob, threads: Option<usize>) -> anyhow::Result<RunRecord> {
+    let exe = std::env::current_exe().context("cannot find the viaroad executable")?;
+    let mut cmd = std::process::Command::new(exe);
+    cmd.args(["bench", "local-run"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped());
+    if let Some(t) = threads {
+        cmd.env("RAYON_NUM_THREADS", t.to_string());
+    }
+    let mut child = cmd.spawn().context("cannot start a child process")?;
+    let input = serde_json::to_vec(job)?;
+    if let Some(mut stdin) = child.stdin.take() {
+        stdin
+            .write_all(&input)
+            .context("writing the job to the child")?;
+    }
+    let output = child.wait_with_output().context("waiting for the child")?;
+    if !output.status.success() {
+        let err = String::from_utf8_lossy(&output.stderr);
+        let line = err
+            .lines()
+            .rev()
+            .find(|l| !l.trim().is_empty())
+            .unwrap_or("no message");
+        anyhow::bail!("{} ({})", line.trim(), output.status);
+    }
+    serde_json::from_slice(&output.stdout).context("the child's record is not valid JSON")
+}
+
+fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let date = machine::utc_now();
+    let began = std::time::Instant::now();
+    let scenes: Vec<SceneSource> = a
+        .scenes
+        .iter()
+        .map(|s| s.parse())
+        .collect::<Result<_, _>>()?;
+    let feedback = match a.feedback {
+        FeedbackChoice::On => Some(true),
+        FeedbackChoice::Off => Some(false),
+        FeedbackChoice::Both => None,
+    };
+    let methods = Method::parse_all(&a.methods, feedback)?;
+    let queries = match (&a.query_file, a.random_queries) {
+        (Some(f), _) => QueryChoice::File(f.clone()),
+        (None, true) => QueryChoice::Random { count: a.queries },
+        (None, false) => QueryChoice::Auto { count: a.queries },
+    };
+    let plan = Plan {
+        scenes,
+        methods,
+        runs: a.runs,
+        seed: a.seed,
+        schedule: Schedule {
+            first: a.first,
+            growth: a.growth,
+            cap: a.nodes,
+        },
+        time_limit: a.time,
+        queries,
+        target: a.target,
+        direct: !a.no_direct,
+        attach: a.attach,
+    };
+    plan.validate()?;
+    if a.jobs == 0 {
+        anyhow::bail!("--jobs must be at least 1");
+    }
+    // load every scene and its query set first: errors show before hours of running
+    let mut loaded = Vec::new();
+    for source in &plan.scenes {
+        let scene = source.load().with_context(|| format!("scene {source}"))?;
+        let set = QuerySet::build(&scene, &plan.queries, plan.seed)
+            .with_context(|| format!("query set of {source}"))?;
+        eprintln!(
+            "{}: {} queries from {} ({} scored, {} apart, {} invalid)",
+            scene.name,
+            set.len(),
+            set.source,
+            set.scored().len(),
+            set.separate().len(),
+            set.invalid().len()
+        );
+        loaded.push((scene, set));
+    }
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("cannot create {}", a.out.display()))?;
+    let jobs = plan.jobs();
+    let bar = super::progress_bar(jobs.len() as u64, "runs");
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{prefix:>12} [{bar:40}] {pos}/{len} {elapsed_precise} eta {eta} {msg}",
+        )
+        .expect("valid template")
+        .progress_chars("=> "),
+    );
+    let label = |job: &RunJob| format!("{} / {} / run {}", job.scene, job.method.label(), job.run);
+    let results: Vec<Mutex<Option<Result<RunRecord, String>>>> =
+        jobs.iter().map(|_| Mutex::new(None)).collect();
+    if a.in_process {
+        for (k, job) in jobs.iter().enumerate() {
+            bar.set_message(label(job));
+            let (scene, set) = &loaded[plan
+                .scenes
+                .iter()
+                .position(|s| *s == job.scene)
+                .unwrap_or(0)];
+            let r = viaroad::bench::local::run_on(scene, set, job).map_err(|e| e.to_string());
+            *results[k].lock().expect("no poisoned lock") = Some(r);
+            bar.inc(1);
+        }
+    } else {
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let threads = (a.jobs > 1).then(|| (cores / a.jobs).max(1));
+        let next = AtomicUsize::new(0);
+        std::thread::scope(|scope| {
+            for _ in 0..a.jobs.min(jobs.len()) {
+                scope.spawn(|| loop {
+                    let k = next.fetch_add(1, Ordering::SeqCst);
+                    let Some(job) = jobs.get(k) else { break };
+                    bar.set_message(label(job));
+                    let r = run_child(job, threads).map_err(|e| format!("{e:#}"));
+                    *results[k].lock().expect("no poisoned lock") = Some(r);
+                    bar.inc(1);
+                });
+            }
+        });
+    }
+    bar.finish_and_clear();
+    let mut failures = Vec::new();
+    let mut records: Vec<RunRecord> = Vec::new();
+    for (job, r) in jobs.iter().zip(results) {
+        match r.into_inner().expect("no poisoned lock") {
+            Some(Ok(rec)) => records.push(rec),
+            Some(Err(e)) => failures.push(format!(
+                "{} / {} / run {}: {e}",
+                job.scene,
+                job.method.label(),
+                job.run
+            )),
+            None => failures.push(format!(
+                "{} / {} / run {}: not run",
+                job.scene,
+                job.method.label(),
+                job.run
+            )),
+        }
+    }
+    let labels: Vec<String> = plan.methods.iter().map(Method::label).collect();
+    let scene_reports = plan
+        .scenes
+        .iter()
+        .zip(&loaded)
+        .map(|(source, (scene, set))| {
+            let src = source.to_string();
+            let runs: Vec<RunRecord> = records
+                .iter()
+                .filter(|r| r.scene_source == src)
+                .cloned()
+                .collect();
+            SceneReport::build(
+                SceneInfo::new(&scene.name, &src, set),
+                &labels,
+                runs,
+                plan.target,
+            )
+        })
+        .collect();
+    let report = Report {
+        date,
+        host: machine::hostname(),
+        cpu: machine::cpu_info(),
+        command,
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        plan,
+        wall_seconds: began.elapsed().as_secs_f64(),
+        scenes: scene_reports,
+        failures,
+    };
+    let md = report.markdown();
+    println!("{md}");
+    let write = |name: &str, text: String| -> anyhow::Result<()> {
+        let p = a.out.join(name);
+        std::fs::write(&p, text).with_context(|| format!("cannot write {}", p.display()))
+    };
+    write("summary.md", md)?;
+    write("runs.csv", report.csv())?;
+    write("report.json", report.json()?)?;
+    sqlite::write_database(&a.out.join("results.db"), &report)?;
+    let svgs = plots::write_plots(&a.out, &report)?;
+    eprintln!(
+        "wrote summary.md, runs.csv, report.json, results.db (OMPL benchmark schema) and {} plots to {}",
+        svgs.len(),
+        a.out.display()
+    );
+    if !report.failures.is_empty() {
+        anyhow::bail!(
+            "{} run(s) failed (listed in summary.md)",
+            report.failures.len()
+        );
+    }
     Ok(())
 }

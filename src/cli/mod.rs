@@ -40,7 +40,7 @@ enum Command {
     Render(render::RenderArgs),
     /// Print the collision intervals of one straight motion (translation or turn).
     Probe(probe::ProbeArgs),
-    /// Benchmarks: the seed's disc experiments (Tables A.1–A.4).
+    /// Benchmarks: the seed's disc experiments (Tables A.1–A.4) and local methods compared.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
 }

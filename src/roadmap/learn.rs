@@ -45,6 +45,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
+use std::ops::ControlFlow;
 use std::time::{Duration, Instant};
 
 /// Why learning could not run.
@@ -361,7 +362,71 @@ impl<'a> Learner<'a> {
         if budget.nodes.is_none() && budget.time.is_none() {
             return Err(LearnError::NoBudget);
         }
+        self.grow(
+            params,
+            &[budget.nodes],
+            budget.time,
+            seed,
+            progress,
+            &mut |_| ControlFlow::Continue(()),
+        )
+    }
+
+    /// Learns in stages of growing node counts, for benchmarks that ask how many nodes (and how
+    /// much time) a roadmap needs: learning runs until the roadmap has `stages[0]` nodes, hands
+    /// a snapshot to `on_stage`, continues with the same graph, round numbering and random
+    /// streams to `stages[1]`, and so on, until `on_stage` breaks, the last stage is reached,
+    /// `time` runs out or learning stalls. `on_stage` sees every stage, the last one included;
+    /// the last snapshot is returned.
+    ///
+    /// Stage `k`'s roadmap is a subgraph of stage `k + 1`'s (nodes and edges are only ever
+    /// added, with the same indices). Rounds near a stage's target are clipped to the nodes
+    /// still missing, as with a node budget, so a stage's roadmap is reproducible from `seed`
+    /// and the stage list but is not the roadmap [`learn`](Self::learn) would give for the same
+    /// node count. The time `on_stage` takes and the time to assemble the snapshots is not
+    /// learning time: [`LearnReport::elapsed`], [`Progress::elapsed`] and the `time` budget
+    /// count learning only.
+    pub fn learn_in_stages(
+        &self,
+        params: &LearnParams,
+        stages: &[usize],
+        time: Option<Duration>,
+        seed: u64,
+        progress: &mut dyn FnMut(&Progress),
+        on_stage: &mut dyn FnMut(&Learnt) -> ControlFlow<()>,
+    ) -> Result<Learnt, LearnError> {
+        if stages.is_empty() {
+            return Err(LearnError::NoBudget);
+        }
+        if stages.windows(2).any(|w| w[0] >= w[1]) {
+            return Err(LearnError::Params(format!(
+                "stages must be strictly increasing node counts, got {stages:?}"
+            )));
+        }
+        let stages: Vec<Option<usize>> = stages.iter().map(|&n| Some(n)).collect();
+        self.grow(params, &stages, time, seed, progress, on_stage)
+    }
+
+    /// The learning loop behind [`learn`](Self::learn) and
+    /// [`learn_in_stages`](Self::learn_in_stages): one stage per node target (`None`: no node
+    /// target, only `time`).
+    fn grow(
+        &self,
+        params: &LearnParams,
+        stages: &[Option<usize>],
+        time: Option<Duration>,
+        seed: u64,
+        progress: &mut dyn FnMut(&Progress),
+        on_stage: &mut dyn FnMut(&Learnt) -> ControlFlow<()>,
+    ) -> Result<Learnt, LearnError> {
+        params.validate().map_err(LearnError::Params)?;
+        let Some(&first) = stages.first() else {
+            return Err(LearnError::NoBudget);
+        };
         let began = Instant::now();
+        // time spent outside learning (snapshots, the caller's stage handler)
+        let mut paused = Duration::ZERO;
+        let learning = |paused: Duration| began.elapsed().saturating_sub(paused);
         let groups = self.local.groups(self.space);
         let mut work = Work {
             space: self.space,
@@ -388,75 +453,102 @@ impl<'a> Learner<'a> {
         // bring dozens of via points and corners, so a full round near the end of a budget
         // would compute many attempts only to throw them away
         let mut nodes_per_candidate = 1.0f64;
-        let stop = loop {
-            if budget.nodes.is_some_and(|n| work.node_count() >= n) {
-                break StopReason::NodeBudget;
-            }
-            if budget.time.is_some_and(|t| began.elapsed() >= t) {
-                break StopReason::TimeBudget;
-            }
-            if stalled >= params.stall_rounds {
-                break StopReason::Stalled;
-            }
-            let before = work.node_count();
-            // slow start (8, 16, 32, … candidates) and never more candidates than the nodes
-            // still missing are expected to need, judged by the last round's yield; both depend
-            // only on earlier results, so the schedule is the same with any thread count
-            let slow_start = 8usize.saturating_mul(1 << rounds.min(16));
-            let size = budget.nodes.map_or(params.round_size, |n| {
-                let missing = n.saturating_sub(before) as f64;
-                ((missing / nodes_per_candidate).ceil() as usize).clamp(1, params.round_size)
-            });
-            let size = size.min(slow_start).max(1);
-            let phase = if params.is_expansion_round(rounds) && before > 0 {
-                self.expansion_round(&mut work, params, budget, (seed, rounds, size))?;
-                expansion_rounds += 1;
-                Phase::Expansion
-            } else {
-                self.construction_round(&mut work, params, budget, (seed, rounds, size))?;
-                construction_rounds += 1;
-                Phase::Construction
+        let (mut stage, mut target) = (0, first);
+        loop {
+            let budget = Budget {
+                nodes: target,
+                time,
             };
-            rounds += 1;
-            nodes_per_candidate = ((work.node_count() - before) as f64 / size as f64).max(1.0);
-            stalled = if work.node_count() > before {
-                0
-            } else {
-                stalled + 1
+            let stop = loop {
+                if budget.nodes.is_some_and(|n| work.node_count() >= n) {
+                    break StopReason::NodeBudget;
+                }
+                if budget.time.is_some_and(|t| learning(paused) >= t) {
+                    break StopReason::TimeBudget;
+                }
+                if stalled >= params.stall_rounds {
+                    break StopReason::Stalled;
+                }
+                let before = work.node_count();
+                // slow start (8, 16, 32, … candidates) and never more candidates than the nodes
+                // still missing are expected to need, judged by the last round's yield; both
+                // depend only on earlier results, so the schedule is the same with any thread
+                // count
+                let slow_start = 8usize.saturating_mul(1 << rounds.min(16));
+                let size = budget.nodes.map_or(params.round_size, |n| {
+                    let missing = n.saturating_sub(before) as f64;
+                    ((missing / nodes_per_candidate).ceil() as usize).clamp(1, params.round_size)
+                });
+                let size = size.min(slow_start).max(1);
+                let phase = if params.is_expansion_round(rounds) && before > 0 {
+                    self.expansion_round(&mut work, params, &budget, (seed, rounds, size))?;
+                    expansion_rounds += 1;
+                    Phase::Expansion
+                } else {
+                    self.construction_round(&mut work, params, &budget, (seed, rounds, size))?;
+                    construction_rounds += 1;
+                    Phase::Construction
+                };
+                rounds += 1;
+                nodes_per_candidate = ((work.node_count() - before) as f64 / size as f64).max(1.0);
+                stalled = if work.node_count() > before {
+                    0
+                } else {
+                    stalled + 1
+                };
+                progress(&Progress {
+                    rounds,
+                    phase,
+                    nodes: work.node_count(),
+                    edges: work.edges.len(),
+                    components: work.components,
+                    node_budget: budget.nodes,
+                    elapsed: learning(paused),
+                    counts: work.counts,
+                });
             };
-            progress(&Progress {
+            let elapsed = learning(paused);
+            let pause = Instant::now();
+            let last = stage + 1 == stages.len() || stop != StopReason::NodeBudget;
+            let header = Header {
+                space: self.space.clone(),
+                fingerprint: self.fingerprint,
+                params: params.clone(),
+                local_spec: self.local.spec(),
+                seed,
+                node_budget: budget.nodes.map(|n| n as u64),
                 rounds,
-                phase,
-                nodes: work.node_count(),
-                edges: work.edges.len(),
-                components: work.components,
-                node_budget: budget.nodes,
-                elapsed: began.elapsed(),
                 counts: work.counts,
-            });
-        };
-        let header = Header {
-            space: self.space.clone(),
-            fingerprint: self.fingerprint,
-            params: params.clone(),
-            local_spec: self.local.spec(),
-            seed,
-            node_budget: budget.nodes.map(|n| n as u64),
-            rounds,
-            counts: work.counts,
-        };
-        let report = LearnReport {
-            rounds,
-            construction_rounds,
-            expansion_rounds,
-            attempts: work.attempts,
-            connected: work.connected,
-            stop,
-            elapsed: began.elapsed(),
-        };
-        let roadmap =
-            Roadmap::assemble(header, work.coords, work.edges).map_err(LearnError::Malformed)?;
-        Ok(Learnt { roadmap, report })
+            };
+            let report = LearnReport {
+                rounds,
+                construction_rounds,
+                expansion_rounds,
+                attempts: work.attempts,
+                connected: work.connected,
+                stop,
+                elapsed,
+            };
+            // the last stage hands over the graph; earlier ones copy it and go on growing
+            let (coords, edges) = if last {
+                (
+                    std::mem::take(&mut work.coords),
+                    std::mem::take(&mut work.edges),
+                )
+            } else {
+                (work.coords.clone(), work.edges.clone())
+            };
+            let roadmap =
+                Roadmap::assemble(header, coords, edges).map_err(LearnError::Malformed)?;
+            let learnt = Learnt { roadmap, report };
+            let flow = on_stage(&learnt);
+            paused += pause.elapsed();
+            if last || flow.is_break() {
+                return Ok(learnt);
+            }
+            stage += 1;
+            target = stages[stage];
+        }
     }
 
     /// Tries the local method from `q` towards `targets` (nearest first), skipping targets in a

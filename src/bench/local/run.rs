@@ -1,0 +1,515 @@
+//! One run of a local-method benchmark: learn in stages, answer the query set after each
+//! stage, stop at the target share, and re-check every returned path with the exact oracle.
+
+use super::machine;
+use super::queries::QuerySet;
+use super::spec::RunJob;
+use super::BenchError;
+use crate::local::direct_pieces;
+use crate::oracle::{CallCounts, CollisionOracle, OracleError};
+use crate::roadmap::{LearnParams, Learner, Learnt, QueryOptions, QueryPlanner, StopReason};
+use crate::scene::Scene;
+use crate::space::{Config, Group, Space};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
+use std::time::{Duration, Instant};
+
+/// Why a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunStop {
+    /// A stage solved the target share of the scored queries.
+    Target,
+    /// The last stage (the node cap) was reached first.
+    NodeCap,
+    /// The learning-time limit ran out.
+    TimeLimit,
+    /// Learning stopped adding nodes.
+    Stalled,
+}
+
+impl RunStop {
+    /// Short description.
+    pub fn description(&self) -> &'static str {
+        match self {
+            RunStop::Target => "target reached",
+            RunStop::NodeCap => "node cap",
+            RunStop::TimeLimit => "time limit",
+            RunStop::Stalled => "stalled",
+        }
+    }
+}
+
+/// The roadmap after one stage and how it answered the scored queries.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StageRecord {
+    /// Nodes.
+    pub nodes: usize,
+    /// Edges.
+    pub edges: usize,
+    /// Connected components.
+    pub components: usize,
+    /// Nodes in the largest component.
+    pub largest_component: usize,
+    /// Learning rounds so far.
+    pub rounds: u64,
+    /// Learning time so far, seconds (query answering excluded).
+    pub learn_seconds: f64,
+    /// Oracle work of learning so far.
+    pub counts: CallCounts,
+    /// Local-method attempts of learning so far.
+    pub attempts: u64,
+    /// Of which connected.
+    pub connected: u64,
+    /// Scored queries solved with a path the exact oracle finds free.
+    pub solved: usize,
+    /// Scored queries the roadmap returned a path for (free or not).
+    pub claimed: usize,
+    /// Returned paths the exact oracle finds colliding.
+    pub invalid_paths: usize,
+    /// Which queries of the set were solved (free path), as a hex bit mask: bit `i % 4` of
+    /// digit `i / 4` is query `i`.
+    pub solved_queries: String,
+    /// Wall time of answering and re-checking the queries, seconds.
+    pub eval_seconds: f64,
+}
+
+/// Everything measured in one run. The summary fields describe the last stage.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunRecord {
+    /// Scene name.
+    pub scene: String,
+    /// Scene as given (file or generator).
+    pub scene_source: String,
+    /// Method label ([`super::Method::label`]).
+    pub method: String,
+    /// Canonical local-method spec.
+    pub local_spec: String,
+    /// Feedback of discoveries.
+    pub feedback: bool,
+    /// Run index.
+    pub run: u32,
+    /// Learning seed.
+    pub seed: u64,
+    /// Rayon threads of the process that ran it.
+    pub threads: usize,
+    /// Queries in the set.
+    pub queries: usize,
+    /// Of which scored.
+    pub scored: usize,
+    /// Of which in the separate group.
+    pub separate: usize,
+    /// Of which invalid (not asked).
+    pub invalid_queries: usize,
+    /// Target share.
+    pub target: f64,
+    /// Queries tried the local method from start to goal first.
+    pub direct: bool,
+    /// Scored queries the target asks for: `⌈target · scored⌉`.
+    pub needed: usize,
+    /// Every stage evaluated, in order.
+    pub stages: Vec<StageRecord>,
+    /// Why the run ended.
+    pub stop: RunStop,
+    /// Learning time at the first stage that reached the target, seconds.
+    pub time_to_target: Option<f64>,
+    /// Nodes at that stage.
+    pub nodes_at_target: Option<usize>,
+    /// Nodes at the end.
+    pub nodes: usize,
+    /// Edges at the end.
+    pub edges: usize,
+    /// Components at the end.
+    pub components: usize,
+    /// Learning time at the end, seconds.
+    pub learn_seconds: f64,
+    /// Oracle work of learning.
+    pub counts: CallCounts,
+    /// Local-method attempts of learning.
+    pub attempts: u64,
+    /// Of which connected.
+    pub connected: u64,
+    /// Scored queries solved at the end (free paths).
+    pub solved: usize,
+    /// Scored queries answered at the end (free or not).
+    pub claimed: usize,
+    /// Returned paths at the end that the exact oracle finds colliding (the shortened paths
+    /// users get).
+    pub invalid_paths: usize,
+    /// Returned paths whose unshortened form collides.
+    pub invalid_raw_paths: usize,
+    /// Separate-group queries solved at the end.
+    pub separate_solved: usize,
+    /// Separate-group queries answered at the end (free or not).
+    pub separate_claimed: usize,
+    /// Median query latency over the scored queries at the end, milliseconds.
+    pub query_p50_ms: f64,
+    /// 95th percentile of the latency, milliseconds.
+    pub query_p95_ms: f64,
+    /// Mean latency, milliseconds.
+    pub query_mean_ms: f64,
+    /// Oracle work of answering the scored queries at the end.
+    pub query_counts: CallCounts,
+    /// Mean length of the solved queries' paths before shortening.
+    pub path_length_raw: Option<f64>,
+    /// Mean length after shortening.
+    pub path_length: Option<f64>,
+    /// Size of the roadmap file (bincode), bytes.
+    pub roadmap_bytes: usize,
+    /// Peak resident set during the run, MiB (see [`machine::peak_rss_mib`]).
+    pub peak_rss_mib: Option<f64>,
+    /// Wall time of the whole run with every evaluation, seconds.
+    pub wall_seconds: f64,
+    /// With [`RunJob::keep_paths`]: the path returned for each query at the end (`None`: not
+    /// answered or not asked).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paths: Option<Vec<Option<Vec<Config>>>>,
+}
+
+/// Whether every piece of `path` (corners joined by direct paths in `groups`, CHS §1.5) is
+/// free under `oracle`: the exact re-check of returned paths.
+pub fn path_is_free(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+) -> Result<bool, OracleError> {
+    let mut counts = CallCounts::default();
+    if path.len() == 1 {
+        return Ok(!oracle.collides(&path[0], &mut counts));
+    }
+    for w in path.windows(2) {
+        for (motion, _) in direct_pieces(space, groups, 0, &w[0], &w[1]) {
+            if !oracle.motion_is_free(&motion, &mut counts)? {
+                return Ok(false);
+            }
+        }
+    }
+    Ok(true)
+}
+
+/// `bits` as hex digits, four queries a digit, lowest index in the lowest bit.
+pub fn bits_to_hex(bits: &[bool]) -> String {
+    bits.chunks(4)
+        .map(|c| {
+            let v = c
+                .iter()
+                .enumerate()
+                .fold(0u32, |v, (k, &b)| v | (u32::from(b) << k));
+            char::from_digit(v, 16).expect("a nibble")
+        })
+        .collect()
+}
+
+/// The inverse of [`bits_to_hex`] for `n` bits (missing digits are zeros, bad digits too).
+pub fn hex_to_bits(hex: &str, n: usize) -> Vec<bool> {
+    let digits: Vec<u32> = hex.chars().map(|c| c.to_digit(16).unwrap_or(0)).collect();
+    (0..n)
+        .map(|i| digits.get(i / 4).is_some_and(|d| d >> (i % 4) & 1 == 1))
+        .collect()
+}
+
+/// Queries a target share asks of `n`: `⌈target · n⌉`, forgiving rounding (0.99 · 100 = 99).
+pub fn target_count(target: f64, n: usize) -> usize {
+    ((target * n as f64) - 1e-9).ceil().max(0.0) as usize
+}
+
+/// Nearest-rank percentile `p` of sorted `values` (0 for none).
+pub fn percentile(sorted: &[f64], p: f64) -> f64 {
+    if sorted.is_empty() {
+        return 0.0;
+    }
+    sorted[((sorted.len() - 1) as f64 * p).round() as usize]
+}
+
+/// How the roadmap answered a list of queries.
+struct Evaluation {
+    /// Per query of the set: solved with a free path.
+    solved: Vec<bool>,
+    valid: usize,
+    claimed: usize,
+    invalid: usize,
+    invalid_raw: usize,
+    latencies: Vec<f64>,
+    raw_lengths: Vec<f64>,
+    lengths: Vec<f64>,
+    counts: CallCounts,
+    seconds: f64,
+    paths: Vec<(usize, Vec<Config>)>,
+}
+
+/// Answers queries `which` of `set` with `planner` and re-checks every returned path with the
+/// exact `oracle`.
+fn evaluate(
+    planner: &QueryPlanner<'_>,
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    set: &QuerySet,
+    which: &[usize],
+    keep_paths: bool,
+) -> Result<Evaluation, BenchError> {
+    let began = Instant::now();
+    let pairs: Vec<(Config, Config)> = which.iter().map(|&i| set.pairs[i].clone()).collect();
+    let answers = planner.query_batch(&pairs);
+    let checked: Vec<Result<_, BenchError>> = answers
+        .into_par_iter()
+        .map(|a| {
+            let r = a.result?;
+            let (ok, raw_ok) = if r.is_solved() {
+                (
+                    path_is_free(space, oracle, groups, &r.path)?,
+                    path_is_free(space, oracle, groups, &r.raw_path)?,
+                )
+            } else {
+                (false, false)
+            };
+            Ok((r, ok, raw_ok, a.elapsed.as_secs_f64()))
+        })
+        .collect();
+    let mut e = Evaluation {
+        solved: vec![false; set.len()],
+        valid: 0,
+        claimed: 0,
+        invalid: 0,
+        invalid_raw: 0,
+        latencies: Vec::with_capacity(which.len()),
+        raw_lengths: Vec::new(),
+        lengths: Vec::new(),
+        counts: CallCounts::default(),
+        seconds: 0.0,
+        paths: Vec::new(),
+    };
+    for (&i, c) in which.iter().zip(checked) {
+        let (r, ok, raw_ok, secs) = c?;
+        e.latencies.push(secs);
+        e.counts += r.counts;
+        if r.is_solved() {
+            e.claimed += 1;
+            e.invalid += usize::from(!ok);
+            e.invalid_raw += usize::from(!raw_ok);
+            if keep_paths {
+                e.paths.push((i, r.path.clone()));
+            }
+        }
+        if ok {
+            e.solved[i] = true;
+            e.valid += 1;
+            e.raw_lengths.push(r.raw_length);
+            e.lengths.push(r.length);
+        }
+    }
+    e.latencies.sort_by(f64::total_cmp);
+    e.seconds = began.elapsed().as_secs_f64();
+    Ok(e)
+}
+
+fn stage_record(l: &Learnt, e: &Evaluation) -> StageRecord {
+    let r = &l.roadmap;
+    StageRecord {
+        nodes: r.node_count(),
+        edges: r.edge_count(),
+        components: r.component_count(),
+        largest_component: r.largest_component(),
+        rounds: l.report.rounds,
+        learn_seconds: l.report.elapsed.as_secs_f64(),
+        counts: r.header().counts,
+        attempts: l.report.attempts,
+        connected: l.report.connected,
+        solved: e.valid,
+        claimed: e.claimed,
+        invalid_paths: e.invalid,
+        solved_queries: bits_to_hex(&e.solved),
+        eval_seconds: e.seconds,
+    }
+}
+
+fn mean(v: &[f64]) -> Option<f64> {
+    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+}
+
+/// Runs `job`: loads (or generates) its scene, builds its query set, and calls [`run_on`].
+pub fn run_job(job: &RunJob) -> Result<RunRecord, BenchError> {
+    let scene = job.scene.load()?;
+    let set = QuerySet::build(&scene, &job.queries, job.query_seed)?;
+    run_on(&scene, &set, job)
+}
+
+/// Runs `job` on a loaded `scene` with its query `set` (the one [`QuerySet::build`] gives for
+/// the job), on the current rayon pool.
+pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, BenchError> {
+    let wall = Instant::now();
+    machine::reset_peak_rss();
+    let oracle = scene.oracle();
+    let local = job.method.local.build();
+    let groups = local.groups(&scene.space);
+    let params = LearnParams {
+        feedback: job.method.feedback,
+        ..LearnParams::default()
+    };
+    let learner = Learner::for_scene(scene, oracle.as_ref(), local.as_ref());
+    let query_options = QueryOptions {
+        try_direct: job.direct,
+        attach_candidates: job.attach.max(1),
+        ..QueryOptions::default()
+    };
+    let scored = set.scored();
+    let needed = target_count(job.target, scored.len());
+    let time = match job.time_limit {
+        Some(t) if t.is_finite() && t > 0.0 => Some(Duration::from_secs_f64(t)),
+        Some(t) => {
+            return Err(BenchError::Invalid(format!(
+                "the time limit must be positive, got {t}"
+            )))
+        }
+        None => None,
+    };
+    let mut stages: Vec<StageRecord> = Vec::new();
+    let mut last: Option<Evaluation> = None;
+    let mut failure: Option<BenchError> = None;
+    let learnt = learner.learn_in_stages(
+        &params,
+        &job.stages,
+        time,
+        job.seed,
+        &mut |_| {},
+        &mut |l| {
+            let eval = QueryPlanner::new(&l.roadmap, oracle.as_ref())
+                .map_err(BenchError::from)
+                .and_then(|planner| {
+                    let planner = planner.with_options(query_options.clone());
+                    evaluate(
+                        &planner,
+                        &scene.space,
+                        oracle.as_ref(),
+                        &groups,
+                        set,
+                        &scored,
+                        job.keep_paths,
+                    )
+                });
+            match eval {
+                Ok(e) => {
+                    stages.push(stage_record(l, &e));
+                    let done = e.valid >= needed;
+                    last = Some(e);
+                    if done {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                }
+                Err(e) => {
+                    failure = Some(e);
+                    ControlFlow::Break(())
+                }
+            }
+        },
+    )?;
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    let (Some(eval), Some(end)) = (last, stages.last().cloned()) else {
+        return Err(BenchError::Invalid(
+            "learning ended before its first stage".into(),
+        ));
+    };
+    let reached = eval.valid >= needed;
+    let stop = if reached {
+        RunStop::Target
+    } else {
+        match learnt.report.stop {
+            StopReason::NodeBudget => RunStop::NodeCap,
+            StopReason::TimeBudget => RunStop::TimeLimit,
+            StopReason::Stalled => RunStop::Stalled,
+        }
+    };
+    // the separate group, once, against the final roadmap
+    let separate = set.separate();
+    let planner = QueryPlanner::new(&learnt.roadmap, oracle.as_ref())?.with_options(query_options);
+    let apart = evaluate(
+        &planner,
+        &scene.space,
+        oracle.as_ref(),
+        &groups,
+        set,
+        &separate,
+        job.keep_paths,
+    )?;
+    let paths = job.keep_paths.then(|| {
+        let mut all: Vec<Option<Vec<Config>>> = vec![None; set.len()];
+        for (i, p) in eval.paths.iter().chain(&apart.paths) {
+            all[*i] = Some(p.clone());
+        }
+        all
+    });
+    let roadmap_bytes = learnt.roadmap.to_bytes()?.len();
+    Ok(RunRecord {
+        scene: scene.name.clone(),
+        scene_source: job.scene.to_string(),
+        method: job.method.label(),
+        local_spec: job.method.local.to_string(),
+        feedback: job.method.feedback,
+        run: job.run,
+        seed: job.seed,
+        threads: rayon::current_num_threads(),
+        queries: set.len(),
+        scored: scored.len(),
+        separate: separate.len(),
+        invalid_queries: set.invalid().len(),
+        target: job.target,
+        direct: job.direct,
+        needed,
+        time_to_target: reached.then_some(end.learn_seconds),
+        nodes_at_target: reached.then_some(end.nodes),
+        stop,
+        nodes: end.nodes,
+        edges: end.edges,
+        components: end.components,
+        learn_seconds: end.learn_seconds,
+        counts: end.counts,
+        attempts: end.attempts,
+        connected: end.connected,
+        solved: eval.valid,
+        claimed: eval.claimed,
+        invalid_paths: eval.invalid + apart.invalid,
+        invalid_raw_paths: eval.invalid_raw + apart.invalid_raw,
+        separate_solved: apart.valid,
+        separate_claimed: apart.claimed,
+        query_p50_ms: 1e3 * percentile(&eval.latencies, 0.5),
+        query_p95_ms: 1e3 * percentile(&eval.latencies, 0.95),
+        query_mean_ms: 1e3 * mean(&eval.latencies).unwrap_or(0.0),
+        query_counts: eval.counts,
+        path_length_raw: mean(&eval.raw_lengths),
+        path_length: mean(&eval.lengths),
+        roadmap_bytes,
+        peak_rss_mib: machine::peak_rss_mib(),
+        wall_seconds: wall.elapsed().as_secs_f64(),
+        stages,
+        paths,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bit_masks_round_trip() {
+        let bits: Vec<bool> = (0..23).map(|i| i % 3 == 0 || i == 22).collect();
+        let hex = bits_to_hex(&bits);
+        assert_eq!(hex.len(), 6);
+        assert_eq!(hex_to_bits(&hex, 23), bits);
+        assert_eq!(bits_to_hex(&[true, false, false, true]), "9");
+        assert_eq!(hex_to_bits("", 3), vec![false; 3]);
+    }
+
+    #[test]
+    fn percentiles_are_nearest_rank() {
+        let v: Vec<f64> = (1..=100).map(f64::from).collect();
+        assert_eq!(percentile(&v, 0.5), 51.0);
+        assert_eq!(percentile(&v, 0.95), 95.0);
+        assert_eq!(percentile(&[], 0.5), 0.0);
+    }
+}
