@@ -350,3 +350,44 @@ fn probe_reports_intervals_the_independent_check_confirms() {
         "both position and orientation",
     );
 }
+
+#[test]
+fn path_out_writes_ompl_state_files_the_independent_check_certifies() {
+    use common::rigid::RigidChecker;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scene = viaroad::scene::Scene::load(&root.join("scenes/ompl/3D/Twistycool.cfg")).unwrap();
+    let d = temp_dir("path-out");
+    let out = d.join("twisty.path");
+    let o = viaroad(&[
+        "solve",
+        "scenes/ompl/3D/Twistycool.cfg",
+        "--path-out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("query 1: solved"), "{}", stdout(&o));
+    // seven numbers per line (x y z qx qy qz qw), read back without the library's reader
+    let text = std::fs::read_to_string(&out).unwrap();
+    let path: Vec<Vec<f64>> = text
+        .lines()
+        .map(|l| l.split(' ').map(|x| x.parse::<f64>().unwrap()).collect())
+        .collect();
+    assert!(path.len() >= 2 && path.iter().all(|q| q.len() == 7));
+    let q = &scene.queries[0];
+    let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9);
+    assert!(close(&path[0], &q.start) && close(path.last().unwrap(), &q.goal));
+    RigidChecker::se3(&scene).certify_path(&path).unwrap();
+
+    // several queries: numbered files, one per solved query
+    let many = d.join("many.path");
+    let o = viaroad(&["solve", CLUTTERED, "--path-out", many.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let solved = stdout(&o).matches(": solved").count();
+    let files = (1..=20)
+        .filter(|k| d.join(format!("many-{k}.path")).exists())
+        .count();
+    assert!(
+        solved >= 2 && files == solved,
+        "{solved} solved, {files} files"
+    );
+}

@@ -52,7 +52,7 @@ pub struct BenchLocalArgs {
     /// `viapoint:depth=deepen-reuse,beta=0.667,via=2`, or grids like
     /// `viapoint:beta=0,0.5,0.667,1`; a suffix `+nofeedback`, `+feedback` or `+both` picks
     /// the feedback variants of one method.
-    #[arg(long, num_args = 1.., default_values = ["straight", "sampled:res=0.01", "viapoint", "viapoint+nofeedback"])]
+    #[arg(long, num_args = 1.., default_values = ["straight", "sampled:res=0.01", "viapoint:max=3,calls=1000+both", "viapoint"])]
     pub methods: Vec<String>,
     /// Runs per scene and method (run r learns with seed S + r).
     #[arg(long, default_value_t = 5)]

@@ -7,6 +7,7 @@ mod demo;
 mod info;
 mod learn_args;
 mod local_args;
+mod path_out;
 mod probe;
 mod query;
 mod render;

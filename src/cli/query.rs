@@ -35,6 +35,10 @@ pub struct QueryArgs {
     /// One JSON object per query on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Write each solved query's path as an OMPL state file (one state per line); several
+    /// queries get `-1`, `-2`, … before the extension.
+    #[arg(long, value_name = "FILE")]
+    pub path_out: Option<PathBuf>,
 }
 
 /// Percentile `p` (0–1) of sorted values.
@@ -139,5 +143,12 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         }
     }
     print_answers(&answers, a.json);
+    if let Some(base) = &a.path_out {
+        for (i, answer) in answers.iter().enumerate() {
+            if let Ok(r) = &answer.result {
+                super::path_out::write(base, i, answers.len(), &r.path)?;
+            }
+        }
+    }
     Ok(())
 }

@@ -19,6 +19,10 @@ pub struct SolveArgs {
     /// One JSON object per query on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Write each solved query's shortened path as an OMPL state file (one state per line);
+    /// several queries get `-1`, `-2`, … before the extension.
+    #[arg(long, value_name = "FILE")]
+    pub path_out: Option<PathBuf>,
 }
 
 /// One solved query, as printed.
@@ -82,6 +86,9 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             &q.goal,
         )?;
         let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal)?;
+        if let Some(base) = &a.path_out {
+            super::path_out::write(base, i, scene.queries.len(), &s.shortened)?;
+        }
         let c = &s.connection;
         if a.json {
             println!(

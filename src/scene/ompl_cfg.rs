@@ -186,6 +186,22 @@ pub fn read_states(path: &Path, space: &Space) -> Result<Vec<Config>, SceneError
     read_rows(path, space, 1).map(|rows| rows.into_iter().map(|mut r| r.remove(0)).collect())
 }
 
+/// Writes states in the layout [`read_states`] reads and OMPL.app's `.path` files use: one state
+/// per line, coordinates separated by spaces, printed so that they read back exactly. A path
+/// written here can be checked by OMPL's own tools (the peer's `check` mode) with no conversion.
+pub fn write_states(path: &Path, states: &[Config]) -> Result<(), SceneError> {
+    let mut text = String::new();
+    for q in states {
+        let row: Vec<String> = q.iter().map(|x| format!("{x:?}")).collect();
+        text.push_str(&row.join(" "));
+        text.push('\n');
+    }
+    std::fs::write(path, text).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Reads query pairs: on each line a start state followed by a goal state (the format of
 /// `scenes/ompl/queries/*.txt`). Normalised like [`read_states`]; validity is up to the caller
 /// ([`Scene::check_config`]).

@@ -345,7 +345,11 @@ fn num(v: Option<f64>) -> String {
         Some(x) if x.abs() >= 1e4 => format!("{:.1}k", x / 1e3),
         Some(x) if x.abs() >= 100.0 || x.fract() == 0.0 => format!("{x:.0}"),
         Some(x) if x.abs() >= 1.0 => format!("{x:.2}"),
-        Some(x) => format!("{x:.3}"),
+        // three significant digits, so millisecond learning times still compare
+        Some(x) => {
+            let decimals = (2 - x.abs().log10().floor() as i32).clamp(3, 6) as usize;
+            format!("{x:.decimals$}")
+        }
     }
 }
 
@@ -631,6 +635,9 @@ mod tests {
         assert_eq!(range(&Stats::of([1.0, 4.0])), "2.50 [1–4]");
         assert_eq!(num(Some(123456.0)), "123.5k");
         assert_eq!(num(None), "—");
+        assert_eq!(num(Some(0.5)), "0.500");
+        assert_eq!(num(Some(0.00123)), "0.00123");
+        assert_eq!(num(Some(1e-9)), "0.000000");
     }
 
     #[test]
