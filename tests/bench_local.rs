@@ -48,6 +48,7 @@ fn tiny_plan(scene: &str, methods: Vec<Method>, runs: u32) -> Plan {
         target: 0.99,
         direct: false,
         attach: 30,
+        escalation: 0,
     }
 }
 

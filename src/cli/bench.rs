@@ -94,6 +94,11 @@ pub struct BenchLocalArgs {
     /// Nearest nodes a query tries to attach start and goal to (each side).
     #[arg(long, default_value_t = viaroad::roadmap::QueryOptions::default().attach_candidates)]
     pub attach: usize,
+    /// Nearest nodes a side a via-point roadmap's query retries with the deep via-point
+    /// planner when the roadmap's own method fails (`viaroad query` uses 3). 0 keeps every
+    /// query to the run's own method, so methods are compared on their roadmaps alone.
+    #[arg(long, default_value_t = 0)]
+    pub escalation: usize,
     /// Feedback for methods without a suffix.
     #[arg(long, value_enum, default_value_t = FeedbackChoice::On)]
     pub feedback: FeedbackChoice,
@@ -270,6 +275,7 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         target: a.target,
         direct: !a.no_direct,
         attach: a.attach,
+        escalation: a.escalation,
     };
     plan.validate()?;
     if a.jobs == 0 {

@@ -406,6 +406,14 @@ impl Report {
                 )
             }
         );
+        let _ = writeln!(
+            o,
+            "{}\n",
+            match p.escalation {
+                0 => "Queries use each run's own local method only (no escalation to the deep via-point planner).".to_string(),
+                n => format!("Via-point roadmaps retry failed queries with the deep via-point planner (up to {n} nearest nodes a side), as `viaroad query` does; other methods do not."),
+            }
+        );
         for s in &self.scenes {
             self.scene_markdown(&mut o, s);
         }

@@ -352,6 +352,7 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
     let query_options = QueryOptions {
         try_direct: job.direct,
         attach_candidates: job.attach.max(1),
+        escalation_candidates: job.escalation,
         ..QueryOptions::default()
     };
     let scored = set.scored();

@@ -304,6 +304,12 @@ pub struct Plan {
     /// Nearest nodes a query tries to attach start and goal to
     /// ([`crate::roadmap::QueryOptions::attach_candidates`]).
     pub attach: usize,
+    /// Nearest nodes a side a via-point roadmap retries with the deep planner when its own
+    /// method fails ([`crate::roadmap::QueryOptions::escalation_candidates`]). 0 (the
+    /// benchmark's default) keeps every query to the run's own local method, so methods are
+    /// compared on what their roadmaps answer; `viaroad query` escalates with 3.
+    #[serde(default)]
+    pub escalation: usize,
 }
 
 impl Plan {
@@ -359,6 +365,7 @@ impl Plan {
                         target: self.target,
                         direct: self.direct,
                         attach: self.attach,
+                        escalation: self.escalation,
                         keep_paths: false,
                     });
                 }
@@ -395,6 +402,9 @@ pub struct RunJob {
     /// Nearest nodes tried for attaching start and goal.
     #[serde(default = "default_attach")]
     pub attach: usize,
+    /// Nearest nodes a side retried with the deep via-point planner (0: none).
+    #[serde(default)]
+    pub escalation: usize,
     /// Keep the paths of the last evaluation in the record (for tests and debugging).
     #[serde(default)]
     pub keep_paths: bool,
