@@ -107,10 +107,22 @@ pub fn box_plot(title: &str, y_label: &str, data: &[BoxData]) -> String {
         .flat_map(|d| d.values.iter().copied())
         .filter(|x| x.is_finite())
         .collect();
-    // the right margin leaves room for the last rotated label
-    let (w_box, left, right, top, bottom) = (90.0, 90.0, 150.0, 50.0, 170.0);
+    // room below and to the right for the labels, written at 35° (about 7 px per character
+    // of 12-px sans-serif): the longest one sets the bottom margin, and each one must end
+    // inside the picture, starting from its own box
+    let label_px = |d: &BoxData| 7.0 * (d.label.chars().count() + 8) as f64;
+    let (cos, sin) = (35f64.to_radians().cos(), 35f64.to_radians().sin());
+    let (w_box, left, top) = (90.0, 90.0, 50.0);
+    let longest = data.iter().map(label_px).fold(0.0, f64::max);
+    let bottom = (longest * sin + 30.0).max(170.0);
+    let overhang = data
+        .iter()
+        .enumerate()
+        .map(|(i, d)| label_px(d) * cos - w_box * (data.len() - i) as f64 + w_box / 2.0)
+        .fold(0.0, f64::max);
+    let right = (overhang + 20.0).max(20.0);
     let width = left + right + w_box * data.len().max(1) as f64;
-    let height = 480.0;
+    let height = top + 260.0 + bottom;
     let plot_h = height - top - bottom;
     let (min, max) = all
         .iter()
