@@ -37,6 +37,14 @@ pub enum SceneError {
         /// Why.
         source: std::io::Error,
     },
+    /// A file (a path written with `--path-out`) cannot be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
     /// The file is not valid TOML / INI / mesh syntax.
     #[error("{path}: {message}")]
     Parse {

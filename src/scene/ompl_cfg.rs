@@ -196,7 +196,7 @@ pub fn write_states(path: &Path, states: &[Config]) -> Result<(), SceneError> {
         text.push_str(&row.join(" "));
         text.push('\n');
     }
-    std::fs::write(path, text).map_err(|source| SceneError::Io {
+    std::fs::write(path, text).map_err(|source| SceneError::Write {
         path: path.to_path_buf(),
         source,
     })
