@@ -390,4 +390,11 @@ fn path_out_writes_ompl_state_files_the_independent_check_certifies() {
         solved >= 2 && files == solved,
         "{solved} solved, {files} files"
     );
+
+    // a path file that cannot be written is its own error, not a panic
+    let nowhere = d.join("no-such-dir").join("p.path");
+    fails_with(
+        &["solve", CLUTTERED, "--path-out", nowhere.to_str().unwrap()],
+        "cannot write",
+    );
 }
