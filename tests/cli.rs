@@ -215,6 +215,44 @@ fn build_query_info_and_their_errors() {
             common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9).unwrap();
         }
     }
+    // the shortening modes: off returns the roadmap path itself, exact is never longer than fast
+    let mode = |m: &str| -> Vec<serde_json::Value> {
+        let o = viaroad(&[
+            "query",
+            &rm,
+            "--scene",
+            CLUTTERED,
+            "--queries",
+            &q,
+            "--json",
+            "--shorten",
+            m,
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect()
+    };
+    let (off, fast, exact) = (mode("off"), mode("fast"), mode("exact"));
+    for ((o, f), e) in off.iter().zip(&fast).zip(&exact) {
+        assert_eq!(o["solved"], f["solved"]);
+        assert_eq!(o["path"], o["shortened"]);
+        assert_eq!(o["length"], o["raw_length"]);
+        if f["solved"].as_bool().unwrap() {
+            let (lf, le) = (f["length"].as_f64().unwrap(), e["length"].as_f64().unwrap());
+            assert!(le <= lf + 1e-9 && lf <= o["length"].as_f64().unwrap() + 1e-9);
+            common::check_disc_path(
+                &json_path(&e["shortened"]),
+                &centres,
+                &radii,
+                &[0.0, 0.0],
+                &[1.0, 1.0],
+                1e-9,
+            )
+            .unwrap();
+        }
+    }
 
     let truncated = d.join("truncated.bin");
     std::fs::write(&truncated, &std::fs::read(&rm).unwrap()[..200]).unwrap();

@@ -274,6 +274,7 @@ fn extreme_parameters_are_harmless() {
             attach_candidates: usize::MAX,
             try_direct: false,
             shorten: true,
+            exact_shortening_limit: usize::MAX,
             escalation_candidates: usize::MAX,
         });
     let (s, g) = random_queries(&scene, 1, 4).remove(0);

@@ -10,7 +10,10 @@ use viaroad::bench::discs::{problem, DiscProblem, GOAL, SEED_RADIUS, START};
 use viaroad::local::viapoint::{
     BasePoint, Depth, Directions, Search, ViaLimit, ViaPoint, ViaPointOptions,
 };
-use viaroad::local::{path_length, shorten, LocalMethod, Outcome, StraightLine};
+use viaroad::local::{
+    check_direct, direct_length, drop_corners, path_length, shorten, LocalMethod, Outcome,
+    StraightLine,
+};
 use viaroad::oracle::discs::Discs;
 use viaroad::oracle::{Bounded, CallCounts};
 use viaroad::space::Space;
@@ -231,6 +234,91 @@ fn shortening_keeps_paths_valid_and_never_longer() {
         assert!(path_length(&space, &groups, &s) <= path_length(&space, &groups, &c.path) + 1e-12);
         assert!(s.len() <= c.path.len());
     }
+}
+
+/// A long path with many blocked pairs: there, back, and there again along a solved path.
+fn there_and_back(path: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let mut long = path.to_vec();
+    long.extend(path.iter().rev().skip(1).cloned());
+    long.extend(path.iter().skip(1).cloned());
+    long
+}
+
+/// The lazy search checks a few pairs, yet returns what the seed's eager construction would:
+/// a shortest path of the full visibility graph (every pair checked, Floyd–Warshall).
+#[test]
+fn shortening_finds_the_shortest_path_of_the_full_visibility_graph() {
+    let space = DiscProblem::space();
+    let groups = space.groups(false);
+    let mut compared = 0;
+    for i in 0..30 {
+        let p = problem(9, i, SEED_RADIUS);
+        let c = solve(&p, seed_options());
+        if !c.is_connected() || c.path.len() < 3 {
+            continue;
+        }
+        let oracle = p.oracle();
+        let long = there_and_back(&c.path);
+        let m = long.len();
+        let mut eager = CallCounts::default();
+        let mut d = vec![vec![f64::INFINITY; m]; m];
+        for a in 0..m {
+            d[a][a] = 0.0;
+            for b in a + 1..m {
+                if check_direct(&space, &oracle, &groups, &long[a], &long[b], &mut eager)
+                    .unwrap()
+                    .is_some()
+                {
+                    let l = direct_length(&space, &groups, &long[a], &long[b]);
+                    (d[a][b], d[b][a]) = (l, l);
+                }
+            }
+        }
+        for k in 0..m {
+            for a in 0..m {
+                for b in 0..m {
+                    d[a][b] = d[a][b].min(d[a][k] + d[k][b]);
+                }
+            }
+        }
+        let mut lazy = CallCounts::default();
+        let s = shorten(&space, &oracle, &groups, &long, &mut lazy).unwrap();
+        check(&p, &s).unwrap_or_else(|e| panic!("problem {i}: {e}"));
+        let got = path_length(&space, &groups, &s);
+        assert!(
+            (got - d[0][m - 1]).abs() < 1e-9,
+            "problem {i}: shortened {got}, shortest {}",
+            d[0][m - 1]
+        );
+        assert!(lazy.intersect_calls() <= eager.intersect_calls());
+        compared += 1;
+    }
+    assert!(compared >= 20, "only {compared} problems compared");
+}
+
+#[test]
+fn dropping_corners_keeps_paths_valid_and_never_longer() {
+    let space = DiscProblem::space();
+    let groups = space.groups(false);
+    let mut dropped = 0;
+    for i in 0..40 {
+        let p = problem(9, i, SEED_RADIUS);
+        let c = solve(&p, seed_options());
+        if !c.is_connected() || c.path.len() < 3 {
+            continue;
+        }
+        let long = there_and_back(&c.path);
+        let mut counts = CallCounts::default();
+        let s = drop_corners(&space, &p.oracle(), &groups, &long, &mut counts).unwrap();
+        check(&p, &s).unwrap_or_else(|e| panic!("problem {i}: {e}"));
+        assert_eq!((s.first(), s.last()), (long.first(), long.last()));
+        assert!(path_length(&space, &groups, &s) <= path_length(&space, &groups, &long) + 1e-12);
+        // at most one check per inner corner, and the turning point at the goal always goes
+        assert!(counts.intersect_calls() as usize <= long.len() - 2);
+        assert!(s.len() < long.len(), "problem {i}: nothing dropped");
+        dropped += long.len() - s.len();
+    }
+    assert!(dropped > 0);
 }
 
 #[test]

@@ -6,7 +6,7 @@ use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
-use viaroad::roadmap::{BatchAnswer, QueryPlanner, Roadmap};
+use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::{ompl_cfg, Scene};
 use viaroad::space::Config;
 
@@ -39,6 +39,22 @@ pub struct QueryArgs {
     /// queries get `-1`, `-2`, … before the extension.
     #[arg(long, value_name = "FILE")]
     pub path_out: Option<PathBuf>,
+    /// Path shortening (CHS A.1): `fast` drops corners greedily on paths of more than 32
+    /// corners before the visibility graph, `exact` builds the visibility graph over every
+    /// corner (shortest, up to m²/2 checks), `off` returns the roadmap path as found.
+    #[arg(long, value_enum, default_value_t = Shortening::Fast)]
+    pub shorten: Shortening,
+}
+
+/// How `query` shortens paths.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Shortening {
+    /// Greedy corner dropping first on long paths, then the visibility graph.
+    Fast,
+    /// The visibility graph over every corner.
+    Exact,
+    /// No shortening.
+    Off,
 }
 
 /// Percentile `p` (0–1) of sorted values.
@@ -128,6 +144,19 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     };
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
+    let defaults = planner.options().clone();
+    let options = match a.shorten {
+        Shortening::Fast => defaults,
+        Shortening::Exact => QueryOptions {
+            exact_shortening_limit: usize::MAX,
+            ..defaults
+        },
+        Shortening::Off => QueryOptions {
+            shorten: false,
+            ..defaults
+        },
+    };
+    let planner = planner.with_options(options);
     if !a.json {
         eprintln!(
             "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms",

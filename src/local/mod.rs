@@ -16,7 +16,7 @@ pub mod spec;
 pub mod straight;
 pub mod viapoint;
 
-pub use shorten::shorten;
+pub use shorten::{drop_corners, shorten};
 pub use spec::LocalSpec;
 pub use straight::StraightLine;
 pub use viapoint::{ViaPoint, ViaPointOptions};
