@@ -459,12 +459,21 @@ impl<'a> QueryPlanner<'a> {
     fn astar(&self, s: u32, g: u32) -> Option<Vec<u32>> {
         let goal = self.roadmap.node(g);
         let space = self.roadmap.space();
+        // each node's estimate once: A* asks again at every improvement of a node's cost, and
+        // an SE(3) distance costs a rotation angle
+        let mut estimate = vec![f64::NAN; self.roadmap.node_count()];
         petgraph::algo::astar(
             self.roadmap.graph(),
             NodeIndex::new(s as usize),
             |n| n.index() == g as usize,
             |e| *e.weight(),
-            |n| space.distance(self.roadmap.node(n.index() as u32), goal),
+            |n| {
+                let h = &mut estimate[n.index()];
+                if h.is_nan() {
+                    *h = space.distance(self.roadmap.node(n.index() as u32), goal);
+                }
+                *h
+            },
         )
         .map(|(_, path)| path.into_iter().map(|n| n.index() as u32).collect())
     }
