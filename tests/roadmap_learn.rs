@@ -273,6 +273,7 @@ fn extreme_parameters_are_harmless() {
         .with_options(viaroad::roadmap::QueryOptions {
             attach_candidates: usize::MAX,
             try_direct: false,
+            direct_calls: 0,
             shorten: true,
             exact_shortening_limit: usize::MAX,
             escalation_candidates: usize::MAX,

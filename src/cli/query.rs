@@ -44,6 +44,10 @@ pub struct QueryArgs {
     /// corner (shortest, up to m²/2 checks), `off` returns the roadmap path as found.
     #[arg(long, value_enum, default_value_t = Shortening::Fast)]
     pub shorten: Shortening,
+    /// Call budget of the quick via-point try from start to goal before the roadmap
+    /// (0: only the direct path is checked).
+    #[arg(long, value_name = "N")]
+    pub direct_calls: Option<u64>,
 }
 
 /// How `query` shortens paths.
@@ -144,7 +148,10 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     };
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
-    let defaults = planner.options().clone();
+    let mut defaults = planner.options().clone();
+    if let Some(n) = a.direct_calls {
+        defaults.direct_calls = n;
+    }
     let options = match a.shorten {
         Shortening::Fast => defaults,
         Shortening::Exact => QueryOptions {
