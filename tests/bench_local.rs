@@ -634,3 +634,30 @@ fn bad_arguments_are_one_line_errors() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A query set with nothing to score is refused: every run would otherwise "reach" its target
+/// share at the first stage.
+#[test]
+fn a_query_set_without_valid_queries_is_refused() {
+    let scene = viaroad::scene::Scene::load(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/discs-example.toml"
+    )))
+    .unwrap();
+    let dir = scratch("no-queries");
+    let empty = dir.join("empty.txt");
+    std::fs::write(&empty, "").unwrap();
+    // the start lies inside the disc at (0.30, 0.40)
+    let colliding = dir.join("colliding.txt");
+    std::fs::write(&colliding, "0.30 0.40 0.5 0.5\n").unwrap();
+    for file in [empty, colliding] {
+        let err = QuerySet::build(&scene, &QueryChoice::File(file.clone()), 1).unwrap_err();
+        assert!(
+            err.to_string().contains("no valid queries"),
+            "{}: {err}",
+            file.display()
+        );
+    }
+    let fine = QuerySet::build(&scene, &QueryChoice::Random { count: 5 }, 1).unwrap();
+    assert_eq!(fine.scored().len(), 5);
+}

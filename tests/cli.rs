@@ -271,6 +271,11 @@ fn build_query_info_and_their_errors() {
         ],
         "another scene",
     );
+    let empty = write(&d, "empty.txt", "");
+    fails_with(
+        &["query", &rm, "--scene", CLUTTERED, "--queries", &empty],
+        "no queries",
+    );
     // a missing flag is a usage error, reported by clap with its usage line and exit code 2
     let o = viaroad(&["query", &rm, "--scene", CLUTTERED, "--from", "0.02,0.98"]);
     assert_eq!(o.status.code(), Some(2));

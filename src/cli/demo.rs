@@ -54,6 +54,9 @@ pub fn random_queries(
 
 /// Runs `demo`.
 pub fn run(a: DemoArgs) -> anyhow::Result<()> {
+    if a.queries == 0 {
+        anyhow::bail!("--queries must be at least 1");
+    }
     let scene = Scene::load(&a.scene).with_context(|| {
         "the demo runs from the repository's root, where scenes/ lives".to_string()
     })?;

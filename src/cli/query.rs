@@ -146,6 +146,10 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             .collect(),
         _ => anyhow::bail!("give either --from and --to, or --queries FILE"),
     };
+    if queries.is_empty() {
+        let file = a.queries.as_deref().unwrap_or(std::path::Path::new("-"));
+        anyhow::bail!("{}: no queries in the file", file.display());
+    }
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
     let mut defaults = planner.options().clone();

@@ -104,14 +104,24 @@ impl QuerySet {
     /// seeded with `seed`.
     pub fn build(scene: &Scene, choice: &QueryChoice, seed: u64) -> Result<QuerySet, BenchError> {
         let oracle = scene.oracle();
-        match choice {
+        let set = match choice {
             QueryChoice::File(path) => Self::from_file(scene, oracle.as_ref(), path),
             QueryChoice::Auto { count } => match ompl_query_file(scene) {
                 Some(path) => Self::from_file(scene, oracle.as_ref(), &path),
                 None => Self::random(scene, oracle.as_ref(), *count, seed),
             },
             QueryChoice::Random { count } => Self::random(scene, oracle.as_ref(), *count, seed),
+        }?;
+        // a run stops at a share of the scored queries: with none, every run would "reach" it
+        // at its first stage
+        if set.scored().is_empty() {
+            return Err(BenchError::Invalid(format!(
+                "{}: no valid queries to score ({} in the set)",
+                set.source,
+                set.len()
+            )));
         }
+        Ok(set)
     }
 
     fn from_file(
