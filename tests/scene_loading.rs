@@ -638,6 +638,15 @@ fn rn_scenes_of_any_dimension() {
         invalid_message("[space]\nkind = \"r3\"\nlower = [0, 0]\nupper = [1, 1]\n")
             .contains("lower has 2 numbers")
     );
+    // a borderline is perpendicular to a motion: R^1 has none, so it is not a scene
+    assert!(
+        invalid_message("[space]\nkind = \"rn\"\nlower = [0]\nupper = [1]\n").contains("needs 2")
+    );
+    assert!(
+        invalid_message("[space]\nkind = \"r1\"\nlower = [0]\nupper = [1]\n")
+            .contains("is not known")
+    );
+    assert!(viaroad::space::Space::euclidean(vec![0.0], vec![1.0]).is_err());
 }
 
 #[test]

@@ -351,16 +351,16 @@ impl Reader<'_> {
         let k = space.kind.as_str();
         Ok(match k {
             "r2" => (Kind::Euclidean, 2),
-            "rn" => (Kind::Euclidean, space.lower.len().max(1)),
+            "rn" => (Kind::Euclidean, space.lower.len().max(2)),
             "se2" => (Kind::Se2, 2),
             "se3" => (Kind::Se3, 3),
             _ => match k.strip_prefix('r').and_then(|d| d.parse::<usize>().ok()) {
-                Some(n) if n >= 1 => (Kind::Euclidean, n),
+                Some(n) if n >= 2 => (Kind::Euclidean, n),
                 _ => {
                     return Err(self.invalid(format!(
-                        "[space] kind = \"{k}\" is not known; expected r2, rn (or r3, r4 …), \
+                    "[space] kind = \"{k}\" is not known; expected r2, rn (or r3, r4 …, n ≥ 2), \
                          se2 or se3"
-                    )))
+                )))
                 }
             },
         })

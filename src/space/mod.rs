@@ -121,8 +121,11 @@ impl Space {
     /// R^n with the box `[lower, upper]`.
     pub fn euclidean(lower: Vec<f64>, upper: Vec<f64>) -> Result<Space, SpaceError> {
         let n = lower.len();
-        if n == 0 {
-            return Err(SpaceError::Bounds("R^n needs n ≥ 1 coordinates".into()));
+        if n < 2 {
+            // a borderline lies perpendicular to a motion: R^1 has no room for one
+            return Err(SpaceError::Bounds(format!(
+                "R^n needs n ≥ 2 coordinates, got {n}"
+            )));
         }
         Space::build(SpaceKind::Euclidean(n), lower, upper, 1.0)
     }
