@@ -10,9 +10,9 @@
 //! a chord is never longer than its arc, and `√(x² + y²) ≤ x + y`), so a radius filter in
 //! embedded space never loses a node that lies within the radius. For R^n the embedding is the
 //! identity and the k nearest are exact; for SE(2) and SE(3) the index fetches more candidates
-//! than asked for and keeps the k nearest of those by the space's distance, which is exact in
-//! all but contrived cases (like OMPL's use of GNAT with an approximate metric, it does not
-//! promise more).
+//! than asked for and re-ranks them by the space's distance; if the k-th of those is farther
+//! than the tree's search reached, a second search within that distance fetches every node
+//! that could beat it, so the k nearest are exact there too.
 
 use crate::space::{Space, SpaceKind};
 use std::cmp::Ordering;
@@ -246,6 +246,47 @@ impl KdTree {
         out.truncate(k);
         out.into_iter().map(|c| (c.dist2.sqrt(), c.id)).collect()
     }
+
+    /// Every point within Euclidean distance `r` of `q` (inclusive), as `(distance, id)` in
+    /// no particular order.
+    pub fn within(&self, q: &[f64], r: f64) -> Vec<(f64, u32)> {
+        let mut out = Vec::new();
+        if self.is_empty() {
+            return out;
+        }
+        let r2 = r * r;
+        let mut stack: Vec<(u32, f64)> = vec![(0, 0.0)];
+        while let Some((n, plane2)) = stack.pop() {
+            if plane2 > r2 {
+                continue;
+            }
+            match &self.nodes[n as usize] {
+                Node::Leaf(items) => {
+                    for &i in items {
+                        let d2 = self.dist2(q, i);
+                        if d2 <= r2 {
+                            out.push((d2.sqrt(), self.ids[i as usize]));
+                        }
+                    }
+                }
+                Node::Split {
+                    axis,
+                    value,
+                    children,
+                } => {
+                    let diff = q[*axis] - value;
+                    let (near, far) = if diff < 0.0 {
+                        (children[0], children[1])
+                    } else {
+                        (children[1], children[0])
+                    };
+                    stack.push((far, plane2.max(diff * diff)));
+                    stack.push((near, plane2));
+                }
+            }
+        }
+        out
+    }
 }
 
 /// Nearest roadmap nodes by the space's distance, through a [`KdTree`] of embeddings.
@@ -310,22 +351,50 @@ impl NearestNeighbours {
         // the radius is widened by a hair so that rounding cannot drop a node at distance
         // exactly `radius` before the exact filter below.
         let embedded = &self.space.embeddings(q)[0];
-        let tree_radius = max_dist * (1.0 + 1e-9) + 1e-12;
-        let mut found: Vec<(u32, f64)> = Vec::with_capacity(wanted);
-        for (_, id) in self
+        let widen = |r: f64| r * (1.0 + 1e-9) + 1e-12;
+        let tree_radius = widen(max_dist);
+        let points = self
             .tree
-            .nearest(embedded, wanted * self.per_node, tree_radius)
-        {
-            if !found.iter().any(|&(j, _)| j == id) {
-                found.push((id, 0.0));
+            .nearest(embedded, wanted * self.per_node, tree_radius);
+        let mut found = self.ranked(q, &points, max_dist, &config);
+        if !exact && points.len() == wanted * self.per_node {
+            // Exact after all: a node nearer than the k-th found (or within the radius, if
+            // fewer were found) lies within that distance in embedded space too (embeddings are
+            // lower bounds), so if the tree stopped short of it, one more search within that
+            // distance fetches every candidate.
+            let bound = if found.len() >= k {
+                found[k - 1].1.min(max_dist)
+            } else {
+                max_dist
+            };
+            let reached = points.last().map_or(0.0, |p| p.0);
+            if bound.is_finite() && reached < bound {
+                let points = self.tree.within(embedded, widen(bound));
+                found = self.ranked(q, &points, max_dist, &config);
             }
         }
-        for f in &mut found {
-            f.1 = self.space.distance(q, config(f.0));
-        }
-        found.retain(|&(_, d)| d <= max_dist);
-        found.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
         found.truncate(k);
+        found
+    }
+
+    /// Distinct nodes among tree `points`, by the space's distance from `q` within `max_dist`,
+    /// nearest first (ties by id).
+    fn ranked<'c>(
+        &self,
+        q: &[f64],
+        points: &[(f64, u32)],
+        max_dist: f64,
+        config: &impl Fn(u32) -> &'c [f64],
+    ) -> Vec<(u32, f64)> {
+        let mut ids: Vec<u32> = points.iter().map(|&(_, id)| id).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        let mut found: Vec<(u32, f64)> = ids
+            .into_iter()
+            .map(|id| (id, self.space.distance(q, config(id))))
+            .filter(|&(_, d)| d <= max_dist)
+            .collect();
+        found.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
         found
     }
 }

@@ -520,8 +520,9 @@ impl Space {
         }
     }
 
-    /// Points for a nearest-neighbour index whose Euclidean distance approximates
-    /// [`distance`](Self::distance): the configuration itself for R^n;
+    /// Points for a nearest-neighbour index whose Euclidean distance is a lower bound of
+    /// [`distance`](Self::distance) (a chord is never longer than its arc, and
+    /// `√(x² + y²) ≤ x + y`): the configuration itself for R^n;
     /// `[x, y, s·cos θ, s·sin θ]` for SE(2); `[x, y, z, 2s·q]` for SE(3), together with the
     /// antipodal `[x, y, z, -2s·q]` because `q ≡ -q` (so SE(3) yields two points).
     pub fn embeddings(&self, q: &[f64]) -> Vec<Vec<f64>> {
