@@ -326,52 +326,19 @@ impl<'a> QueryPlanner<'a> {
             goal_node: None,
             roadmap_nodes: 0,
         };
-        // a quick try first: a via-point roadmap checks the direct path (or runs the planner on
-        // a small call budget), any other roadmap runs its own method, which is such a check
-        let mut quick_blocked = false;
+        // a quick try first (the direct path, or a budgeted via-point search)
+        let mut retry_direct = self.options.try_direct;
         if self.options.try_direct {
-            let quick = match (&self.via, self.options.direct_calls) {
-                (Some(o), budget) if budget > 0 => {
-                    let capped = ViaPoint::new(ViaPointOptions {
-                        max_calls: Some(o.max_calls.map_or(budget, |m| m.min(budget))),
-                        ..o.clone()
-                    });
-                    capped.connect(space, self.oracle, &start, &goal)?
-                }
-                (Some(_), _) => {
-                    let mut counts = CallCounts::default();
-                    let corners =
-                        check_direct(space, self.oracle, &self.groups, &start, &goal, &mut counts)?;
-                    let connected = corners.is_some();
-                    Connection {
-                        outcome: if connected {
-                            Outcome::Connected
-                        } else {
-                            Outcome::DepthExhausted
-                        },
-                        path: corners
-                            .map(|c| std::iter::once(start.clone()).chain(c).collect())
-                            .unwrap_or_default(),
-                        depth: 0,
-                        counts,
-                        discoveries: Default::default(),
-                        borderlines: Vec::new(),
-                    }
-                }
-                (None, _) => {
-                    let c = self.local.connect(space, self.oracle, &start, &goal)?;
-                    // the same method again after the roadmap would fail the same way
-                    quick_blocked = !c.is_connected();
-                    c
-                }
-            };
+            let quick = self.quick_try(&start, &goal)?;
             result.counts += quick.counts;
             if quick.is_connected() {
                 result.outcome = QueryOutcome::Direct;
                 result.depth = quick.depth;
                 return self.finish(result, quick.path);
             }
-            quick_blocked |= quick.outcome == Outcome::Blocked;
+            // the roadmap's method again would fail the same way: it was the quick try, or the
+            // quick search ran out of alternatives before any budget or depth limit
+            retry_direct = self.via.is_some() && quick.outcome != Outcome::Blocked;
         }
         // attach both ends, alternating, one node per component and side; ends the roadmap's
         // method cannot attach get a deeper search to their nearest few nodes
@@ -387,7 +354,7 @@ impl<'a> QueryPlanner<'a> {
         // only where the roadmap cannot join the two ends, the local method from start to goal:
         // across a large scene it mostly fails, and tried first it cost most of a query's time
         // (Home, 32 803 nodes: 25–60 ms of a 30–60 ms answer)
-        if meeting.is_none() && self.options.try_direct && !quick_blocked {
+        if meeting.is_none() && retry_direct {
             let c = self.local.connect(space, self.oracle, &start, &goal)?;
             result.counts += c.counts;
             if c.is_connected() {
@@ -447,6 +414,39 @@ impl<'a> QueryPlanner<'a> {
         }
         raw.extend(g.connection.path.iter().skip(1).cloned());
         self.finish(result, raw)
+    }
+
+    /// The quick try from start to goal before the roadmap: for a via-point roadmap the direct
+    /// path (one exact call per DOF group), or the planner limited to
+    /// [`QueryOptions::direct_calls`]; any other roadmap's method is such a check already.
+    fn quick_try(&self, start: &[f64], goal: &[f64]) -> Result<Connection, QueryError> {
+        let space = self.roadmap.space();
+        let Some(o) = &self.via else {
+            return Ok(self.local.connect(space, self.oracle, start, goal)?);
+        };
+        let budget = self.options.direct_calls;
+        if budget > 0 {
+            let capped = ViaPoint::new(ViaPointOptions {
+                max_calls: Some(o.max_calls.map_or(budget, |m| m.min(budget))),
+                ..o.clone()
+            });
+            return Ok(capped.connect(space, self.oracle, start, goal)?);
+        }
+        let mut counts = CallCounts::default();
+        let corners = check_direct(space, self.oracle, &self.groups, start, goal, &mut counts)?;
+        Ok(Connection {
+            outcome: match corners {
+                Some(_) => Outcome::Connected,
+                None => Outcome::DepthExhausted,
+            },
+            path: corners
+                .map(|c| std::iter::once(start.to_vec()).chain(c).collect())
+                .unwrap_or_default(),
+            depth: 0,
+            counts,
+            discoveries: Default::default(),
+            borderlines: Vec::new(),
+        })
     }
 
     /// Attaches start and goal to their `k` nearest nodes with `method`, alternating sides, one
