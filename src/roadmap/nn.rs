@@ -180,51 +180,20 @@ impl KdTree {
         };
     }
 
-    /// The `k` points nearest to `q` within Euclidean distance `max_dist` (inclusive), as
-    /// `(distance, id)`, nearest first; ties are ordered by id.
-    pub fn nearest(&self, q: &[f64], k: usize, max_dist: f64) -> Vec<(f64, u32)> {
-        let k = k.min(self.len());
-        if k == 0 {
-            return Vec::new();
+    /// Depth-first search for `q`, nearer side first, skipping every cell farther (squared)
+    /// than the bound `leaf` returns after each leaf it is handed (`bound2` before the first).
+    fn search(&self, q: &[f64], bound2: f64, mut leaf: impl FnMut(&[u32]) -> f64) {
+        if self.is_empty() {
+            return;
         }
-        let bound2 = if max_dist.is_finite() {
-            max_dist * max_dist
-        } else {
-            f64::INFINITY
-        };
-        let mut heap: BinaryHeap<Candidate> = BinaryHeap::with_capacity(k + 1);
-        // worst distance still of interest: the bound, or the k-th best found so far
-        let worst = |heap: &BinaryHeap<Candidate>| {
-            if heap.len() < k {
-                bound2
-            } else {
-                heap.peek().map_or(bound2, |c| c.dist2)
-            }
-        };
+        let mut bound2 = bound2;
         let mut stack: Vec<(u32, f64)> = vec![(0, 0.0)];
         while let Some((n, plane2)) = stack.pop() {
-            if plane2 > worst(&heap) {
+            if plane2 > bound2 {
                 continue;
             }
             match &self.nodes[n as usize] {
-                Node::Leaf(items) => {
-                    for &i in items {
-                        let c = Candidate {
-                            dist2: self.dist2(q, i),
-                            id: self.ids[i as usize],
-                            point: i,
-                        };
-                        if c.dist2 > bound2 {
-                            continue;
-                        }
-                        if heap.len() < k {
-                            heap.push(c);
-                        } else if heap.peek().is_some_and(|w| c < *w) {
-                            heap.pop();
-                            heap.push(c);
-                        }
-                    }
-                }
+                Node::Leaf(items) => bound2 = leaf(items),
                 Node::Split {
                     axis,
                     value,
@@ -242,6 +211,45 @@ impl KdTree {
                 }
             }
         }
+    }
+
+    /// The `k` points nearest to `q` within Euclidean distance `max_dist` (inclusive), as
+    /// `(distance, id)`, nearest first; ties are ordered by id.
+    pub fn nearest(&self, q: &[f64], k: usize, max_dist: f64) -> Vec<(f64, u32)> {
+        let k = k.min(self.len());
+        if k == 0 {
+            return Vec::new();
+        }
+        let bound2 = if max_dist.is_finite() {
+            max_dist * max_dist
+        } else {
+            f64::INFINITY
+        };
+        let mut heap: BinaryHeap<Candidate> = BinaryHeap::with_capacity(k + 1);
+        self.search(q, bound2, |items| {
+            for &i in items {
+                let c = Candidate {
+                    dist2: self.dist2(q, i),
+                    id: self.ids[i as usize],
+                    point: i,
+                };
+                if c.dist2 > bound2 {
+                    continue;
+                }
+                if heap.len() < k {
+                    heap.push(c);
+                } else if heap.peek().is_some_and(|w| c < *w) {
+                    heap.pop();
+                    heap.push(c);
+                }
+            }
+            // worst distance still of interest: the bound, or the k-th best found so far
+            if heap.len() < k {
+                bound2
+            } else {
+                heap.peek().map_or(bound2, |c| c.dist2)
+            }
+        });
         let mut out = heap.into_sorted_vec();
         out.truncate(k);
         out.into_iter().map(|c| (c.dist2.sqrt(), c.id)).collect()
@@ -250,41 +258,17 @@ impl KdTree {
     /// Every point within Euclidean distance `r` of `q` (inclusive), as `(distance, id)` in
     /// no particular order.
     pub fn within(&self, q: &[f64], r: f64) -> Vec<(f64, u32)> {
-        let mut out = Vec::new();
-        if self.is_empty() {
-            return out;
-        }
         let r2 = r * r;
-        let mut stack: Vec<(u32, f64)> = vec![(0, 0.0)];
-        while let Some((n, plane2)) = stack.pop() {
-            if plane2 > r2 {
-                continue;
-            }
-            match &self.nodes[n as usize] {
-                Node::Leaf(items) => {
-                    for &i in items {
-                        let d2 = self.dist2(q, i);
-                        if d2 <= r2 {
-                            out.push((d2.sqrt(), self.ids[i as usize]));
-                        }
-                    }
-                }
-                Node::Split {
-                    axis,
-                    value,
-                    children,
-                } => {
-                    let diff = q[*axis] - value;
-                    let (near, far) = if diff < 0.0 {
-                        (children[0], children[1])
-                    } else {
-                        (children[1], children[0])
-                    };
-                    stack.push((far, plane2.max(diff * diff)));
-                    stack.push((near, plane2));
+        let mut out = Vec::new();
+        self.search(q, r2, |items| {
+            for &i in items {
+                let d2 = self.dist2(q, i);
+                if d2 <= r2 {
+                    out.push((d2.sqrt(), self.ids[i as usize]));
                 }
             }
-        }
+            r2
+        });
         out
     }
 }
