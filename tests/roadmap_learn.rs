@@ -276,6 +276,7 @@ fn extreme_parameters_are_harmless() {
             direct_calls: 0,
             shorten: true,
             exact_shortening_limit: usize::MAX,
+            landmarks: 8,
             escalation_candidates: usize::MAX,
         });
     let (s, g) = random_queries(&scene, 1, 4).remove(0);

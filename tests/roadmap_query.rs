@@ -125,45 +125,81 @@ fn every_answer_is_free_and_shortening_never_lengthens() {
 
 /// The roadmap part of a raw path is a shortest path between the attached nodes (A* with an
 /// admissible heuristic equals Dijkstra).
+/// With the space's distance alone and with landmarks, A* finds shortest roadmap paths.
 #[test]
 fn astar_finds_shortest_roadmap_paths() {
     let (scene, roadmap) = scene_and_roadmap(true, 600);
     let oracle = scene.oracle();
-    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
-        .unwrap()
-        .with_options(QueryOptions {
-            try_direct: false,
-            shorten: false,
-            ..QueryOptions::default()
-        });
-    let mut checked = 0;
-    for (s, g) in random_queries(&scene, 60, 3) {
-        let r = planner.query(&s, &g).unwrap();
-        if r.outcome != QueryOutcome::Roadmap {
-            continue;
+    for landmarks in [0, 8] {
+        let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+            .unwrap()
+            .with_options(QueryOptions {
+                try_direct: false,
+                shorten: false,
+                landmarks,
+                ..QueryOptions::default()
+            });
+        let mut checked = 0;
+        for (s, g) in random_queries(&scene, 60, 3) {
+            let r = planner.query(&s, &g).unwrap();
+            if r.outcome != QueryOutcome::Roadmap {
+                continue;
+            }
+            let (a, b) = (r.start_node.unwrap(), r.goal_node.unwrap());
+            assert_eq!(roadmap.component(a), roadmap.component(b));
+            let through = dijkstra(&roadmap, a)[b as usize];
+            // raw = attach(start → a) + roadmap(a → b) + attach(b → goal)
+            let ia = r
+                .raw_path
+                .iter()
+                .position(|q| q == roadmap.node(a))
+                .unwrap();
+            let ib = r
+                .raw_path
+                .iter()
+                .rposition(|q| q == roadmap.node(b))
+                .unwrap();
+            let middle = polyline_length(&r.raw_path[ia..=ib]);
+            assert!(
+                (middle - through).abs() < 1e-9 * (1.0 + through),
+                "landmarks {landmarks}: A* {middle} vs Dijkstra {through}"
+            );
+            checked += 1;
         }
-        let (a, b) = (r.start_node.unwrap(), r.goal_node.unwrap());
-        assert_eq!(roadmap.component(a), roadmap.component(b));
-        let through = dijkstra(&roadmap, a)[b as usize];
-        // raw = attach(start → a) + roadmap(a → b) + attach(b → goal)
-        let ia = r
-            .raw_path
-            .iter()
-            .position(|q| q == roadmap.node(a))
-            .unwrap();
-        let ib = r
-            .raw_path
-            .iter()
-            .rposition(|q| q == roadmap.node(b))
-            .unwrap();
-        let middle = polyline_length(&r.raw_path[ia..=ib]);
-        assert!(
-            (middle - through).abs() < 1e-9 * (1.0 + through),
-            "A* {middle} vs Dijkstra {through}"
-        );
-        checked += 1;
+        assert!(checked > 20, "only {checked} roadmap answers");
     }
-    assert!(checked > 20, "only {checked} roadmap answers");
+}
+
+/// Landmark bounds never exceed the roadmap distance (A* stays exact) and are not idle: they
+/// beat the straight-line distance for many pairs of this cluttered scene.
+#[test]
+fn landmark_bounds_are_lower_bounds() {
+    let (_, roadmap) = scene_and_roadmap(false, 300);
+    let landmarks = viaroad::roadmap::Landmarks::new(&roadmap, 8);
+    assert_eq!(landmarks.len(), 8);
+    let space = roadmap.space();
+    let n = roadmap.node_count() as u32;
+    let mut tighter = 0;
+    for v in (0..n).step_by(7) {
+        let d = dijkstra(&roadmap, v);
+        for g in 0..n {
+            let bound = landmarks.lower_bound(v, g);
+            assert!(
+                bound <= d[g as usize] + 1e-9 * (1.0 + bound),
+                "{v} → {g}: bound {bound} > distance {}",
+                d[g as usize]
+            );
+            if d[g as usize].is_finite()
+                && bound > space.distance(roadmap.node(v), roadmap.node(g)) + 1e-9
+            {
+                tighter += 1;
+            }
+        }
+    }
+    assert!(
+        tighter > 100,
+        "only {tighter} bounds beat the space's distance"
+    );
 }
 
 #[test]

@@ -48,6 +48,10 @@ pub struct QueryArgs {
     /// (0: only the direct path is checked).
     #[arg(long, value_name = "N")]
     pub direct_calls: Option<u64>,
+    /// Landmarks guiding A* (0: the space's distance alone as the heuristic). Default: 8 for a
+    /// batch of queries, 0 for a single one (they cost one graph search each, once).
+    #[arg(long, value_name = "N")]
+    pub landmarks: Option<usize>,
 }
 
 /// How `query` shortens paths.
@@ -155,6 +159,12 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     let mut defaults = planner.options().clone();
     if let Some(n) = a.direct_calls {
         defaults.direct_calls = n;
+    }
+    match a.landmarks {
+        Some(n) => defaults.landmarks = n,
+        // landmarks cost a Dijkstra each, repaid over a batch, not by one query
+        None if queries.len() == 1 => defaults.landmarks = 0,
+        None => {}
     }
     let options = match a.shorten {
         Shortening::Fast => defaults,

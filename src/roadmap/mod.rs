@@ -10,6 +10,7 @@
 //! | [`learn`] | construction and expansion in reproducible parallel rounds |
 //! | [`persist`] | the file: magic, version, header, checksum, atomic save |
 //! | [`query`] | attach, A*, shorten; batches in parallel |
+//! | [`landmarks`] | landmark lower bounds that guide A* around obstacles |
 //! | [`info`] | the summary `viaroad info` prints |
 //!
 //! ```no_run
@@ -39,6 +40,7 @@
 pub mod bounce;
 pub mod graph;
 pub mod info;
+pub mod landmarks;
 pub mod learn;
 pub mod nn;
 pub mod params;
@@ -47,6 +49,7 @@ pub mod query;
 
 pub use graph::{Edge, Roadmap};
 pub use info::RoadmapInfo;
+pub use landmarks::Landmarks;
 pub use learn::{LearnError, LearnReport, Learner, Learnt, Phase, Progress, StopReason};
 pub use nn::{KdTree, NearestNeighbours};
 pub use params::{Budget, LearnParams};

@@ -5,7 +5,8 @@
 //! Otherwise start and goal are *attached*: the local method connects each to its nearest
 //! nodes, nearest first, at most one node per component and side, alternating between the two
 //! sides, until both are attached to one component. A* ([`petgraph::algo::astar()`], with the
-//! space's distance as the admissible heuristic) finds the way through that component, and the
+//! space's distance or a landmark bound as the admissible heuristic, [`super::Landmarks`])
+//! finds the way through that component, and the
 //! path is shortened over its corners (CHS A.1, [`crate::local::shorten()`]; long paths lose
 //! corners greedily first, [`QueryOptions::exact_shortening_limit`]). Only when the roadmap
 //! cannot join the two ends does the local method try start to goal, and then a deeper
@@ -15,6 +16,7 @@
 //! in, and a batch runs in parallel ([`QueryPlanner::query_batch`]).
 
 use super::graph::Roadmap;
+use super::landmarks::Landmarks;
 use super::persist::RoadmapError;
 use crate::local::viapoint::{ViaPoint, ViaPointOptions};
 use crate::local::{
@@ -26,6 +28,7 @@ use petgraph::graph::NodeIndex;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::str::FromStr;
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 /// Knobs of the query phase.
@@ -39,8 +42,8 @@ pub struct QueryOptions {
     /// The call budget of the quick try from start to goal before the roadmap, for via-point
     /// roadmaps: 0 checks the direct path only; `n` runs the via-point planner for at most `n`
     /// intersect calls. Where calls are cheap, the planner often joins random pairs directly
-    /// (80 discs, 10 000 nodes: p50 0.45 → 0.03 ms with 32); where they are dear it mostly fails
-    /// there and the roadmap would have been quicker (OMPL.app's Home: p50 15.5 → 27.5 ms).
+    /// (80 discs, 10 000 nodes: p50 0.27 → 0.035 ms with 32); where they are dear it mostly
+    /// fails there and the roadmap would have been quicker (OMPL.app's Home: p50 12 → 27 ms).
     pub direct_calls: u64,
     /// Shorten the path over its corners (CHS A.1).
     pub shorten: bool,
@@ -51,6 +54,10 @@ pub struct QueryOptions {
     /// (a 32 803-node roadmap, its 50 queries) the default took 2.4× less time and 4.2× fewer
     /// intersect calls than `usize::MAX`, for paths 1.7 % longer on average.
     pub exact_shortening_limit: usize,
+    /// Landmarks for A*'s heuristic ([`super::Landmarks`]): the space's distance, or the
+    /// landmarks' lower bound where it is larger. Computed at the planner's first A* search;
+    /// 0 uses the space's distance alone.
+    pub landmarks: usize,
     /// When the roadmap's own local method can neither connect start and goal directly nor
     /// attach both, try the direct connection and then this many nearest nodes per end again
     /// with the via-point planner searching deeper (at least the depth and
@@ -70,6 +77,7 @@ impl Default for QueryOptions {
             direct_calls: 0,
             shorten: true,
             exact_shortening_limit: 32,
+            landmarks: 8,
             escalation_candidates: 3,
         }
     }
@@ -205,6 +213,7 @@ pub struct QueryPlanner<'a> {
     via: Option<ViaPointOptions>,
     groups: Vec<Group>,
     options: QueryOptions,
+    landmarks: OnceLock<Landmarks>,
 }
 
 /// An attachment of one end to a node.
@@ -259,12 +268,14 @@ impl<'a> QueryPlanner<'a> {
             via,
             groups,
             options: QueryOptions::default(),
+            landmarks: OnceLock::new(),
         })
     }
 
     /// The same planner with other options.
     pub fn with_options(mut self, options: QueryOptions) -> Self {
         self.options = options;
+        self.landmarks = OnceLock::new();
         self
     }
 
@@ -510,6 +521,10 @@ impl<'a> QueryPlanner<'a> {
         // each node's estimate once: A* asks again at every improvement of a node's cost, and
         // an SE(3) distance costs a rotation angle
         let mut estimate = vec![f64::NAN; self.roadmap.node_count()];
+        let landmarks = (self.options.landmarks > 0).then(|| {
+            self.landmarks
+                .get_or_init(|| Landmarks::new(self.roadmap, self.options.landmarks))
+        });
         petgraph::algo::astar(
             self.roadmap.graph(),
             NodeIndex::new(s as usize),
@@ -518,7 +533,11 @@ impl<'a> QueryPlanner<'a> {
             |n| {
                 let h = &mut estimate[n.index()];
                 if h.is_nan() {
-                    *h = space.distance(self.roadmap.node(n.index() as u32), goal);
+                    let v = n.index() as u32;
+                    *h = space.distance(self.roadmap.node(v), goal);
+                    if let Some(l) = landmarks {
+                        *h = h.max(l.lower_bound(v, g));
+                    }
                 }
                 *h
             },
