@@ -44,9 +44,11 @@ fn open_box(centre: [f64; 3], half: [f64; 3]) -> TriMesh {
     m
 }
 
-/// The convex hull of `points`, outward-oriented.
-fn hull(points: &[Point3<f64>]) -> TriMesh {
+/// The convex hull of `points`, outward-oriented; `None` if it is (nearly) flat, which parry
+/// returns as a double-sided polygon (four random points can lie almost in one plane).
+fn try_hull(points: &[Point3<f64>]) -> Option<TriMesh> {
     let (v, mut t) = parry3d_f64::transformation::convex_hull(points);
+    // six times the signed volume
     let vol: f64 = t
         .iter()
         .map(|f| {
@@ -57,9 +59,24 @@ fn hull(points: &[Point3<f64>]) -> TriMesh {
     if vol < 0.0 {
         t.iter_mut().for_each(|f| f.swap(1, 2));
     }
-    let m = TriMesh::new(v, t).unwrap();
+    let m = TriMesh::new(v, t).ok()?;
+    (m.is_closed() && vol.abs() > 1e-9).then_some(m)
+}
+
+fn hull(points: &[Point3<f64>]) -> TriMesh {
+    let m = try_hull(points).expect("a solid hull");
     assert!(m.is_closed());
     m
+}
+
+/// The hull of `n` random points around `centre` (within `size` per axis), drawn again until
+/// it is a solid.
+fn random_solid(rng: &mut ChaCha8Rng, n: usize, centre: [f64; 3], size: f64) -> TriMesh {
+    loop {
+        if let Some(m) = try_hull(&random_points(rng, n, centre, size)) {
+            return m;
+        }
+    }
 }
 
 fn random_points(rng: &mut ChaCha8Rng, n: usize, centre: [f64; 3], size: f64) -> Vec<Point3<f64>> {
@@ -664,14 +681,14 @@ fn convex_scene(rng: &mut ChaCha8Rng) -> (TriMesh, Vec<TriMesh>) {
         return (robot, obstacles);
     }
     let n = rng.random_range(4..12);
-    let robot = hull(&random_points(rng, n, [0.0; 3], 1.0));
+    let robot = random_solid(rng, n, [0.0; 3], 1.0);
     let k = rng.random_range(1..4);
     let obstacles = (0..k)
         .map(|_| {
             let c = [0, 1, 2].map(|_| rng.random_range(-2.5..2.5));
             let n = rng.random_range(4..14);
             let s = rng.random_range(0.3..1.8);
-            hull(&random_points(rng, n, c, s))
+            random_solid(rng, n, c, s)
         })
         .collect();
     (robot, obstacles)
