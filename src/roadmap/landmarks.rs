@@ -20,30 +20,42 @@ pub struct Landmarks {
 }
 
 impl Landmarks {
-    /// Up to `count` landmarks, chosen deterministically: the node farthest from node 0, then
-    /// each time the node farthest from the landmarks chosen so far (within their components).
+    /// About `count` landmarks, chosen deterministically and shared out among the components
+    /// in proportion to their size (a component with fewer than `1/count` of the nodes gets
+    /// none, so at most `2 · count` in all): in each, the node farthest from its first node,
+    /// then each time the node farthest from the landmarks chosen so far.
     pub fn new(roadmap: &Roadmap, count: usize) -> Landmarks {
-        let mut dist: Vec<Vec<f64>> = Vec::with_capacity(count);
-        if roadmap.node_count() == 0 || count == 0 {
+        let mut dist: Vec<Vec<f64>> = Vec::new();
+        let n = roadmap.node_count();
+        if n == 0 || count == 0 {
             return Landmarks { dist };
         }
-        // how far each node is from the landmarks so far (from node 0 to begin with)
-        let mut nearest = dijkstra(roadmap, 0);
-        while dist.len() < count {
-            let far = nearest
-                .iter()
-                .enumerate()
-                .filter(|(_, d)| d.is_finite())
-                .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
-                .map(|(v, _)| v as u32);
-            let Some(far) = far.filter(|&v| nearest[v as usize] > 0.0) else {
-                break;
-            };
-            let d = dijkstra(roadmap, far);
-            for (n, x) in nearest.iter_mut().zip(&d) {
-                *n = n.min(*x);
+        let labels = roadmap.component_labels();
+        for (c, &size) in roadmap.component_sizes().iter().enumerate() {
+            let size = size as usize;
+            if size < 2 || size * count < n {
+                continue;
             }
-            dist.push(d);
+            let share = ((count * size + n / 2) / n).max(1);
+            let first = labels.iter().position(|&l| l as usize == c).unwrap_or(0);
+            // how far each node is from the landmarks so far (from `first` to begin with)
+            let mut nearest = dijkstra(roadmap, first as u32);
+            for _ in 0..share {
+                let far = nearest
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, d)| d.is_finite())
+                    .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
+                    .map(|(v, _)| v as u32);
+                let Some(far) = far.filter(|&v| nearest[v as usize] > 0.0) else {
+                    break;
+                };
+                let d = dijkstra(roadmap, far);
+                for (m, x) in nearest.iter_mut().zip(&d) {
+                    *m = m.min(*x);
+                }
+                dist.push(d);
+            }
         }
         Landmarks { dist }
     }
