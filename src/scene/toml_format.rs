@@ -357,10 +357,10 @@ impl Reader<'_> {
             _ => match k.strip_prefix('r').and_then(|d| d.parse::<usize>().ok()) {
                 Some(n) if n >= 2 => (Kind::Euclidean, n),
                 _ => {
+                    let expected = "r2, rn (or r3, r4 …, n ≥ 2), se2 or se3";
                     return Err(self.invalid(format!(
-                    "[space] kind = \"{k}\" is not known; expected r2, rn (or r3, r4 …, n ≥ 2), \
-                         se2 or se3"
-                )))
+                        "[space] kind = \"{k}\" is not known; expected {expected}"
+                    )));
                 }
             },
         })
