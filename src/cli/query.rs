@@ -150,8 +150,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             .collect(),
         _ => anyhow::bail!("give either --from and --to, or --queries FILE"),
     };
-    if queries.is_empty() {
-        let file = a.queries.as_deref().unwrap_or(std::path::Path::new("-"));
+    if let (true, Some(file)) = (queries.is_empty(), &a.queries) {
         anyhow::bail!("{}: no queries in the file", file.display());
     }
     let oracle = scene.oracle();

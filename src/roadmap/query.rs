@@ -18,9 +18,9 @@
 use super::graph::Roadmap;
 use super::landmarks::Landmarks;
 use super::persist::RoadmapError;
-use crate::local::viapoint::{ViaPoint, ViaPointOptions};
+use crate::local::viapoint::{Depth, ViaPoint, ViaPointOptions};
 use crate::local::{
-    check_direct, drop_corners, path_length, shorten, Connection, LocalMethod, LocalSpec, Outcome,
+    drop_corners, path_length, shorten, Connection, LocalMethod, LocalSpec, Outcome,
 };
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
@@ -427,8 +427,8 @@ impl<'a> QueryPlanner<'a> {
         self.finish(result, raw)
     }
 
-    /// The quick try from start to goal before the roadmap: for a via-point roadmap the direct
-    /// path (one exact call per DOF group), or the planner limited to
+    /// The quick try from start to goal before the roadmap: for a via-point roadmap the planner
+    /// at depth 0 (the direct path, one exact call per DOF group) or limited to
     /// [`QueryOptions::direct_calls`]; any other roadmap's method is such a check already.
     fn quick_try(&self, start: &[f64], goal: &[f64]) -> Result<Connection, QueryError> {
         let space = self.roadmap.space();
@@ -436,28 +436,18 @@ impl<'a> QueryPlanner<'a> {
             return Ok(self.local.connect(space, self.oracle, start, goal)?);
         };
         let budget = self.options.direct_calls;
-        if budget > 0 {
-            let capped = ViaPoint::new(ViaPointOptions {
+        let quick = if budget > 0 {
+            ViaPointOptions {
                 max_calls: Some(o.max_calls.map_or(budget, |m| m.min(budget))),
                 ..o.clone()
-            });
-            return Ok(capped.connect(space, self.oracle, start, goal)?);
-        }
-        let mut counts = CallCounts::default();
-        let corners = check_direct(space, self.oracle, &self.groups, start, goal, &mut counts)?;
-        Ok(Connection {
-            outcome: match corners {
-                Some(_) => Outcome::Connected,
-                None => Outcome::DepthExhausted,
-            },
-            path: corners
-                .map(|c| std::iter::once(start.to_vec()).chain(c).collect())
-                .unwrap_or_default(),
-            depth: 0,
-            counts,
-            discoveries: Default::default(),
-            borderlines: Vec::new(),
-        })
+            }
+        } else {
+            ViaPointOptions {
+                depth: Depth::Fixed(0),
+                ..o.clone()
+            }
+        };
+        Ok(ViaPoint::new(quick).connect(space, self.oracle, start, goal)?)
     }
 
     /// Attaches start and goal to their `k` nearest nodes with `method`, alternating sides, one
