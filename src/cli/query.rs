@@ -177,6 +177,17 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         },
     };
     let planner = planner.with_options(options);
+    let mut path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
+    let answers = planner.query_batch(&queries);
+    if queries.len() == 1 {
+        if let Err(e) = &answers[0].result {
+            anyhow::bail!("{e}");
+        }
+    }
+    // after the errors: a status line must not precede an `error:` line (issue 16)
     if !a.json {
         eprintln!(
             "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms",
@@ -185,19 +196,16 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             roadmap.edge_count()
         );
     }
-    let answers = planner.query_batch(&queries);
-    if queries.len() == 1 {
-        if let Err(e) = &answers[0].result {
-            anyhow::bail!("{e}");
-        }
-    }
     print_answers(&answers, a.json);
-    if let Some(base) = &a.path_out {
+    if let Some(out) = &mut path_out {
         for (i, answer) in answers.iter().enumerate() {
             if let Ok(r) = &answer.result {
-                super::path_out::write(base, i, answers.len(), &r.path)?;
+                out.write(i, &r.path)?;
             }
         }
+    }
+    if let Some(out) = path_out {
+        out.finish();
     }
     Ok(())
 }

@@ -74,6 +74,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     let groups = spec.build().groups(&scene.space);
+    let mut path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, scene.queries.len())?),
+        None => None,
+    };
     for (i, q) in scene.queries.iter().enumerate() {
         let start = scene.check_config(
             oracle.as_ref(),
@@ -86,8 +90,8 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             &q.goal,
         )?;
         let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal)?;
-        if let Some(base) = &a.path_out {
-            super::path_out::write(base, i, scene.queries.len(), &s.shortened)?;
+        if let Some(out) = &mut path_out {
+            out.write(i, &s.shortened)?;
         }
         let c = &s.connection;
         if a.json {
@@ -121,6 +125,9 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
                 c.counts.intersect_calls()
             );
         }
+    }
+    if let Some(out) = path_out {
+        out.finish();
     }
     Ok(())
 }

@@ -79,7 +79,9 @@ impl Group {
 /// Invalid space definitions and configurations.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SpaceError {
-    /// Bounds of the wrong length, NaN, or lower > upper.
+    /// Bounds of the wrong length, NaN, lower > upper, or beyond
+    /// [`crate::limits::MAX_COORDINATE`] (where distances overflow). Zero width (lower = upper)
+    /// is allowed: the space is flat in that coordinate.
     #[error("invalid bounds: {0}")]
     Bounds(String),
     /// A configuration with the wrong number of coordinates.
@@ -173,6 +175,13 @@ impl Space {
             if l > u {
                 return Err(SpaceError::Bounds(format!(
                     "coordinate {i}: lower {l} > upper {u}"
+                )));
+            }
+            // beyond this, widths, distances and their squares overflow (issue 16)
+            let max = crate::limits::MAX_COORDINATE;
+            if l.abs() > max || u.abs() > max {
+                return Err(SpaceError::Bounds(format!(
+                    "coordinate {i}: bounds [{l}, {u}] exceed ±{max:e}, where distances overflow"
                 )));
             }
         }
