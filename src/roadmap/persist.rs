@@ -321,11 +321,19 @@ impl Roadmap {
             .params
             .validate()
             .map_err(|e| RoadmapError::Corrupted(format!("learning parameters: {e}")))?;
-        if let Err(e) = LocalSpec::from_str(&p.header.local_spec) {
-            return Err(RoadmapError::UnknownLocalMethod {
-                spec: p.header.local_spec.clone(),
-                reason: e.reason,
-            });
+        match LocalSpec::from_str(&p.header.local_spec) {
+            Err(e) => {
+                return Err(RoadmapError::UnknownLocalMethod {
+                    spec: p.header.local_spec.clone(),
+                    reason: e.reason,
+                })
+            }
+            Ok(spec) => crate::limits::check_local_spec(&spec).map_err(|reason| {
+                RoadmapError::UnknownLocalMethod {
+                    spec: p.header.local_spec.clone(),
+                    reason,
+                }
+            })?,
         }
         let labels = p.components;
         let roadmap =
