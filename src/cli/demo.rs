@@ -89,6 +89,9 @@ pub fn run(a: DemoArgs) -> anyhow::Result<()> {
         }
         r => r?,
     };
+    // the flags are checked before the first status line, so that none precedes an error
+    a.learn.resolve(1000)?;
+    a.local.spec_or(viaroad::local::LocalSpec::roadmap_default())?;
     let stem = a
         .scene
         .file_stem()

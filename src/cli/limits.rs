@@ -10,7 +10,7 @@ use viaroad::limits::{duration_from_secs, MAX_SECONDS};
 pub fn parse_seconds(flag: &str, seconds: f64) -> anyhow::Result<Duration> {
     duration_from_secs(seconds).ok_or_else(|| {
         anyhow::anyhow!(
-            "{flag} must be a positive number of seconds of at most {MAX_SECONDS:e}, got {seconds}"
+            "{flag} must be a positive number of seconds of at most {MAX_SECONDS:e}, got {seconds:?}"
         )
     })
 }

@@ -71,8 +71,9 @@ impl PathOut {
         };
         if let Ok(entries) = std::fs::read_dir(dir) {
             for e in entries.flatten() {
-                if e.file_name().to_str().is_some_and(|n| is_numbered(base, n)) {
-                    remove(e.path());
+                if let Some(n) = e.file_name().to_str().filter(|n| is_numbered(base, n)) {
+                    // named like file_for's names, so that finish can tell them apart
+                    remove(base.with_file_name(n));
                 }
             }
         }

@@ -173,6 +173,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         warnings,
     };
     super::check_magnitudes(&scene)?;
+    scene.warnings.extend(super::quaternion_warnings(&scene));
     scene.queries = checked_queries(&scene)?;
     Ok(scene)
 }

@@ -163,6 +163,7 @@ pub fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
     };
     let mut scene = reader.scene(file)?;
     super::check_magnitudes(&scene)?;
+    scene.warnings.extend(super::quaternion_warnings(&scene));
     scene.queries = checked_queries(&scene)?;
     Ok(scene)
 }
@@ -304,7 +305,7 @@ impl Reader<'_> {
                 if !(radius.is_finite() && radius <= max) {
                     return Err(self.invalid(format!(
                         "the robot is too large: its radius about its reference point is \
-                         {radius}, more than {max:e}, where distances overflow"
+                         {radius:?}, more than {max:e}, where distances overflow"
                     )));
                 }
                 let scale = match file.space.rotation_scale {

@@ -363,7 +363,7 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
             None => {
                 return Err(BenchError::Invalid(format!(
                     "the time limit must be a positive number of seconds of at most {:e}, \
-                     got {t}",
+                     got {t:?}",
                     crate::limits::MAX_SECONDS
                 )))
             }

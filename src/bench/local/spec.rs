@@ -362,7 +362,7 @@ impl Plan {
             if crate::limits::duration_from_secs(t).is_none() {
                 return Err(BenchError::Invalid(format!(
                     "the time limit must be a positive number of seconds of at most \
-                     {MAX_SECONDS:e}, got {t}"
+                     {MAX_SECONDS:e}, got {t:?}"
                 )));
             }
         }
