@@ -170,6 +170,29 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// Warnings for the scene's SE(3) queries whose quaternion is not of unit length (within
+/// 10⁻⁶): they are normalised, as OMPL's `SO3StateSpace::enforceBounds` does, but a length far
+/// from 1 may be a typo, so it is said rather than corrected silently (issue 16).
+pub(crate) fn quaternion_warnings(scene: &Scene) -> Vec<String> {
+    if scene.space.kind() != SpaceKind::Se3 {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for (i, q) in scene.queries.iter().enumerate() {
+        for (what, c) in [("start", &q.start), ("goal", &q.goal)] {
+            let Some(quat) = c.get(3..7) else { continue };
+            let n = quat.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if n.is_finite() && n >= 1e-9 && (n - 1.0).abs() > 1e-6 {
+                out.push(format!(
+                    "{what} of query {}: quaternion of length {n} normalised to length 1",
+                    i + 1
+                ));
+            }
+        }
+    }
+    out
+}
+
 /// The moving body.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Robot {
