@@ -76,8 +76,18 @@ mod tests {
     #[test]
     fn durations_in_range_only() {
         assert_eq!(duration_from_secs(1.5), Some(Duration::from_millis(1500)));
-        assert_eq!(duration_from_secs(MAX_SECONDS), Some(Duration::from_secs(1_000_000_000)));
-        for bad in [0.0, -1.0, 1e300, f64::INFINITY, f64::NAN, MAX_SECONDS * 1.01] {
+        assert_eq!(
+            duration_from_secs(MAX_SECONDS),
+            Some(Duration::from_secs(1_000_000_000))
+        );
+        for bad in [
+            0.0,
+            -1.0,
+            1e300,
+            f64::INFINITY,
+            f64::NAN,
+            MAX_SECONDS * 1.01,
+        ] {
             assert_eq!(duration_from_secs(bad), None, "{bad}");
         }
     }

@@ -21,7 +21,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
     /// The target exists but is a device, FIFO, socket or directory.
-    #[error("{path} is a {kind}, not a regular file; viaroad reads and replaces regular files only")]
+    #[error(
+        "{path} is a {kind}, not a regular file; viaroad reads and replaces regular files only"
+    )]
     NotRegular {
         /// The file named (or the file its symbolic link leads to).
         path: PathBuf,
@@ -318,7 +320,13 @@ mod tests {
         let t = Path::new("dir/x.bin");
         assert_eq!(temp_owner(t, ".x.bin.123-0.tmp"), Some(123));
         assert_eq!(temp_owner(t, ".x.bin.123-17.tmp"), Some(123));
-        for other in [".x.bin.tmp", ".y.bin.1-0.tmp", ".x.bin.a-0.tmp", ".x.bin.1-.tmp", "x.bin"] {
+        for other in [
+            ".x.bin.tmp",
+            ".y.bin.1-0.tmp",
+            ".x.bin.a-0.tmp",
+            ".x.bin.1-.tmp",
+            "x.bin",
+        ] {
             assert_eq!(temp_owner(t, other), None, "{other}");
         }
         let made = temp_path(t);

@@ -39,7 +39,10 @@ mod tests {
     #[test]
     fn commas_and_spaces_separate_and_empty_fields_are_refused() {
         assert_eq!(parse_config("--from", "0.1,0.2").unwrap(), vec![0.1, 0.2]);
-        assert_eq!(parse_config("--from", " 0.1, 0.2 ").unwrap(), vec![0.1, 0.2]);
+        assert_eq!(
+            parse_config("--from", " 0.1, 0.2 ").unwrap(),
+            vec![0.1, 0.2]
+        );
         assert_eq!(parse_config("--from", "0.1  0.2").unwrap(), vec![0.1, 0.2]);
         for bad in ["0.1,,0.1", ",0.1,0.2", "0.1,0.2,", "", "x"] {
             assert!(parse_config("--from", bad).is_err(), "{bad}");

@@ -9,8 +9,8 @@ use anyhow::Context;
 use clap::Args;
 use rand::SeedableRng;
 use std::path::{Path, PathBuf};
-use viaroad::limits::MAX_QUERIES;
 use std::time::Instant;
+use viaroad::limits::MAX_QUERIES;
 use viaroad::oracle::{CallCounts, CollisionOracle, CountedOracle};
 use viaroad::render::Picture;
 use viaroad::roadmap::{QueryPlanner, Roadmap};
@@ -91,7 +91,8 @@ pub fn run(a: DemoArgs) -> anyhow::Result<()> {
     };
     // the flags are checked before the first status line, so that none precedes an error
     a.learn.resolve(1000)?;
-    a.local.spec_or(viaroad::local::LocalSpec::roadmap_default())?;
+    a.local
+        .spec_or(viaroad::local::LocalSpec::roadmap_default())?;
     let stem = a
         .scene
         .file_stem()

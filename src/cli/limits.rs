@@ -37,7 +37,10 @@ mod tests {
 
     #[test]
     fn seconds_refuse_absurd_values_with_the_flag_named() {
-        assert_eq!(parse_seconds("--time", 2.5).unwrap(), Duration::from_millis(2500));
+        assert_eq!(
+            parse_seconds("--time", 2.5).unwrap(),
+            Duration::from_millis(2500)
+        );
         for bad in [1e300, f64::NAN, -1.0, 0.0, f64::INFINITY] {
             let e = parse_seconds("--time", bad).unwrap_err().to_string();
             assert!(e.starts_with("--time must be"), "{e}");

@@ -111,7 +111,10 @@ impl PathOut {
             .filter(|p| !self.written.contains(p))
             .collect();
         if !stale.is_empty() {
-            eprintln!("removed stale path files of an earlier run: {}", names(&stale));
+            eprintln!(
+                "removed stale path files of an earlier run: {}",
+                names(&stale)
+            );
         }
         eprintln!(
             "{} of {} queries have a path file{}",
@@ -145,7 +148,14 @@ mod tests {
         let b = Path::new("dir/out.path");
         assert!(is_numbered(b, "out-1.path"));
         assert!(is_numbered(b, "out-12.path"));
-        for other in ["out.path", "out-0.path", "out-01.path", "out-x.path", "out-1.txt", "o-1.path"] {
+        for other in [
+            "out.path",
+            "out-0.path",
+            "out-01.path",
+            "out-x.path",
+            "out-1.txt",
+            "o-1.path",
+        ] {
             assert!(!is_numbered(b, other), "{other}");
         }
         assert!(is_numbered(Path::new("p"), "p-3"));

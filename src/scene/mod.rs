@@ -147,7 +147,11 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
     match &scene.robot {
         Robot::Point => {}
         Robot::Polygons(parts) => {
-            if parts.iter().flat_map(|p| &p.vertices).any(|v| big(v.x) || big(v.y)) {
+            if parts
+                .iter()
+                .flat_map(|p| &p.vertices)
+                .any(|v| big(v.x) || big(v.y))
+            {
                 return Err(too_big("the robot".into()));
             }
         }

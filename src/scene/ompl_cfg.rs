@@ -31,11 +31,11 @@ use super::toml_format::{checked_queries, default_name};
 use super::{Obstacle, Query, Robot, Scene, SceneError};
 use crate::geometry::{GeometryError, Polygon};
 use crate::oracle::polygons::footprint_polygons;
+use crate::safe_file::FileError;
 use crate::space::rotation::{ompl_axis_angle, wrap_angle};
 use crate::space::{Config, Space};
 use nalgebra::Vector3;
 use std::collections::HashMap;
-use crate::safe_file::FileError;
 use std::path::Path;
 
 /// Loads an OMPL.app problem (see the module documentation).

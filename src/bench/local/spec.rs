@@ -276,8 +276,8 @@ impl Schedule {
         }
         // stages are counted before they are listed: a growth of 1 + 1e-15 would list
         // billions of them
-        let count = ((self.cap as f64).ln() - (self.first.min(self.cap) as f64).ln())
-            / self.growth.ln();
+        let count =
+            ((self.cap as f64).ln() - (self.first.min(self.cap) as f64).ln()) / self.growth.ln();
         if count > MAX_STAGES as f64 {
             return Err(BenchError::Invalid(format!(
                 "the growth factor {} makes about {count:.0} stages from {} to {} nodes; \
