@@ -56,7 +56,7 @@ pub fn duration_from_secs(seconds: f64) -> Option<Duration> {
 pub fn check_local_spec(spec: &crate::local::LocalSpec) -> Result<(), String> {
     match spec {
         crate::local::LocalSpec::Sampled { resolution }
-            if !(*resolution >= MIN_SAMPLED_RESOLUTION) =>
+            if resolution.is_nan() || *resolution < MIN_SAMPLED_RESOLUTION =>
         {
             Err(format!(
                 "sampled:res={resolution:?} is below the smallest resolution \

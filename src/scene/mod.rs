@@ -143,7 +143,7 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
         path: scene.source.clone().unwrap_or_default(),
         message: format!("{what} has a coordinate beyond ±{max:e}, where distances overflow"),
     };
-    let big = |v: f64| !(v.abs() <= max);
+    let big = |v: f64| v.is_nan() || v.abs() > max;
     match &scene.robot {
         Robot::Point => {}
         Robot::Polygons(parts) => {
