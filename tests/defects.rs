@@ -134,6 +134,30 @@ fn save_refuses_fifo() {
         1,
         "nothing else written"
     );
+    // a benchmark refuses its special outputs before it runs, not after
+    let out = dir.join("out");
+    std::fs::create_dir(&out).unwrap();
+    mkfifo(&out.join("summary.md"));
+    fails_with(
+        &[
+            "bench",
+            "local",
+            EXAMPLE,
+            "--methods",
+            "straight",
+            "--runs",
+            "1",
+            "--out",
+            &s(&out),
+        ],
+        "FIFO",
+    );
+    assert!(is_fifo(&out.join("summary.md")));
+    assert_eq!(
+        std::fs::read_dir(&out).unwrap().count(),
+        1,
+        "nothing else written"
+    );
 }
 
 #[cfg(unix)]

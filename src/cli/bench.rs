@@ -174,6 +174,7 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
     }
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
+    super::output::check_targets(&a.out, &["tables.md", "tables.csv", "tables.json"])?;
     let bar = super::progress_bar(problems * rows.len() as u64, "problems");
     let start = std::time::Instant::now();
     tables::run_rows(&mut rows, problems, a.seed, a.radius, &|| bar.inc(1))?;
@@ -292,6 +293,12 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     if a.jobs == 0 {
         anyhow::bail!("--jobs must be at least 1");
     }
+    // outputs that could not be saved are refused before the scenes load and the runs run
+    super::output::check_targets(
+        &a.out,
+        &["summary.md", "runs.csv", "report.json", "results.db"],
+    )?;
+
     // load every scene and its query set first: errors show before hours of running
     let mut loaded = Vec::new();
     for source in &plan.scenes {

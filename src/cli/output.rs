@@ -24,6 +24,15 @@ pub fn save(file: &Path, bytes: &[u8]) -> anyhow::Result<PathBuf> {
     })?)
 }
 
+/// Refuses, before a long run, the outputs `names` in `dir` that could not be saved at its end
+/// (special files).
+pub fn check_targets(dir: &Path, names: &[&str]) -> anyhow::Result<()> {
+    for name in names {
+        viaroad::safe_file::resolve_target(&dir.join(name))?;
+    }
+    Ok(())
+}
+
 /// Ignores SIGPIPE again (Rust's default, undone in `main`): for commands that write to
 /// their children's pipes, where a child that died must be an error, not the parent's end.
 pub fn ignore_sigpipe() {
