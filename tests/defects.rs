@@ -957,3 +957,44 @@ fn nodes_u64_max_without_time_is_refused() {
         "node cap",
     );
 }
+
+// ---- the library's side of the same guarantees ---------------------------------------------
+
+#[cfg(unix)]
+#[test]
+fn library_refuses_special_files_with_typed_errors() {
+    use viaroad::roadmap::persist::RoadmapError;
+    use viaroad::roadmap::Roadmap;
+    use viaroad::safe_file::FileError;
+    let r = Roadmap::load_any_scene(Path::new("/dev/zero"));
+    assert!(
+        matches!(
+            r,
+            Err(RoadmapError::File(FileError::NotRegular {
+                kind: "character device",
+                ..
+            }))
+        ),
+        "{r:?}"
+    );
+    let r = viaroad::safe_file::write_atomically(Path::new("/dev/null"), |_| Ok(()));
+    assert!(matches!(r, Err(FileError::NotRegular { .. })), "{r:?}");
+    assert!(is_char_device(Path::new("/dev/null")));
+    let r = viaroad::scene::Scene::load(Path::new("/dev/zero"));
+    assert!(
+        matches!(
+            r,
+            Err(viaroad::scene::SceneError::File(
+                FileError::NotRegular { .. }
+            ))
+        ),
+        "{r:?}"
+    );
+    // bounds: zero width and overflowing magnitudes are typed space errors
+    use viaroad::space::{Space, SpaceError};
+    for (lo, hi) in [([0.0, 0.5], [1.0, 0.5]), ([-1e300, 0.0], [1e300, 1.0])] {
+        let r = Space::se2(lo, hi, 1.0);
+        assert!(matches!(r, Err(SpaceError::Bounds(_))), "{r:?}");
+    }
+    assert!(Space::se2([-1e100, 0.0], [1e100, 1.0], 1.0).is_ok());
+}
