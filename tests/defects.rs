@@ -635,8 +635,9 @@ fn stale_numbered_path_files_are_removed() {
         .collect();
     left.sort();
     assert_eq!(left, vec!["q-1.path".to_string()]);
-    // solve: one query, unsolved by the straight line: the old single file goes too
-    std::fs::write(&base, "stale").unwrap();
+    // solve with five queries: exactly the numbered files written are present, and the
+    // base name (not an output of a run of several queries) is left alone
+    std::fs::write(&base, "kept").unwrap();
     let o = viaroad(&[
         "solve",
         CLUTTERED,
@@ -653,7 +654,30 @@ fn stale_numbered_path_files_are_removed() {
         .filter(|e| e.file_name().to_string_lossy().starts_with("q-"))
         .count();
     assert_eq!(files, written, "exactly the files written are present");
-    assert!(!base.exists());
+    assert_eq!(std::fs::read(&base).unwrap(), b"kept");
+    // a single query, unsolved by the straight line: its old file goes
+    let blocked = write(
+        &dir,
+        "blocked.toml",
+        "[space]\nkind = \"r2\"\nlower = [0.0, 0.0]\nupper = [1.0, 1.0]\n\
+         [[obstacle]]\ndisc = { center = [0.5, 0.5], radius = 0.1 }\n\
+         [[query]]\nstart = [0.02, 0.98]\ngoal = [0.98, 0.02]\n",
+    );
+    let o = viaroad(&[
+        "solve",
+        &blocked,
+        "--local",
+        "straight",
+        "--path-out",
+        &s(&base),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("0 of 1 queries have a path file"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!base.exists(), "the stale single file is removed");
 }
 
 // ---- row 11: stale temporaries of killed saves ------------------------------------------

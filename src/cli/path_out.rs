@@ -2,8 +2,8 @@
 //! `check` mode) can validate or replay them without conversion.
 //!
 //! No stale output is ever left (issue 16): before the first path is written, the files an
-//! earlier run may have left under the same name (the base file, and every numbered
-//! `base-K.ext`) are removed, so the files present afterwards are exactly those this run wrote
+//! earlier run may have left under the same name (every numbered `base-K.ext`, and for a
+//! single query the base file) are removed, so the files present afterwards are exactly those this run wrote
 //! — one per solved query — and [`PathOut::finish`] lists them.
 
 use std::path::{Path, PathBuf};
@@ -64,7 +64,11 @@ impl PathOut {
                 removed.push(p);
             }
         };
-        remove(base.to_path_buf());
+        if total <= 1 {
+            // the single query's own file; with several queries `base` itself is not an
+            // output, so it is left alone
+            remove(base.to_path_buf());
+        }
         let dir = match base.parent() {
             Some(d) if !d.as_os_str().is_empty() => d,
             _ => Path::new("."),
