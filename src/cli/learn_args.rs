@@ -25,6 +25,19 @@ pub struct LearnArgs {
     pub neighbours: Option<usize>,
 }
 
+/// The longest time budget accepted (about 31 years): anything longer is a typo, and
+/// `Duration` itself cannot hold 1e300 s.
+pub const MAX_SECONDS: f64 = 1e9;
+
+/// A time budget given on the command line: a positive number of seconds, at most
+/// [`MAX_SECONDS`].
+pub fn seconds(flag: &str, t: f64) -> anyhow::Result<Option<Duration>> {
+    if !(t.is_finite() && t > 0.0 && t <= MAX_SECONDS) {
+        anyhow::bail!("{flag} must be a positive number of seconds up to {MAX_SECONDS:e}, got {t}");
+    }
+    Ok(Some(Duration::from_secs_f64(t)))
+}
+
 impl LearnArgs {
     /// The parameters and budget these flags name (`default_nodes` when neither bound is given).
     pub fn resolve(&self, default_nodes: usize) -> anyhow::Result<(LearnParams, Budget)> {
@@ -40,8 +53,7 @@ impl LearnArgs {
             .map_err(anyhow::Error::msg)
             .context("learning parameters")?;
         let time = match self.time {
-            Some(t) if t.is_finite() && t > 0.0 => Some(Duration::from_secs_f64(t)),
-            Some(t) => anyhow::bail!("--time must be a positive number of seconds, got {t}"),
+            Some(t) => seconds("--time", t)?,
             None => None,
         };
         if self.nodes == Some(0) {
