@@ -906,6 +906,7 @@ impl<'a> Learner<'a> {
                         params.bounce_steps,
                         &mut rng,
                         &mut counts,
+                        deadline,
                     )?;
                     let attempts = match corners.last() {
                         None => Vec::new(),
