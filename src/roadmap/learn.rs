@@ -169,6 +169,10 @@ pub struct Learner<'a> {
     fingerprint: u64,
 }
 
+/// The weight every node of a focused component has beyond its failure ratio, so that walks
+/// also leave components whose nodes have not failed yet.
+const FOCUS_FLOOR: f64 = 0.05;
+
 /// Separates the random streams of the two steps.
 const SAMPLE_STREAM: u64 = 1;
 const WALK_STREAM: u64 = 2;
@@ -637,6 +641,7 @@ impl<'a> Learner<'a> {
                         params,
                         &budget,
                         &round_deadline,
+                        pair,
                         (seed, rounds, size),
                     )?;
                     expansion_rounds += 1;
@@ -868,14 +873,47 @@ impl<'a> Learner<'a> {
         params: &LearnParams,
         budget: &Budget,
         deadline: &Deadline,
+        focus: Option<(u32, u32)>,
         (seed, round, size): (u64, u64, usize),
     ) -> Result<(), LearnError> {
         // OS94's weights f / (n + 1), as cumulative sums for drawing by weight
+        let ratio = |i: usize| f64::from(work.failures[i]) / (f64::from(work.tries[i]) + 1.0);
         let mut cumulative = Vec::with_capacity(work.node_count());
         let mut total = 0.0;
-        for (f, n) in work.failures.iter().zip(&work.tries) {
-            total += f64::from(*f) / (f64::from(*n) + 1.0);
-            cumulative.push(total);
+        match focus.map(|(s, g)| (work.uf.find(s), work.uf.find(g))) {
+            // joining a pair: walks leave only the two components that must meet, half from
+            // each, weighted by failure ratio within each (a small component boxed in by a
+            // narrow passage gets as many walks as the rest of the roadmap)
+            Some((cs, cg)) if cs != cg => {
+                let side = |i: usize| {
+                    let c = work.uf.find(i as u32);
+                    (c == cs, c == cg)
+                };
+                let (mut sum_s, mut sum_g) = (0.0, 0.0);
+                for i in 0..work.node_count() {
+                    let w = ratio(i) + FOCUS_FLOOR;
+                    match side(i) {
+                        (true, _) => sum_s += w,
+                        (_, true) => sum_g += w,
+                        _ => {}
+                    }
+                }
+                for i in 0..work.node_count() {
+                    let w = ratio(i) + FOCUS_FLOOR;
+                    total += match side(i) {
+                        (true, _) => w / sum_s,
+                        (_, true) => w / sum_g,
+                        _ => 0.0,
+                    };
+                    cumulative.push(total);
+                }
+            }
+            _ => {
+                for i in 0..work.node_count() {
+                    total += ratio(i);
+                    cumulative.push(total);
+                }
+            }
         }
         let shared: &Work<'_> = work;
         let n_nodes = shared.node_count() as u32;
