@@ -35,7 +35,9 @@ pub fn learn(
     let (params, budget) = learn.resolve(default_nodes)?;
     let method = spec.build();
     let oracle = scene.oracle();
-    let learner = Learner::for_scene(scene, oracle.as_ref(), method.as_ref());
+    // under a time budget, no one connection attempt may take more than a share of it
+    let learner = Learner::for_scene(scene, oracle.as_ref(), method.as_ref())
+        .with_attempt_cap(budget.time.map(Learner::attempt_cap_for));
     let bar = match budget.nodes {
         Some(n) => super::progress_bar(n as u64, "nodes"),
         None => super::progress_bar(budget.time.map_or(0, |t| t.as_secs().max(1)), "seconds"),

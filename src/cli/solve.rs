@@ -163,7 +163,8 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     }
     let oracle = scene.oracle();
     let method = spec.build();
-    let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref());
+    let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .with_attempt_cap(time.map(Learner::attempt_cap_for));
     let groups = method.groups(&scene.space);
     for (i, q) in queries.iter().enumerate() {
         let began = Instant::now();

@@ -167,7 +167,15 @@ pub struct Learner<'a> {
     oracle: &'a dyn CollisionOracle,
     local: &'a dyn LocalMethod,
     fingerprint: u64,
+    attempt_cap: Option<Duration>,
 }
+
+/// Under a time budget, one connection attempt may use at most this share of it
+/// ([`Learner::attempt_cap_for`]).
+pub const ATTEMPT_SHARE: u32 = 200;
+
+/// The least time an attempt is capped to.
+pub const MIN_ATTEMPT: Duration = Duration::from_millis(50);
 
 /// The weight every node of a focused component has beyond its failure ratio, so that walks
 /// also leave components whose nodes have not failed yet.
@@ -230,6 +238,8 @@ struct Work<'s> {
     counts: CallCounts,
     attempts: u64,
     connected: u64,
+    /// The learning deadline passed during the round being applied.
+    stopped: bool,
 }
 
 impl<'s> Work<'s> {
@@ -321,8 +331,9 @@ impl<'s> Work<'s> {
         self.attempts += 1;
         let ok = c.is_connected();
         self.connected += u64::from(ok);
-        // an attempt the deadline stopped says nothing about how hard its ends are
-        if c.outcome != Outcome::Interrupted {
+        // an attempt the learning deadline stopped says nothing about how hard its ends are
+        // (one its own time cap stopped failed like one that ran out of calls)
+        if !(c.outcome == Outcome::Interrupted && self.stopped) {
             for n in [a, z] {
                 self.tries[n as usize] += 1;
                 self.failures[n as usize] += u32::from(!ok);
@@ -386,7 +397,26 @@ impl<'a> Learner<'a> {
             oracle,
             local,
             fingerprint,
+            attempt_cap: None,
         }
+    }
+
+    /// The same learner with every connection attempt limited to `cap` of wall-clock time
+    /// (stopped like a call budget, and counted as a failure). A call budget counts the seed's
+    /// cost measure, but what one call costs differs 1000-fold between a disc and a rotation
+    /// among 37 000 triangles: under a time budget, a cap in time adapts to that cost (a
+    /// roadmap of OMPL.app's Apartment spent one 30-s budget on 28 attempts). Not
+    /// reproducible, like any time budget; `None` (the default) leaves attempts to their
+    /// call budget.
+    pub fn with_attempt_cap(mut self, cap: Option<Duration>) -> Self {
+        self.attempt_cap = cap;
+        self
+    }
+
+    /// The attempt cap [`LearnParams`]-free callers use under a time budget `time`:
+    /// [`ATTEMPT_SHARE`] of it, at least [`MIN_ATTEMPT`].
+    pub fn attempt_cap_for(time: Duration) -> Duration {
+        (time / ATTEMPT_SHARE).max(MIN_ATTEMPT)
     }
 
     /// A learner for `scene` with `oracle` (normally `scene.oracle()`) and `local`.
@@ -576,6 +606,7 @@ impl<'a> Learner<'a> {
             counts: CallCounts::default(),
             attempts: 0,
             connected: 0,
+            stopped: false,
         };
         if let Some(base) = seeds.base {
             work.copy_roadmap(base);
@@ -740,9 +771,13 @@ impl<'a> Learner<'a> {
             if deadline.expired() {
                 break;
             }
-            let mut connection =
-                self.local
-                    .connect_within(self.space, self.oracle, q, tq, deadline)?;
+            let mut connection = self.local.connect_within(
+                self.space,
+                self.oracle,
+                q,
+                tq,
+                &deadline.within(self.attempt_cap),
+            )?;
             connection.borderlines.clear();
             if connection.is_connected() {
                 joined.push(comp);
@@ -840,6 +875,7 @@ impl<'a> Learner<'a> {
                 )
             })
             .collect();
+        work.stopped = deadline.expired();
         let mut ids: Vec<u32> = Vec::with_capacity(candidates.len());
         let mut stopped = false;
         for (i, plan) in plans.into_iter().enumerate() {
@@ -978,6 +1014,7 @@ impl<'a> Learner<'a> {
                 (walk, counts)
             })
             .collect();
+        work.stopped = deadline.expired();
         let mut stopped = false;
         for (walk, counts) in walks {
             work.counts += counts;

@@ -510,7 +510,8 @@ impl<'a> QueryPlanner<'a> {
             self.oracle,
             self.local.as_ref(),
             header.fingerprint,
-        );
+        )
+        .with_attempt_cap(deadline.remaining().map(Learner::attempt_cap_for));
         // a seed of the query's own, so that a query asked twice grows the same way as far as
         // its time allows
         let seed = result
