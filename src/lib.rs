@@ -15,6 +15,7 @@
 //! | [`space`] | R^n, SE(2), SE(3): distance, sampling, DOF groups, straight motions |
 //! | [`oracle`] | collision intervals of a motion (discs, polygons, polyhedra, sampled) |
 //! | [`local`] | local methods: straight line, via-point planner, path shortening |
+//! | [`deadline`] | budgets that hold: one deadline checked before every oracle call |
 //! | [`roadmap`] | learning, persistence, queries |
 //! | [`scene`] | TOML scenes, OMPL.app problems, meshes |
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
@@ -23,6 +24,7 @@
 #![warn(missing_docs)]
 
 pub mod bench;
+pub mod deadline;
 pub mod geometry;
 pub mod interval;
 pub mod limits;

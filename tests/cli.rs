@@ -211,10 +211,15 @@ fn build_query_info_and_their_errors() {
             m,
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
-        stdout(&o)
+        // answers stream out as they complete, each with its query number
+        let mut v: Vec<serde_json::Value> = stdout(&o)
             .lines()
             .map(|l| serde_json::from_str(l).unwrap())
-            .collect()
+            .collect();
+        v.sort_by_key(|a| a["query"].as_u64().unwrap());
+        let numbers: Vec<u64> = v.iter().map(|a| a["query"].as_u64().unwrap()).collect();
+        assert_eq!(numbers, (1..=v.len() as u64).collect::<Vec<_>>());
+        v
     };
     let fast = mode("fast");
     assert_eq!(fast.len(), 3);

@@ -278,6 +278,8 @@ fn extreme_parameters_are_harmless() {
             exact_shortening_limit: usize::MAX,
             landmarks: 8,
             escalation_candidates: usize::MAX,
+            time: None,
+            grow: false,
         });
     let (s, g) = random_queries(&scene, 1, 4).remove(0);
     assert!(planner.query(&s, &g).is_ok());

@@ -608,6 +608,26 @@ fn parse(text: &str) -> Result<Scene, SceneError> {
     from_str(text, &data("inline.toml"))
 }
 
+/// A scene whose own queries are to be answered: loading accepts queries outside the bounds
+/// or in collision (a roadmap does not need them, so it only warns); answering them refuses.
+fn checked(text: &str) -> Result<Scene, SceneError> {
+    let scene = parse(text)?;
+    match scene.checked_queries() {
+        Ok(_) => Ok(scene),
+        Err(e) => {
+            assert!(
+                scene
+                    .warnings
+                    .iter()
+                    .any(|w| w.contains(&e.to_string()) && w.contains("cannot be answered")),
+                "the load warned: {:?}",
+                scene.warnings
+            );
+            Err(e)
+        }
+    }
+}
+
 fn invalid_message(text: &str) -> String {
     match parse(text) {
         Err(SceneError::Invalid { path, message }) => {
@@ -853,7 +873,7 @@ fn each_kind_of_bad_input_has_its_own_message() {
 #[test]
 fn bad_queries_are_config_errors_naming_the_query() {
     let scene = |q: &str| {
-        parse(&format!(
+        checked(&format!(
             "{R2}[[obstacle]]\ndisc = {{ center = [0.5, 0.5], radius = 0.1 }}\n{q}"
         ))
     };
@@ -879,7 +899,7 @@ fn bad_queries_are_config_errors_naming_the_query() {
         "{e:?}"
     );
     // a quaternion of length 0
-    let e = parse(&format!(
+    let e = checked(&format!(
         "{SE3}[robot]\nbox = {{ half_extents = [1, 1, 1] }}\n[[query]]\nstart = [0, 0, 0, 0, 0, 0, 0]\ngoal = [1, 0, 0, 0, 0, 0, 1]\n"
     ))
     .unwrap_err();
@@ -893,7 +913,7 @@ fn bad_queries_are_config_errors_naming_the_query() {
         ),
         "{e:?}"
     );
-    let e = parse(&format!(
+    let e = checked(&format!(
         "{SE2}[robot]\nbox = {{ half_extents = [1, 1] }}\n[[query]]\nstart = [0, 9, 0]\ngoal = [1, 0, 0]\n"
     ))
     .unwrap_err();
@@ -905,7 +925,7 @@ fn bad_queries_are_config_errors_naming_the_query() {
 #[test]
 
 fn se3_start_in_collision_is_rejected() {
-    let e = parse(&format!(
+    let e = checked(&format!(
         "{SE3}[robot]\nbox = {{ half_extents = [0.5, 0.5, 0.5] }}\n\
          [[obstacle]]\nbox = {{ center = [3, 0, 0], half_extents = [1, 1, 1] }}\n\
          [[query]]\nstart = [2.6, 0, 0, 0, 0, 0, 1]\ngoal = [-3, 0, 0, 0, 0, 0, 1]\n"
@@ -916,7 +936,7 @@ fn se3_start_in_collision_is_rejected() {
         "{e:?}"
     );
     // wholly inside a closed obstacle is a collision too
-    let e = parse(&format!(
+    let e = checked(&format!(
         "{SE3}[robot]\nbox = {{ half_extents = [0.1, 0.1, 0.1] }}\n\
          [[obstacle]]\nbox = {{ center = [3, 0, 0], half_extents = [1, 1, 1] }}\n\
          [[query]]\nstart = [-3, 0, 0, 0, 0, 0, 1]\ngoal = [3, 0, 0, 0, 0, 0, 1]\n"
@@ -931,7 +951,7 @@ fn se3_start_in_collision_is_rejected() {
 #[test]
 
 fn se2_start_in_collision_is_rejected() {
-    let e = parse(&format!(
+    let e = checked(&format!(
         "{SE2}[robot]\nbox = {{ half_extents = [1.0, 0.2] }}\n\
          [[obstacle]]\nbox = {{ center = [3, 0], half_extents = [1, 1] }}\n\
          [[query]]\nstart = [1.5, 0, 0]\ngoal = [-3, 0, 0]\n"
@@ -942,7 +962,7 @@ fn se2_start_in_collision_is_rejected() {
         "{e:?}"
     );
     // turned by 90° the same position is free
-    parse(&format!(
+    checked(&format!(
         "{SE2}[robot]\nbox = {{ half_extents = [1.0, 0.2] }}\n\
          [[obstacle]]\nbox = {{ center = [3, 0], half_extents = [1, 1] }}\n\
          [[query]]\nstart = [1.5, 0, 1.5707963267948966]\ngoal = [-3, 0, 0]\n"

@@ -5,6 +5,7 @@ use super::local_args::LocalArgs;
 use anyhow::Context;
 use clap::Args;
 use std::path::{Path, PathBuf};
+use viaroad::deadline::Deadline;
 use viaroad::local::LocalSpec;
 use viaroad::roadmap::{Learner, Learnt, Progress};
 use viaroad::scene::Scene;
@@ -34,21 +35,31 @@ pub fn learn(
     let (params, budget) = learn.resolve(default_nodes)?;
     let method = spec.build();
     let oracle = scene.oracle();
-    let learner = Learner::for_scene(scene, oracle.as_ref(), method.as_ref());
+    // under a time budget, no one connection attempt may take more than a share of it
+    let learner = Learner::for_scene(scene, oracle.as_ref(), method.as_ref())
+        .with_attempt_cap(budget.time.map(Learner::attempt_cap_for));
     let bar = match budget.nodes {
         Some(n) => super::progress_bar(n as u64, "nodes"),
         None => super::progress_bar(budget.time.map_or(0, |t| t.as_secs().max(1)), "seconds"),
     };
     let by_nodes = budget.nodes.is_some();
+    // the time budget holds inside every connection attempt; Ctrl-C stops learning the same way
+    let deadline = super::interrupt::on_ctrl_c(Deadline::none());
     let learnt = learner
-        .learn(&params, &budget, learn.seed, &mut |p: &Progress| {
-            if by_nodes {
-                bar.set_position(p.nodes as u64);
-            } else {
-                bar.set_position(p.elapsed.as_secs());
-            }
-            bar.set_message(format!("{} components", p.components));
-        })
+        .learn_within(
+            &params,
+            &budget,
+            learn.seed,
+            &deadline,
+            &mut |p: &Progress| {
+                if by_nodes {
+                    bar.set_position(p.nodes as u64);
+                } else {
+                    bar.set_position(p.elapsed.as_secs());
+                }
+                bar.set_message(format!("{} components", p.components));
+            },
+        )
         .context("learning")?;
     bar.finish_and_clear();
     Ok(learnt)

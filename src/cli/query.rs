@@ -4,8 +4,11 @@ use super::config_arg::parse_config;
 use anyhow::Context;
 use clap::Args;
 use serde_json::json;
+use std::io::Write;
 use std::path::PathBuf;
+use std::sync::Mutex;
 use std::time::Instant;
+use viaroad::deadline::Deadline;
 use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::{ompl_cfg, Scene};
 use viaroad::space::Config;
@@ -52,6 +55,15 @@ pub struct QueryArgs {
     /// batch of queries, 0 for a single one (they cost one graph search each, once).
     #[arg(long, value_name = "N")]
     pub landmarks: Option<usize>,
+    /// Seconds each query may take (checked before every oracle call). Where the roadmap
+    /// cannot join start and goal, the query grows a copy of it around them for the rest of
+    /// this time.
+    #[arg(long, value_name = "SECONDS", default_value_t = QueryOptions::DEFAULT_TIME.as_secs_f64())]
+    pub time: f64,
+    /// Do not grow the roadmap for a query it cannot answer: try a deeper local search
+    /// instead (and give up sooner).
+    #[arg(long)]
+    pub no_grow: bool,
 }
 
 /// How `query` shortens paths.
@@ -73,66 +85,107 @@ pub fn percentile(sorted: &[f64], p: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * p).round() as usize]
 }
 
-/// Prints answers, one line (or JSON object) each, then a summary.
-pub fn print_answers(answers: &[BatchAnswer], json_lines: bool) {
-    let mut ms: Vec<f64> = Vec::with_capacity(answers.len());
-    let mut solved = 0;
-    for (i, a) in answers.iter().enumerate() {
+/// Prints answers as they come, one line (or JSON object with its `query` number) each, and
+/// writes their paths; then a summary. Shared by the worker threads of a batch.
+struct Printer {
+    json: bool,
+    total: usize,
+    state: Mutex<Printed>,
+}
+
+#[derive(Default)]
+struct Printed {
+    /// The status line printed before the first answer (not before an error: issue 16).
+    loaded: Option<String>,
+    /// Where the paths go ([`super::path_out::PathOut`]: no stale numbered files).
+    path_out: Option<super::path_out::PathOut>,
+    ms: Vec<f64>,
+    solved: usize,
+    /// The first failure to print or write, reported when the batch ends.
+    failure: Option<anyhow::Error>,
+}
+
+impl Printer {
+    fn answer(&self, i: usize, a: &BatchAnswer) {
+        let mut st = self.state.lock().unwrap_or_else(|p| p.into_inner());
+        if st.failure.is_some() {
+            return;
+        }
+        if let (1, Err(e)) = (self.total, &a.result) {
+            // a single query's invalid input is the command's error, not an answer
+            st.failure = Some(anyhow::anyhow!("{e}"));
+            return;
+        }
+        if let Some(line) = st.loaded.take() {
+            eprintln!("{line}");
+        }
         let t = a.elapsed.as_secs_f64() * 1e3;
-        ms.push(t);
-        match &a.result {
-            Ok(r) => {
-                solved += r.is_solved() as usize;
-                if json_lines {
-                    println!(
-                        "{}",
-                        json!({
-                            "solved": r.is_solved(),
-                            "path": r.raw_path,
-                            "shortened": r.path,
-                            "calls": r.counts.intersect_calls(),
-                            "depth": r.depth,
-                            "query_ms": t,
-                            "outcome": r.outcome,
-                            "length": r.length,
-                            "raw_length": r.raw_length,
-                        })
-                    );
-                } else if r.is_solved() {
-                    println!(
-                        "query {}: solved ({:?}), length {:.4} (raw {:.4}), {} corners, {} intersect calls, {:.3} ms",
-                        i + 1,
-                        r.outcome,
-                        r.length,
-                        r.raw_length,
-                        r.path.len(),
-                        r.counts.intersect_calls(),
-                        t
-                    );
-                } else {
-                    println!("query {}: not solved ({:?}), {:.3} ms", i + 1, r.outcome, t);
-                }
-            }
-            Err(e) => {
-                if json_lines {
-                    println!(
-                        "{}",
-                        json!({ "solved": false, "error": e.to_string(), "query_ms": t })
-                    );
-                } else {
-                    println!("query {}: error: {e}", i + 1);
-                }
+        st.ms.push(t);
+        if let Ok(r) = &a.result {
+            st.solved += usize::from(r.is_solved());
+        }
+        let line = answer_line(i, a, t, self.json);
+        let mut out = std::io::stdout().lock();
+        // a closed pipe ends the batch quietly, like any Unix tool
+        if writeln!(out, "{line}").and_then(|_| out.flush()).is_err() {
+            std::process::exit(0);
+        }
+        if let (Some(out), Ok(r)) = (&mut st.path_out, &a.result) {
+            if let Err(e) = out.write(i, &r.path) {
+                st.failure = Some(e);
             }
         }
     }
-    ms.sort_by(f64::total_cmp);
-    if !json_lines {
-        println!(
-            "{solved}/{} solved; latency p50 {:.3} ms, p95 {:.3} ms",
-            answers.len(),
-            percentile(&ms, 0.5),
-            percentile(&ms, 0.95)
-        );
+}
+
+/// One answer as printed: a JSON object or a line of text; `t` its time in ms.
+fn answer_line(i: usize, a: &BatchAnswer, t: f64, json_lines: bool) -> String {
+    match &a.result {
+        Ok(r) if json_lines => json!({
+            "query": i + 1,
+            "solved": r.is_solved(),
+            "path": r.raw_path,
+            "shortened": r.path,
+            "calls": r.counts.intersect_calls(),
+            "depth": r.depth,
+            "query_ms": t,
+            "outcome": r.outcome,
+            "length": r.length,
+            "raw_length": r.raw_length,
+            "grown_nodes": r.grown_nodes,
+        })
+        .to_string(),
+        Ok(r) if r.is_solved() => format!(
+            "query {}: solved ({:?}{}), length {:.4} (raw {:.4}), {} corners, {} intersect calls, {:.3} ms",
+            i + 1,
+            r.outcome,
+            if r.grown_nodes > 0 {
+                format!(": {} nodes grown", r.grown_nodes)
+            } else {
+                String::new()
+            },
+            r.length,
+            r.raw_length,
+            r.path.len(),
+            r.counts.intersect_calls(),
+            t
+        ),
+        Ok(r) => format!(
+            "query {}: not solved ({:?}{}), {:.3} ms",
+            i + 1,
+            r.outcome,
+            if r.grown_nodes > 0 {
+                format!(", {} nodes grown", r.grown_nodes)
+            } else {
+                String::new()
+            },
+            t
+        ),
+        Err(e) if json_lines => {
+            json!({ "query": i + 1, "solved": false, "error": e.to_string(), "query_ms": t })
+                .to_string()
+        }
+        Err(e) => format!("query {}: error: {e}", i + 1),
     }
 }
 
@@ -153,9 +206,12 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     if let (true, Some(file)) = (queries.is_empty(), &a.queries) {
         anyhow::bail!("{}: no queries in the file", file.display());
     }
+    let time = super::learn_args::seconds("--time", a.time)?;
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
     let mut defaults = planner.options().clone();
+    defaults.time = time;
+    defaults.grow = !a.no_grow;
     if let Some(n) = a.direct_calls {
         defaults.direct_calls = n;
     }
@@ -177,34 +233,48 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         },
     };
     let planner = planner.with_options(options);
-    let mut path_out = match &a.path_out {
-        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
-        None => None,
-    };
-    let answers = planner.query_batch(&queries);
-    if queries.len() == 1 {
-        if let Err(e) = &answers[0].result {
-            anyhow::bail!("{e}");
-        }
-    }
-    // after the errors: a status line must not precede an `error:` line (issue 16)
-    if !a.json {
-        eprintln!(
+    // printed with the first answer, so that it never precedes an `error:` line (issue 16)
+    let loaded = (!a.json).then(|| {
+        format!(
             "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms",
             a.roadmap.display(),
             roadmap.node_count(),
             roadmap.edge_count()
+        )
+    });
+    let path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
+    let printer = Printer {
+        json: a.json,
+        total: queries.len(),
+        state: Mutex::new(Printed {
+            loaded,
+            path_out,
+            ..Printed::default()
+        }),
+    };
+    let deadline = super::interrupt::on_ctrl_c(Deadline::none());
+    planner.query_each(&queries, &deadline, &|i, answer| printer.answer(i, &answer));
+    let mut st = printer
+        .state
+        .into_inner()
+        .unwrap_or_else(|p| p.into_inner());
+    if let Some(e) = st.failure.take() {
+        return Err(e);
+    }
+    st.ms.sort_by(f64::total_cmp);
+    if !a.json {
+        println!(
+            "{}/{} solved; latency p50 {:.3} ms, p95 {:.3} ms",
+            st.solved,
+            queries.len(),
+            percentile(&st.ms, 0.5),
+            percentile(&st.ms, 0.95)
         );
     }
-    print_answers(&answers, a.json);
-    if let Some(out) = &mut path_out {
-        for (i, answer) in answers.iter().enumerate() {
-            if let Ok(r) = &answer.result {
-                out.write(i, &r.path)?;
-            }
-        }
-    }
-    if let Some(out) = path_out {
+    if let Some(out) = st.path_out.take() {
         out.finish();
     }
     Ok(())

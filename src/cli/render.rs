@@ -49,7 +49,14 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
         let oracle = scene.oracle();
         let start = scene.check_config(oracle.as_ref(), "start", &q.start)?;
         let goal = scene.check_config(oracle.as_ref(), "goal", &q.goal)?;
-        let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal)?;
+        let s = solve_query(
+            &scene,
+            oracle.as_ref(),
+            &spec,
+            &start,
+            &goal,
+            &viaroad::deadline::Deadline::none(),
+        )?;
         picture
             .borderlines(&s.connection.borderlines)
             .path(&scene, &s.connection.path, false)

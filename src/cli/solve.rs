@@ -5,8 +5,11 @@ use anyhow::Context;
 use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
+use std::time::Instant;
+use viaroad::deadline::Deadline;
 use viaroad::local::{path_length, shorten, LocalSpec};
 use viaroad::oracle::CollisionOracle;
+use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner};
 use viaroad::scene::Scene;
 
 /// Arguments of `solve`.
@@ -23,6 +26,18 @@ pub struct SolveArgs {
     /// several queries get `-1`, `-2`, … before the extension.
     #[arg(long, value_name = "FILE")]
     pub path_out: Option<PathBuf>,
+    /// Seconds each query may take (checked before every oracle call). Default: no limit for
+    /// the local method alone, 60 s with `--roadmap`.
+    #[arg(long, value_name = "SECONDS")]
+    pub time: Option<f64>,
+    /// Single-query roadmap (OMPL's PRM `solve`): grow a roadmap from start and goal with the
+    /// roadmap's local method (`--local` picks another) until they meet or the time is up,
+    /// then answer through it. Without it the local method alone connects start and goal.
+    #[arg(long)]
+    pub roadmap: bool,
+    /// Seed of the grown roadmap (`--roadmap`).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
 }
 
 /// One solved query, as printed.
@@ -38,10 +53,11 @@ pub fn solve_query(
     spec: &LocalSpec,
     start: &[f64],
     goal: &[f64],
+    deadline: &Deadline,
 ) -> anyhow::Result<Solved> {
     let method = spec.build();
     let mut connection = method
-        .connect(&scene.space, oracle, start, goal)
+        .connect_within(&scene.space, oracle, start, goal, deadline)
         .context("local method")?;
     let shortened = if connection.is_connected() {
         let groups = method.groups(&scene.space);
@@ -64,8 +80,15 @@ pub fn solve_query(
 
 /// Runs `solve`.
 pub fn run(a: SolveArgs) -> anyhow::Result<()> {
+    if a.roadmap {
+        return run_roadmap(a);
+    }
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::default())?;
+    let time = match a.time {
+        Some(t) => super::learn_args::seconds("--time", t)?,
+        None => None,
+    };
     let oracle = scene.oracle();
     if scene.queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());
@@ -89,7 +112,8 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             &format!("goal of query {}", i + 1),
             &q.goal,
         )?;
-        let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal)?;
+        let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
+        let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal, &deadline)?;
         if let Some(out) = &mut path_out {
             out.write(i, &s.shortened)?;
         }
@@ -123,6 +147,99 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
                 c.outcome,
                 c.depth,
                 c.counts.intersect_calls()
+            );
+        }
+    }
+    if let Some(out) = path_out {
+        out.finish();
+    }
+    Ok(())
+}
+
+/// `solve --roadmap`: each query answered by a roadmap grown from its start and goal.
+fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
+    let scene = Scene::load(&a.scene)?;
+    let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
+    let time = super::learn_args::seconds("--time", a.time.unwrap_or(60.0))?;
+    let queries = scene.checked_queries()?;
+    if queries.is_empty() {
+        anyhow::bail!("{} has no [[query]]", a.scene.display());
+    }
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
+    let oracle = scene.oracle();
+    let method = spec.build();
+    let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .with_attempt_cap(time.map(Learner::attempt_cap_for));
+    let groups = method.groups(&scene.space);
+    let mut path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
+    for (i, q) in queries.iter().enumerate() {
+        let began = Instant::now();
+        let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
+        let grown = learner
+            .connect_pair(
+                &LearnParams::default(),
+                None,
+                (&q.start, &q.goal),
+                &Budget::default(),
+                a.seed,
+                &deadline,
+                &mut |_| {},
+            )
+            .context("learning")?;
+        let roadmap = &grown.learnt.roadmap;
+        let mut answer = None;
+        if grown.connected {
+            // start and goal are nodes of one component: the query attaches them to themselves
+            let planner = QueryPlanner::new(roadmap, oracle.as_ref())?.with_options(QueryOptions {
+                landmarks: 0,
+                grow: false,
+                ..QueryOptions::default()
+            });
+            answer = Some(planner.query(&q.start, &q.goal)?).filter(|r| r.is_solved());
+        }
+        let secs = began.elapsed().as_secs_f64();
+        let calls = roadmap.header().counts.intersect_calls()
+            + answer.as_ref().map_or(0, |r| r.counts.intersect_calls());
+        if let (Some(out), Some(r)) = (&mut path_out, &answer) {
+            out.write(i, &r.path)?;
+        }
+        if a.json {
+            println!(
+                "{}",
+                json!({
+                    "query": i + 1,
+                    "solved": answer.is_some(),
+                    "path": answer.as_ref().map(|r| &r.raw_path),
+                    "shortened": answer.as_ref().map(|r| &r.path),
+                    "length": answer.as_ref().map(|r| r.length),
+                    "calls": calls,
+                    "nodes": roadmap.node_count(),
+                    "edges": roadmap.edge_count(),
+                    "seconds": secs,
+                    "stop": format!("{:?}", grown.learnt.report.stop),
+                })
+            );
+        } else if let Some(r) = &answer {
+            println!(
+                "query {}: solved by a roadmap of {} nodes in {secs:.3} s, {calls} intersect calls, {} corners, length {:.4} (raw {:.4})",
+                i + 1,
+                roadmap.node_count(),
+                r.path.len(),
+                path_length(&scene.space, &groups, &r.path),
+                r.raw_length,
+            );
+        } else {
+            println!(
+                "query {}: not solved in {secs:.3} s ({:?}; roadmap of {} nodes, {} components), {calls} intersect calls",
+                i + 1,
+                grown.learnt.report.stop,
+                roadmap.node_count(),
+                roadmap.component_count(),
             );
         }
     }

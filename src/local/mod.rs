@@ -21,6 +21,7 @@ pub use spec::LocalSpec;
 pub use straight::StraightLine;
 pub use viapoint::{ViaPoint, ViaPointOptions};
 
+use crate::deadline::Deadline;
 use crate::interval::IntervalList;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, Motion, Space};
@@ -36,6 +37,8 @@ pub enum Outcome {
     Blocked,
     /// The depth limit (or the call budget) cut the search off.
     DepthExhausted,
+    /// The deadline ([`crate::deadline::Deadline`]) stopped the search before it ended.
+    Interrupted,
 }
 
 /// What a local method learnt about free space while searching (CHS §1.6: "the via points and
@@ -107,6 +110,18 @@ pub struct Connection {
 }
 
 impl Connection {
+    /// An attempt that did not start because the deadline had passed.
+    pub fn interrupted(a: &[f64], z: &[f64]) -> Self {
+        Connection {
+            outcome: Outcome::Interrupted,
+            path: Vec::new(),
+            depth: 0,
+            counts: CallCounts::default(),
+            discoveries: Discoveries::new(a, z),
+            borderlines: Vec::new(),
+        }
+    }
+
     /// Whether a path was found.
     pub fn is_connected(&self) -> bool {
         self.outcome == Outcome::Connected
@@ -133,6 +148,21 @@ pub trait LocalMethod: Send + Sync {
         oracle: &dyn CollisionOracle,
         a: &[f64],
         z: &[f64],
+    ) -> Result<Connection, OracleError> {
+        self.connect_within(space, oracle, a, z, &Deadline::none())
+    }
+
+    /// Tries to connect `a` to `z`, stopping with [`Outcome::Interrupted`] once `deadline`
+    /// has passed (checked before every oracle call, so an attempt overruns it by at most one
+    /// call). What was certified before the stop is still reported in
+    /// [`Connection::discoveries`].
+    fn connect_within(
+        &self,
+        space: &Space,
+        oracle: &dyn CollisionOracle,
+        a: &[f64],
+        z: &[f64],
+        deadline: &Deadline,
     ) -> Result<Connection, OracleError>;
 
     /// The DOF groups this method's paths change one at a time (see [`Space::groups`]).

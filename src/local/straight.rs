@@ -1,6 +1,7 @@
 //! The straight-line local method: the direct path or nothing.
 
 use super::{check_direct, Connection, Discoveries, LocalMethod, Outcome};
+use crate::deadline::Deadline;
 use crate::oracle::sampled::Sampled;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::space::Space;
@@ -37,13 +38,17 @@ impl LocalMethod for StraightLine {
         }
     }
 
-    fn connect(
+    fn connect_within(
         &self,
         space: &Space,
         oracle: &dyn CollisionOracle,
         a: &[f64],
         z: &[f64],
+        deadline: &Deadline,
     ) -> Result<Connection, OracleError> {
+        if deadline.expired() {
+            return Ok(Connection::interrupted(a, z));
+        }
         let groups = self.groups(space);
         let mut counts = CallCounts::default();
         let corners = match self.resolution {

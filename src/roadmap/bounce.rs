@@ -13,6 +13,7 @@
 //! than along a random direction in the whole configuration space, so that every step is a
 //! direct path of the local method and can become a roadmap edge.
 
+use crate::deadline::Deadline;
 use crate::interval::Interval;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, GroupKind, Space};
@@ -48,7 +49,7 @@ pub fn random_direction<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Vec<f64> {
 /// the configurations reached after each step that moved (`start` excluded). Consecutive
 /// configurations of `[start, result…]` are joined by certified free motions in one of
 /// `groups`. Stops early when the current configuration has no free section around it (it
-/// touches an obstacle).
+/// touches an obstacle), or when `deadline` has passed.
 pub fn random_bounce<R: Rng + ?Sized>(
     space: &Space,
     oracle: &dyn CollisionOracle,
@@ -57,12 +58,17 @@ pub fn random_bounce<R: Rng + ?Sized>(
     steps: usize,
     rng: &mut R,
     counts: &mut CallCounts,
+    deadline: &Deadline,
 ) -> Result<Vec<Config>, OracleError> {
     let mut corners: Vec<Config> = Vec::with_capacity(steps.min(64));
     let mut current = start.to_vec();
     let mut group = rng.random_range(0..groups.len().max(1));
     let reach = space.extent();
     for step in 0..steps {
+        if deadline.expired() {
+            // the walk so far is free: it ends here
+            break;
+        }
         if step > 0 && groups.len() > 1 {
             // bounce into another group
             group = (group + rng.random_range(1..groups.len())) % groups.len();

@@ -36,7 +36,8 @@ use super::graph::{Edge, Roadmap};
 use super::nn::NearestNeighbours;
 use super::params::{Budget, LearnParams};
 use super::persist::Header;
-use crate::local::{direct_length, path_length, Connection, LocalMethod};
+use crate::deadline::Deadline;
+use crate::local::{direct_length, path_length, Connection, LocalMethod, Outcome};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::scene::Scene;
 use crate::space::{Config, Group, Space};
@@ -101,8 +102,12 @@ pub struct Progress {
 pub enum StopReason {
     /// The roadmap reached the node budget.
     NodeBudget,
-    /// The time budget ran out.
+    /// The time budget ran out (or the caller's [`Deadline`] passed).
     TimeBudget,
+    /// The caller cancelled ([`Deadline::with_cancel`]: Ctrl-C).
+    Cancelled,
+    /// The two configurations of [`Learner::connect_pair`] are in one component.
+    Connected,
     /// [`LearnParams::stall_rounds`] rounds in a row added no node.
     Stalled,
 }
@@ -135,13 +140,46 @@ pub struct Learnt {
     pub report: LearnReport,
 }
 
+/// A roadmap grown to join two configurations ([`Learner::connect_pair`]).
+#[derive(Clone, Debug)]
+pub struct PairLearnt {
+    /// The roadmap (the base roadmap's nodes and edges first, with their indices) and its
+    /// report; [`LearnReport::stop`] is [`StopReason::Connected`] when the ends met.
+    pub learnt: Learnt,
+    /// The start's node.
+    pub start: u32,
+    /// The goal's node (the start's when they are the same configuration).
+    pub goal: u32,
+    /// Whether start and goal ended in one component.
+    pub connected: bool,
+}
+
+/// What a roadmap grows from: a learnt roadmap and/or a pair of configurations to join.
+#[derive(Clone, Copy, Default)]
+struct Seeds<'r> {
+    base: Option<&'r Roadmap>,
+    pair: Option<(&'r [f64], &'r [f64])>,
+}
+
 /// Learns roadmaps of one scene with one local method.
 pub struct Learner<'a> {
     space: &'a Space,
     oracle: &'a dyn CollisionOracle,
     local: &'a dyn LocalMethod,
     fingerprint: u64,
+    attempt_cap: Option<Duration>,
 }
+
+/// Under a time budget, one connection attempt may use at most this share of it
+/// ([`Learner::attempt_cap_for`]).
+pub const ATTEMPT_SHARE: u32 = 200;
+
+/// The least time an attempt is capped to.
+pub const MIN_ATTEMPT: Duration = Duration::from_millis(50);
+
+/// The weight every node of a focused component has beyond its failure ratio, so that walks
+/// also leave components whose nodes have not failed yet.
+const FOCUS_FLOOR: f64 = 0.05;
 
 /// Separates the random streams of the two steps.
 const SAMPLE_STREAM: u64 = 1;
@@ -200,6 +238,8 @@ struct Work<'s> {
     counts: CallCounts,
     attempts: u64,
     connected: u64,
+    /// The learning deadline passed during the round being applied.
+    stopped: bool,
 }
 
 impl<'s> Work<'s> {
@@ -232,6 +272,22 @@ impl<'s> Work<'s> {
         self.failures.push(0);
         self.nn.insert(i, q);
         i
+    }
+
+    /// Copies a learnt roadmap's nodes (same indices) and edges, to grow it further. Failure
+    /// counts start at zero: the file does not keep them.
+    fn copy_roadmap(&mut self, base: &Roadmap) {
+        for q in base.nodes() {
+            self.add_node(q);
+        }
+        for e in base.edges() {
+            if e.a != e.b && self.edge_set.insert((e.a.min(e.b), e.a.max(e.b))) {
+                self.edges.push(e.clone());
+                if self.uf.union(e.a, e.b) {
+                    self.components -= 1;
+                }
+            }
+        }
     }
 
     /// Adds the edge `a → corners → b` unless it is a loop or the pair is joined already.
@@ -275,9 +331,13 @@ impl<'s> Work<'s> {
         self.attempts += 1;
         let ok = c.is_connected();
         self.connected += u64::from(ok);
-        for n in [a, z] {
-            self.tries[n as usize] += 1;
-            self.failures[n as usize] += u32::from(!ok);
+        // an attempt the learning deadline stopped says nothing about how hard its ends are
+        // (one its own time cap stopped failed like one that ran out of calls)
+        if !(c.outcome == Outcome::Interrupted && self.stopped) {
+            for n in [a, z] {
+                self.tries[n as usize] += 1;
+                self.failures[n as usize] += u32::from(!ok);
+            }
         }
         if self.feedback {
             // a discovered configuration becomes a node when a certified free segment joins it
@@ -337,7 +397,26 @@ impl<'a> Learner<'a> {
             oracle,
             local,
             fingerprint,
+            attempt_cap: None,
         }
+    }
+
+    /// The same learner with every connection attempt limited to `cap` of wall-clock time
+    /// (stopped like a call budget, and counted as a failure). A call budget counts the seed's
+    /// cost measure, but what one call costs differs 1000-fold between a disc and a rotation
+    /// among 37 000 triangles: under a time budget, a cap in time adapts to that cost (a
+    /// roadmap of OMPL.app's Apartment spent one 30-s budget on 28 attempts). Not
+    /// reproducible, like any time budget; `None` (the default) leaves attempts to their
+    /// call budget.
+    pub fn with_attempt_cap(mut self, cap: Option<Duration>) -> Self {
+        self.attempt_cap = cap;
+        self
+    }
+
+    /// The attempt cap [`LearnParams`]-free callers use under a time budget `time`:
+    /// [`ATTEMPT_SHARE`] of it, at least [`MIN_ATTEMPT`].
+    pub fn attempt_cap_for(time: Duration) -> Duration {
+        (time / ATTEMPT_SHARE).max(MIN_ATTEMPT)
     }
 
     /// A learner for `scene` with `oracle` (normally `scene.oracle()`) and `local`.
@@ -358,18 +437,86 @@ impl<'a> Learner<'a> {
         seed: u64,
         progress: &mut dyn FnMut(&Progress),
     ) -> Result<Learnt, LearnError> {
+        self.learn_within(params, budget, seed, &Deadline::none(), progress)
+    }
+
+    /// [`learn`](Self::learn), also stopped by `deadline` (a time limit or a cancel flag, for
+    /// Ctrl-C). The deadline and the time budget are checked before every oracle call of the
+    /// local method and between samples, not only between rounds, so learning returns within
+    /// about one oracle call of either, with the roadmap learnt so far (interrupted attempts
+    /// keep the free segments they certified).
+    pub fn learn_within(
+        &self,
+        params: &LearnParams,
+        budget: &Budget,
+        seed: u64,
+        deadline: &Deadline,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Result<Learnt, LearnError> {
         params.validate().map_err(LearnError::Params)?;
-        if budget.nodes.is_none() && budget.time.is_none() {
+        if budget.nodes.is_none() && budget.time.is_none() && !deadline.is_limited() {
             return Err(LearnError::NoBudget);
         }
-        self.grow(
+        let (learnt, _) = self.grow(
             params,
+            Seeds::default(),
             &[budget.nodes],
             budget.time,
             seed,
+            deadline,
             progress,
             &mut |_| ControlFlow::Continue(()),
-        )
+        )?;
+        Ok(learnt)
+    }
+
+    /// Grows a roadmap until `start` and `goal` are in one component (OMPL's PRM `solve`):
+    /// from `base` (a learnt roadmap, not changed: its nodes and edges are copied with their
+    /// indices) or from nothing, with `start` and `goal` as its first new nodes, tried against
+    /// each other and their nearest nodes, then construction and expansion rounds as in
+    /// [`learn`](Self::learn) until they meet ([`StopReason::Connected`]) or the budget or
+    /// `deadline` ends it. Expansion favours nodes whose attempts fail (OS94), so an end that
+    /// cannot be attached soon becomes the start of random-bounce walks.
+    ///
+    /// `start` and `goal` must be free, in bounds and normalised (see
+    /// [`crate::space::Space::normalize`]); the caller checks them.
+    #[allow(clippy::too_many_arguments)]
+    pub fn connect_pair(
+        &self,
+        params: &LearnParams,
+        base: Option<&Roadmap>,
+        (start, goal): (&[f64], &[f64]),
+        budget: &Budget,
+        seed: u64,
+        deadline: &Deadline,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Result<PairLearnt, LearnError> {
+        params.validate().map_err(LearnError::Params)?;
+        if budget.nodes.is_none() && budget.time.is_none() && !deadline.is_limited() {
+            return Err(LearnError::NoBudget);
+        }
+        let seeds = Seeds {
+            base,
+            pair: Some((start, goal)),
+        };
+        let (learnt, pair) = self.grow(
+            params,
+            seeds,
+            &[budget.nodes],
+            budget.time,
+            seed,
+            deadline,
+            progress,
+            &mut |_| ControlFlow::Continue(()),
+        )?;
+        let (start, goal) = pair
+            .ok_or_else(|| LearnError::Malformed("start or goal was not kept as a node".into()))?;
+        Ok(PairLearnt {
+            connected: learnt.report.stop == StopReason::Connected,
+            learnt,
+            start,
+            goal,
+        })
     }
 
     /// Learns in stages of growing node counts, for benchmarks that ask how many nodes (and how
@@ -404,21 +551,34 @@ impl<'a> Learner<'a> {
             )));
         }
         let stages: Vec<Option<usize>> = stages.iter().map(|&n| Some(n)).collect();
-        self.grow(params, &stages, time, seed, progress, on_stage)
+        let (learnt, _) = self.grow(
+            params,
+            Seeds::default(),
+            &stages,
+            time,
+            seed,
+            &Deadline::none(),
+            progress,
+            on_stage,
+        )?;
+        Ok(learnt)
     }
 
     /// The learning loop behind [`learn`](Self::learn) and
     /// [`learn_in_stages`](Self::learn_in_stages): one stage per node target (`None`: no node
     /// target, only `time`).
+    #[allow(clippy::too_many_arguments)]
     fn grow(
         &self,
         params: &LearnParams,
+        seeds: Seeds<'_>,
         stages: &[Option<usize>],
         time: Option<Duration>,
         seed: u64,
+        deadline: &Deadline,
         progress: &mut dyn FnMut(&Progress),
         on_stage: &mut dyn FnMut(&Learnt) -> ControlFlow<()>,
-    ) -> Result<Learnt, LearnError> {
+    ) -> Result<(Learnt, Option<(u32, u32)>), LearnError> {
         params.validate().map_err(LearnError::Params)?;
         let Some(&first) = stages.first() else {
             return Err(LearnError::NoBudget);
@@ -446,7 +606,24 @@ impl<'a> Learner<'a> {
             counts: CallCounts::default(),
             attempts: 0,
             connected: 0,
+            stopped: false,
         };
+        if let Some(base) = seeds.base {
+            work.copy_roadmap(base);
+        }
+        // the pair's two ends are the first candidates: tried against each other and their
+        // nearest nodes before any sampling
+        let pair = match seeds.pair {
+            Some((s, g)) => {
+                let first = deadline.within(time);
+                let ends = vec![s.to_vec(), g.to_vec()];
+                let ids =
+                    self.connect_candidates(&mut work, params, &Budget::default(), &first, ends)?;
+                Some((ids[0], ids[1]))
+            }
+            None => None,
+        };
+        let joined = |work: &Work<'_>| pair.is_some_and(|(s, g)| work.uf.equiv(s, g));
         let (mut rounds, mut construction_rounds, mut expansion_rounds) = (0u64, 0u64, 0u64);
         let mut stalled = 0usize;
         // nodes the last round added per candidate: with feedback one connection attempt can
@@ -460,10 +637,19 @@ impl<'a> Learner<'a> {
                 time,
             };
             let stop = loop {
+                if joined(&work) {
+                    break StopReason::Connected;
+                }
                 if budget.nodes.is_some_and(|n| work.node_count() >= n) {
                     break StopReason::NodeBudget;
                 }
-                if budget.time.is_some_and(|t| learning(paused) >= t) {
+                if deadline.cancelled() {
+                    break StopReason::Cancelled;
+                }
+                // the time left, as a deadline the round checks before every oracle call
+                let round_deadline =
+                    deadline.within(time.map(|t| t.saturating_sub(learning(paused))));
+                if round_deadline.expired() {
                     break StopReason::TimeBudget;
                 }
                 if stalled >= params.stall_rounds {
@@ -481,11 +667,24 @@ impl<'a> Learner<'a> {
                 });
                 let size = size.min(slow_start).max(1);
                 let phase = if params.is_expansion_round(rounds) && before > 0 {
-                    self.expansion_round(&mut work, params, &budget, (seed, rounds, size))?;
+                    self.expansion_round(
+                        &mut work,
+                        params,
+                        &budget,
+                        &round_deadline,
+                        pair,
+                        (seed, rounds, size),
+                    )?;
                     expansion_rounds += 1;
                     Phase::Expansion
                 } else {
-                    self.construction_round(&mut work, params, &budget, (seed, rounds, size))?;
+                    self.construction_round(
+                        &mut work,
+                        params,
+                        &budget,
+                        &round_deadline,
+                        (seed, rounds, size),
+                    )?;
                     construction_rounds += 1;
                     Phase::Construction
                 };
@@ -544,7 +743,7 @@ impl<'a> Learner<'a> {
             let flow = on_stage(&learnt);
             paused += pause.elapsed();
             if last || flow.is_break() {
-                return Ok(learnt);
+                return Ok((learnt, pair));
             }
             stage += 1;
             target = stages[stage];
@@ -561,6 +760,7 @@ impl<'a> Learner<'a> {
         mut joined: Vec<Target>,
         component: impl Fn(Target) -> Target,
         cycle_edges: bool,
+        deadline: &Deadline,
     ) -> Result<Vec<Attempt>, OracleError> {
         let mut out = Vec::with_capacity(targets.len());
         for &(target, tq) in targets {
@@ -568,7 +768,16 @@ impl<'a> Learner<'a> {
             if !cycle_edges && joined.contains(&comp) {
                 continue;
             }
-            let mut connection = self.local.connect(self.space, self.oracle, q, tq)?;
+            if deadline.expired() {
+                break;
+            }
+            let mut connection = self.local.connect_within(
+                self.space,
+                self.oracle,
+                q,
+                tq,
+                &deadline.within(self.attempt_cap),
+            )?;
             connection.borderlines.clear();
             if connection.is_connected() {
                 joined.push(comp);
@@ -583,6 +792,7 @@ impl<'a> Learner<'a> {
         work: &mut Work<'_>,
         params: &LearnParams,
         budget: &Budget,
+        deadline: &Deadline,
         (seed, round, size): (u64, u64, usize),
     ) -> Result<(), LearnError> {
         let samples: Vec<(Option<Config>, CallCounts)> = (0..size as u64)
@@ -591,6 +801,9 @@ impl<'a> Learner<'a> {
                 let mut rng = stream(seed, round, i, SAMPLE_STREAM);
                 let mut counts = CallCounts::default();
                 for _ in 0..params.sample_attempts {
+                    if deadline.expired() {
+                        break;
+                    }
                     let mut q = self.space.sample_uniform(&mut rng);
                     self.space.normalize(&mut q);
                     if self.oracle.is_free(&q, &mut counts) {
@@ -605,6 +818,21 @@ impl<'a> Learner<'a> {
             work.counts += counts;
             candidates.extend(q);
         }
+        self.connect_candidates(work, params, budget, deadline, candidates)?;
+        Ok(())
+    }
+
+    /// Adds `candidates` (free configurations) as nodes, each tried against its nearest nodes
+    /// and the candidates before it (in parallel, applied in order). Returns their node
+    /// indices, as far as the node budget let them in.
+    fn connect_candidates(
+        &self,
+        work: &mut Work<'_>,
+        params: &LearnParams,
+        budget: &Budget,
+        deadline: &Deadline,
+        candidates: Vec<Config>,
+    ) -> Result<Vec<u32>, LearnError> {
         let shared: &Work<'_> = work;
         let plans: Vec<Result<Vec<Attempt>, OracleError>> = (0..candidates.len())
             .into_par_iter()
@@ -637,9 +865,17 @@ impl<'a> Learner<'a> {
                     Target::Node(n) => Target::Node(shared.uf.find(n)),
                     c => c,
                 };
-                self.attempts(q, &targets, Vec::new(), component, params.cycle_edges)
+                self.attempts(
+                    q,
+                    &targets,
+                    Vec::new(),
+                    component,
+                    params.cycle_edges,
+                    deadline,
+                )
             })
             .collect();
+        work.stopped = deadline.expired();
         let mut ids: Vec<u32> = Vec::with_capacity(candidates.len());
         let mut stopped = false;
         for (i, plan) in plans.into_iter().enumerate() {
@@ -664,7 +900,7 @@ impl<'a> Learner<'a> {
                 work.apply(id, target, &a.connection);
             }
         }
-        Ok(())
+        Ok(ids)
     }
 
     fn expansion_round(
@@ -672,14 +908,48 @@ impl<'a> Learner<'a> {
         work: &mut Work<'_>,
         params: &LearnParams,
         budget: &Budget,
+        deadline: &Deadline,
+        focus: Option<(u32, u32)>,
         (seed, round, size): (u64, u64, usize),
     ) -> Result<(), LearnError> {
         // OS94's weights f / (n + 1), as cumulative sums for drawing by weight
+        let ratio = |i: usize| f64::from(work.failures[i]) / (f64::from(work.tries[i]) + 1.0);
         let mut cumulative = Vec::with_capacity(work.node_count());
         let mut total = 0.0;
-        for (f, n) in work.failures.iter().zip(&work.tries) {
-            total += f64::from(*f) / (f64::from(*n) + 1.0);
-            cumulative.push(total);
+        match focus.map(|(s, g)| (work.uf.find(s), work.uf.find(g))) {
+            // joining a pair: walks leave only the two components that must meet, half from
+            // each, weighted by failure ratio within each (a small component boxed in by a
+            // narrow passage gets as many walks as the rest of the roadmap)
+            Some((cs, cg)) if cs != cg => {
+                let side = |i: usize| {
+                    let c = work.uf.find(i as u32);
+                    (c == cs, c == cg)
+                };
+                let (mut sum_s, mut sum_g) = (0.0, 0.0);
+                for i in 0..work.node_count() {
+                    let w = ratio(i) + FOCUS_FLOOR;
+                    match side(i) {
+                        (true, _) => sum_s += w,
+                        (_, true) => sum_g += w,
+                        _ => {}
+                    }
+                }
+                for i in 0..work.node_count() {
+                    let w = ratio(i) + FOCUS_FLOOR;
+                    total += match side(i) {
+                        (true, _) => w / sum_s,
+                        (_, true) => w / sum_g,
+                        _ => 0.0,
+                    };
+                    cumulative.push(total);
+                }
+            }
+            _ => {
+                for i in 0..work.node_count() {
+                    total += ratio(i);
+                    cumulative.push(total);
+                }
+            }
         }
         let shared: &Work<'_> = work;
         let n_nodes = shared.node_count() as u32;
@@ -695,6 +965,13 @@ impl<'a> Learner<'a> {
                     rng.random_range(0..n_nodes)
                 };
                 let walk = (|| {
+                    if deadline.expired() {
+                        return Ok(Walk {
+                            from,
+                            corners: Vec::new(),
+                            attempts: Vec::new(),
+                        });
+                    }
                     let corners = random_bounce(
                         self.space,
                         self.oracle,
@@ -703,6 +980,7 @@ impl<'a> Learner<'a> {
                         params.bounce_steps,
                         &mut rng,
                         &mut counts,
+                        deadline,
                     )?;
                     let attempts = match corners.last() {
                         None => Vec::new(),
@@ -717,7 +995,14 @@ impl<'a> Learner<'a> {
                                 c => c,
                             };
                             let joined = vec![Target::Node(shared.uf.find(from))];
-                            self.attempts(end, &targets, joined, component, params.cycle_edges)?
+                            self.attempts(
+                                end,
+                                &targets,
+                                joined,
+                                component,
+                                params.cycle_edges,
+                                deadline,
+                            )?
                         }
                     };
                     Ok(Walk {
@@ -729,6 +1014,7 @@ impl<'a> Learner<'a> {
                 (walk, counts)
             })
             .collect();
+        work.stopped = deadline.expired();
         let mut stopped = false;
         for (walk, counts) in walks {
             work.counts += counts;

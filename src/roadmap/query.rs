@@ -12,12 +12,21 @@
 //! does the local method try start to goal, and then a deeper via-point search
 //! ([`QueryOptions::escalation_candidates`]).
 //!
+//! With a time limit ([`QueryOptions::time`]) a query whose ends the roadmap cannot join grows
+//! a *copy* of the roadmap around them for the rest of its time ([`QueryOptions::grow`], as
+//! OMPL's PRM does) and says so ([`QueryOutcome::Grown`]); how far it gets depends on the
+//! machine, like any time budget.
+//!
 //! Queries never change the roadmap, so answers do not depend on the order queries are asked
-//! in, and a batch runs in parallel ([`QueryPlanner::query_batch`]).
+//! in, and a batch runs in parallel, streaming its answers as they come
+//! ([`QueryPlanner::query_each`]).
 
 use super::graph::Roadmap;
 use super::landmarks::Landmarks;
+use super::learn::{LearnError, Learner};
+use super::params::Budget;
 use super::persist::RoadmapError;
+use crate::deadline::Deadline;
 use crate::local::viapoint::{Depth, ViaPoint, ViaPointOptions};
 use crate::local::{
     drop_corners, path_length, shorten, Connection, LocalMethod, LocalSpec, Outcome,
@@ -67,6 +76,25 @@ pub struct QueryOptions {
     /// planning for the cost of increased running time", CHS §1.6). Only for via-point
     /// roadmaps; 0 turns it off.
     pub escalation_candidates: usize,
+    /// The time one query may take ([`QueryPlanner::query`]; a batch gives each query its
+    /// own). Every local-method attempt checks it before each oracle call; a query that runs
+    /// out answers [`QueryOutcome::TimedOut`]. `None` (the library's default: answers
+    /// reproducible, unanswerable queries fail fast): no limit and no growing. `viaroad query`
+    /// sets [`Self::DEFAULT_TIME`].
+    pub time: Option<Duration>,
+    /// Where the roadmap cannot join start and goal, grow it around them for the rest of the
+    /// query's time (OMPL's PRM does this in `solve`): a copy of the roadmap with start and
+    /// goal as nodes, construction and expansion rounds until they meet
+    /// ([`super::Learner::connect_pair`]; the saved roadmap is not changed). Needs
+    /// [`Self::time`]. Off: the deeper local search of
+    /// [`Self::escalation_candidates`] instead.
+    pub grow: bool,
+}
+
+impl QueryOptions {
+    /// The command line's default time of one query: long enough for a grown roadmap to cross a hard
+    /// passage, short enough that a batch of unanswerable queries ends.
+    pub const DEFAULT_TIME: Duration = Duration::from_secs(10);
 }
 
 impl Default for QueryOptions {
@@ -79,6 +107,8 @@ impl Default for QueryOptions {
             exact_shortening_limit: 32,
             landmarks: 8,
             escalation_candidates: 3,
+            time: None,
+            grow: true,
         }
     }
 }
@@ -150,6 +180,11 @@ pub enum QueryOutcome {
     },
     /// Both were attached, but never to the same component.
     Disconnected,
+    /// Through a roadmap grown around start and goal within the query's time
+    /// ([`QueryOptions::grow`]); [`QueryResult::grown_nodes`] says by how much.
+    Grown,
+    /// The query's time ran out before an answer ([`QueryOptions::time`]).
+    TimedOut,
 }
 
 /// The answer to one query (serialisable, for `--json` output).
@@ -182,12 +217,17 @@ pub struct QueryResult {
     pub goal_node: Option<u32>,
     /// Roadmap nodes on the A* path.
     pub roadmap_nodes: usize,
+    /// Nodes the query added to a copy of the roadmap while growing it (0: it did not grow).
+    pub grown_nodes: usize,
 }
 
 impl QueryResult {
     /// Whether a path was found.
     pub fn is_solved(&self) -> bool {
-        matches!(self.outcome, QueryOutcome::Direct | QueryOutcome::Roadmap)
+        matches!(
+            self.outcome,
+            QueryOutcome::Direct | QueryOutcome::Roadmap | QueryOutcome::Grown
+        )
     }
 }
 
@@ -316,8 +356,20 @@ impl<'a> QueryPlanner<'a> {
         Ok(q)
     }
 
-    /// Answers one query.
+    /// Answers one query within [`QueryOptions::time`].
     pub fn query(&self, start: &[f64], goal: &[f64]) -> Result<QueryResult, QueryError> {
+        self.query_within(start, goal, &Deadline::none())
+    }
+
+    /// Answers one query within [`QueryOptions::time`] and `outer` (a batch's deadline, a
+    /// cancel flag), whichever ends first.
+    pub fn query_within(
+        &self,
+        start: &[f64],
+        goal: &[f64],
+        outer: &Deadline,
+    ) -> Result<QueryResult, QueryError> {
+        let deadline = outer.within(self.options.time);
         let space = self.roadmap.space();
         let mut counts = CallCounts::default();
         let start = self.check_endpoint(Endpoint::Start, start, &mut counts)?;
@@ -336,23 +388,23 @@ impl<'a> QueryPlanner<'a> {
             start_node: None,
             goal_node: None,
             roadmap_nodes: 0,
+            grown_nodes: 0,
         };
         // a quick try first (the direct path, or a budgeted via-point search)
         let mut retry_direct = self.options.try_direct;
         if self.options.try_direct {
-            let quick = self.quick_try(&start, &goal)?;
+            let quick = self.quick_try(&start, &goal, &deadline)?;
             result.counts += quick.counts;
             if quick.is_connected() {
                 result.outcome = QueryOutcome::Direct;
                 result.depth = quick.depth;
-                return self.finish(result, quick.path);
+                return self.finish(result, quick.path, &deadline);
             }
             // the roadmap's method again would fail the same way: it was the quick try, or the
             // quick search ran out of alternatives before any budget or depth limit
             retry_direct = self.via.is_some() && quick.outcome != Outcome::Blocked;
         }
-        // attach both ends, alternating, one node per component and side; ends the roadmap's
-        // method cannot attach get a deeper search to their nearest few nodes
+        // attach both ends, alternating, one node per component and side
         let mut at_start: Vec<Attached> = Vec::new();
         let mut at_goal: Vec<Attached> = Vec::new();
         let mut meeting = self.attach(
@@ -361,30 +413,37 @@ impl<'a> QueryPlanner<'a> {
             (&start, &goal),
             (&mut at_start, &mut at_goal),
             &mut result,
+            &deadline,
         )?;
         // only where the roadmap cannot join the two ends, the local method from start to goal:
         // across a large scene it mostly fails, and tried first it cost most of a query's time
         // (Home, 32 803 nodes: 25–60 ms of a 30–60 ms answer)
         if meeting.is_none() && retry_direct {
-            let c = self.local.connect(space, self.oracle, &start, &goal)?;
+            let c = self
+                .local
+                .connect_within(space, self.oracle, &start, &goal, &deadline)?;
             result.counts += c.counts;
             if c.is_connected() {
                 result.outcome = QueryOutcome::Direct;
                 result.depth = c.depth;
-                return self.finish(result, c.path);
+                return self.finish(result, c.path, &deadline);
             }
+        }
+        // where the roadmap cannot join them, grow it around them for the rest of the time
+        if meeting.is_none() && self.options.grow && deadline.is_limited() && !deadline.expired() {
+            return self.grow(result, &deadline);
         }
         if meeting.is_none() && self.options.escalation_candidates > 0 {
             if let Some(deep) = &self.escalation {
                 // the deep search straight from start to goal first: one attempt, and the
                 // planner's own strength where the roadmap has not reached (a narrow goal)
                 if self.options.try_direct {
-                    let c = deep.connect(space, self.oracle, &start, &goal)?;
+                    let c = deep.connect_within(space, self.oracle, &start, &goal, &deadline)?;
                     result.counts += c.counts;
                     if c.is_connected() {
                         result.outcome = QueryOutcome::Direct;
                         result.depth = c.depth;
-                        return self.finish(result, c.path);
+                        return self.finish(result, c.path, &deadline);
                     }
                 }
                 meeting = self.attach(
@@ -393,11 +452,14 @@ impl<'a> QueryPlanner<'a> {
                     (&start, &goal),
                     (&mut at_start, &mut at_goal),
                     &mut result,
+                    &deadline,
                 )?;
             }
         }
         let Some((si, gi)) = meeting else {
-            result.outcome = if at_start.is_empty() || at_goal.is_empty() {
+            result.outcome = if deadline.expired() {
+                QueryOutcome::TimedOut
+            } else if at_start.is_empty() || at_goal.is_empty() {
                 QueryOutcome::NotAttached {
                     start_attached: !at_start.is_empty(),
                     goal_attached: !at_goal.is_empty(),
@@ -419,21 +481,107 @@ impl<'a> QueryPlanner<'a> {
         result.depth = s.connection.depth.max(g.connection.depth);
         result.roadmap_nodes = nodes.len();
         let mut raw = s.connection.path.clone();
+        raw.extend(self.node_path(&nodes));
+        raw.extend(g.connection.path.iter().skip(1).cloned());
+        self.finish(result, raw, &deadline)
+    }
+
+    /// The corners along roadmap nodes `nodes` (adjacent pairs joined by their cheapest edge),
+    /// the first node left out.
+    fn node_path(&self, nodes: &[u32]) -> Vec<Config> {
+        let mut raw = Vec::new();
         for w in nodes.windows(2) {
             let edge = self.cheapest_edge(w[0], w[1]);
             raw.extend(self.roadmap.edge_path(edge, w[0]).into_iter().skip(1));
         }
-        raw.extend(g.connection.path.iter().skip(1).cloned());
-        self.finish(result, raw)
+        raw
+    }
+
+    /// Grows a copy of the roadmap around the query's ends until they meet or `deadline`
+    /// passes ([`QueryOptions::grow`]), and answers through it.
+    fn grow(
+        &self,
+        mut result: QueryResult,
+        deadline: &Deadline,
+    ) -> Result<QueryResult, QueryError> {
+        let header = self.roadmap.header();
+        let learner = Learner::new(
+            self.roadmap.space(),
+            self.oracle,
+            self.local.as_ref(),
+            header.fingerprint,
+        )
+        .with_attempt_cap(deadline.remaining().map(Learner::attempt_cap_for));
+        // a seed of the query's own, so that a query asked twice grows the same way as far as
+        // its time allows
+        let seed = result
+            .start
+            .iter()
+            .chain(&result.goal)
+            .fold(header.seed ^ 0x6772_6f77, |h, v| {
+                (h ^ v.to_bits()).wrapping_mul(0x0000_0100_0000_01b3)
+            });
+        let grown = learner
+            .connect_pair(
+                &header.params,
+                Some(self.roadmap),
+                (&result.start, &result.goal),
+                &Budget::default(),
+                seed,
+                deadline,
+                &mut |_| {},
+            )
+            .map_err(|e| match e {
+                LearnError::Oracle(o) => QueryError::Oracle(o),
+                other => QueryError::Oracle(OracleError::Unsupported(other.to_string())),
+            })?;
+        let roadmap = &grown.learnt.roadmap;
+        result.counts += roadmap.header().counts;
+        result.grown_nodes = roadmap.node_count() - self.roadmap.node_count();
+        if !grown.connected {
+            result.outcome = QueryOutcome::TimedOut;
+            return Ok(result);
+        }
+        let inner = QueryPlanner {
+            roadmap,
+            oracle: self.oracle,
+            local: LocalSpec::from_str(&header.local_spec)
+                .map(|s| s.build())
+                .map_err(|e| QueryError::Oracle(OracleError::Unsupported(e.reason)))?,
+            escalation: None,
+            via: None,
+            groups: self.groups.clone(),
+            options: QueryOptions {
+                landmarks: 0,
+                ..self.options.clone()
+            },
+            landmarks: OnceLock::new(),
+        };
+        let Some(nodes) = inner.astar(grown.start, grown.goal) else {
+            result.outcome = QueryOutcome::Disconnected;
+            return Ok(result);
+        };
+        result.outcome = QueryOutcome::Grown;
+        result.roadmap_nodes = nodes.len();
+        let mut raw = vec![result.start.clone()];
+        raw.extend(inner.node_path(&nodes));
+        self.finish(result, raw, deadline)
     }
 
     /// The quick try from start to goal before the roadmap: for a via-point roadmap the planner
     /// at depth 0 (the direct path, one exact call per DOF group) or limited to
     /// [`QueryOptions::direct_calls`]; any other roadmap's method is such a check already.
-    fn quick_try(&self, start: &[f64], goal: &[f64]) -> Result<Connection, QueryError> {
+    fn quick_try(
+        &self,
+        start: &[f64],
+        goal: &[f64],
+        deadline: &Deadline,
+    ) -> Result<Connection, QueryError> {
         let space = self.roadmap.space();
         let Some(o) = &self.via else {
-            return Ok(self.local.connect(space, self.oracle, start, goal)?);
+            return Ok(self
+                .local
+                .connect_within(space, self.oracle, start, goal, deadline)?);
         };
         let budget = self.options.direct_calls;
         let quick = if budget > 0 {
@@ -447,7 +595,7 @@ impl<'a> QueryPlanner<'a> {
                 ..o.clone()
             }
         };
-        Ok(ViaPoint::new(quick).connect(space, self.oracle, start, goal)?)
+        Ok(ViaPoint::new(quick).connect_within(space, self.oracle, start, goal, deadline)?)
     }
 
     /// Attaches start and goal to their `k` nearest nodes with `method`, alternating sides, one
@@ -460,6 +608,7 @@ impl<'a> QueryPlanner<'a> {
         (start, goal): (&[f64], &[f64]),
         (at_start, at_goal): (&mut Vec<Attached>, &mut Vec<Attached>),
         result: &mut QueryResult,
+        deadline: &Deadline,
     ) -> Result<Option<(usize, usize)>, QueryError> {
         let space = self.roadmap.space();
         let near_start = self.roadmap.nearest(start, k, None);
@@ -477,10 +626,17 @@ impl<'a> QueryPlanner<'a> {
                 if mine.iter().any(|a| a.component == component) {
                     continue;
                 }
+                if deadline.expired() {
+                    return Ok(None);
+                }
                 let q = self.roadmap.node(node);
                 let connection = match side {
-                    Endpoint::Start => method.connect(space, self.oracle, start, q)?,
-                    Endpoint::Goal => method.connect(space, self.oracle, q, goal)?,
+                    Endpoint::Start => {
+                        method.connect_within(space, self.oracle, start, q, deadline)?
+                    }
+                    Endpoint::Goal => {
+                        method.connect_within(space, self.oracle, q, goal, deadline)?
+                    }
                 };
                 result.counts += connection.counts;
                 result.attach_attempts += 1;
@@ -547,14 +703,16 @@ impl<'a> QueryPlanner<'a> {
     }
 
     /// Drops repeated corners, shortens, measures.
+    /// Shortening is skipped once the query's time is up: the raw path is a valid answer.
     fn finish(
         &self,
         mut result: QueryResult,
         mut raw: Vec<Config>,
+        deadline: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let space = self.roadmap.space();
         raw.dedup();
-        let path = if self.options.shorten {
+        let path = if self.options.shorten && !deadline.expired() {
             let fewer;
             let corners = if raw.len() > self.options.exact_shortening_limit {
                 fewer = drop_corners(space, self.oracle, &self.groups, &raw, &mut result.counts)?;
@@ -581,16 +739,42 @@ impl<'a> QueryPlanner<'a> {
 
     /// Answers many queries in parallel on the current rayon pool; answers in input order.
     pub fn query_batch(&self, queries: &[(Config, Config)]) -> Vec<BatchAnswer> {
-        queries
-            .par_iter()
-            .map(|(s, g)| {
-                let began = Instant::now();
-                let result = self.query(s, g);
+        let answers: Vec<std::sync::Mutex<Option<BatchAnswer>>> =
+            queries.iter().map(|_| Default::default()).collect();
+        self.query_each(queries, &Deadline::none(), &|i, a| {
+            *answers[i].lock().unwrap_or_else(|p| p.into_inner()) = Some(a);
+        });
+        answers
+            .into_iter()
+            .map(|m| {
+                m.into_inner()
+                    .unwrap_or_else(|p| p.into_inner())
+                    .expect("every query is answered")
+            })
+            .collect()
+    }
+
+    /// Answers many queries in parallel, handing each answer to `on_answer` (with its index
+    /// in `queries`) as soon as it is ready, so that a long batch streams its answers and an
+    /// interrupted one keeps those it had. Each query has its own [`QueryOptions::time`];
+    /// `outer` stops the whole batch (queries not begun then answer
+    /// [`QueryOutcome::TimedOut`]).
+    pub fn query_each(
+        &self,
+        queries: &[(Config, Config)],
+        outer: &Deadline,
+        on_answer: &(dyn Fn(usize, BatchAnswer) + Sync),
+    ) {
+        queries.par_iter().enumerate().for_each(|(i, (s, g))| {
+            let began = Instant::now();
+            let result = self.query_within(s, g, outer);
+            on_answer(
+                i,
                 BatchAnswer {
                     result,
                     elapsed: began.elapsed(),
-                }
-            })
-            .collect()
+                },
+            );
+        });
     }
 }

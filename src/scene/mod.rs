@@ -261,6 +261,14 @@ impl Scene {
         }
     }
 
+    /// The scene's own queries, checked (shape, bounds, collision) and normalised: what the
+    /// commands that answer them use. Loading accepts a scene whose queries lie outside the
+    /// bounds or in collision (with a warning: a roadmap does not need them); this is where
+    /// that becomes an error.
+    pub fn checked_queries(&self) -> Result<Vec<Query>, SceneError> {
+        toml_format::checked_queries(self)
+    }
+
     /// The collision oracle of this scene, with "outside the bounds is obstacle".
     pub fn oracle(&self) -> Box<dyn CollisionOracle> {
         match (&self.robot, self.space.kind()) {

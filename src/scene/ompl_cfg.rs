@@ -27,7 +27,7 @@
 
 use super::collada;
 use super::mesh_io::{is_dae, load_mesh, vertex_mean};
-use super::toml_format::{checked_queries, default_name};
+use super::toml_format::{check_queries_on_load, default_name};
 use super::{Obstacle, Query, Robot, Scene, SceneError};
 use crate::geometry::{GeometryError, Polygon};
 use crate::oracle::polygons::footprint_polygons;
@@ -174,7 +174,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     };
     super::check_magnitudes(&scene)?;
     scene.warnings.extend(super::quaternion_warnings(&scene));
-    scene.queries = checked_queries(&scene)?;
+    check_queries_on_load(&mut scene)?;
     Ok(scene)
 }
 

@@ -164,8 +164,23 @@ pub fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
     let mut scene = reader.scene(file)?;
     super::check_magnitudes(&scene)?;
     scene.warnings.extend(super::quaternion_warnings(&scene));
-    scene.queries = checked_queries(&scene)?;
+    check_queries_on_load(&mut scene)?;
     Ok(scene)
+}
+
+/// Checks the scene's queries as it loads. A malformed query (wrong length, not a number, a
+/// zero quaternion) is an error of the file; a well-formed one outside the bounds or in
+/// collision only stops the commands that answer it ([`Scene::checked_queries`]): a roadmap
+/// of the scene does not need its queries, so for `build` it is a warning.
+pub(crate) fn check_queries_on_load(scene: &mut Scene) -> Result<(), SceneError> {
+    match checked_queries(scene) {
+        Ok(queries) => scene.queries = queries,
+        Err(e @ SceneError::Config { .. }) => return Err(e),
+        Err(e) => scene
+            .warnings
+            .push(format!("{e}: the scene's queries cannot be answered")),
+    }
+    Ok(())
 }
 
 /// Checks every query of the scene: shape, bounds, collision.
@@ -176,6 +191,16 @@ pub fn validate_queries(scene: &Scene) -> Result<(), SceneError> {
 /// The scene's queries after checking (shape, bounds, collision), normalised: quaternions of
 /// unit length, angles in `[-π, π)`.
 pub fn checked_queries(scene: &Scene) -> Result<Vec<Query>, SceneError> {
+    // shapes first, for every query: a malformed one is an error of the file, whatever the
+    // bounds and collisions of the queries before it
+    for (i, q) in scene.queries.iter().enumerate() {
+        for (what, c) in [("start", &q.start), ("goal", &q.goal)] {
+            scene.space.check(c).map_err(|source| SceneError::Config {
+                what: format!("{what} of query {}", i + 1),
+                source,
+            })?;
+        }
+    }
     let oracle = scene.oracle();
     scene
         .queries

@@ -426,8 +426,10 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
     } else {
         match learnt.report.stop {
             StopReason::NodeBudget => RunStop::NodeCap,
-            StopReason::TimeBudget => RunStop::TimeLimit,
+            StopReason::TimeBudget | StopReason::Cancelled => RunStop::TimeLimit,
             StopReason::Stalled => RunStop::Stalled,
+            // learn_in_stages grows no pair
+            StopReason::Connected => RunStop::Target,
         }
     };
     // the separate group, once, against the final roadmap

@@ -13,7 +13,8 @@
 //! Departures from the seed, each documented where it happens: the valuation's `d` is the
 //! distance of the via point from the borderline's base point (equal to the distance from the
 //! blocked motion for perpendicular borderlines); a turn that is free all the way round offers
-//! quarter and half turns as via points; an optional call budget stops runaway searches.
+//! quarter and half turns as via points; an optional call budget stops runaway searches, and a deadline
+//! ([`Deadline`]) is checked before every oracle call.
 
 mod borderline;
 mod directions;
@@ -23,6 +24,7 @@ mod search;
 pub use options::{BasePoint, Depth, Directions, Search, ViaLimit, ViaPointOptions};
 
 use super::{Connection, LocalMethod, Outcome};
+use crate::deadline::Deadline;
 use crate::oracle::{CollisionOracle, OracleError};
 use crate::space::{Group, Space};
 
@@ -45,17 +47,18 @@ impl LocalMethod for ViaPoint {
         super::LocalSpec::ViaPoint(self.options.clone()).to_string()
     }
 
-    fn connect(
+    fn connect_within(
         &self,
         space: &Space,
         oracle: &dyn CollisionOracle,
         a: &[f64],
         z: &[f64],
+        deadline: &Deadline,
     ) -> Result<Connection, OracleError> {
         let groups = self.groups(space);
         let o = &self.options;
         let plain = o.search == Search::DepthFirst && matches!(o.depth, Depth::Deepen { .. });
-        let mut s = search::Search::new(space, oracle, o, &groups, a, z, plain);
+        let mut s = search::Search::new(space, oracle, o, &groups, a, z, plain, deadline);
         let mut root = s.new_root();
         let mut solved = false;
         let mut last_limit = 0;
@@ -102,6 +105,8 @@ impl LocalMethod for ViaPoint {
                 path.push(z.to_vec());
             }
             (Outcome::Connected, path, s.solution_depth(root))
+        } else if s.interrupted {
+            (Outcome::Interrupted, Vec::new(), last_limit)
         } else if !s.budget_hit
             && (s.dead(root) || (o.search == Search::DepthFirst && !s.limit_hit))
         {

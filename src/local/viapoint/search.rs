@@ -19,6 +19,7 @@ use super::borderline::{
     base_parameter, borderlines, candidates, free_sections, via_point, Crossing,
 };
 use super::options::{ViaLimit, ViaPointOptions};
+use crate::deadline::Deadline;
 use crate::interval::IntervalList;
 use crate::local::{Borderline, Discoveries};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
@@ -112,8 +113,11 @@ pub(super) struct Search<'a> {
     pub borderlines: Vec<Borderline>,
     /// Some branch was cut off by the recursion limit (in the current pass).
     pub limit_hit: bool,
-    /// The call budget ran out.
+    /// The call budget ran out, or the deadline passed.
     pub budget_hit: bool,
+    /// The deadline passed (checked before every oracle call).
+    pub interrupted: bool,
+    deadline: &'a Deadline,
     /// Plain recursion: drop the subtrees of failed via points, as the seed's recursion does,
     /// so memory stays proportional to the depth rather than to the number of calls.
     forget_failures: bool,
@@ -130,6 +134,7 @@ impl<'a> Search<'a> {
         a: &[f64],
         z: &[f64],
         forget_failures: bool,
+        deadline: &'a Deadline,
     ) -> Self {
         let mut pts = Vec::with_capacity(64 * a.len());
         pts.extend_from_slice(a);
@@ -149,6 +154,8 @@ impl<'a> Search<'a> {
             borderlines: Vec::new(),
             limit_hit: false,
             budget_hit: false,
+            interrupted: false,
+            deadline,
             forget_failures,
             buf: vec![0.0; a.len()],
         }
@@ -189,10 +196,30 @@ impl<'a> Search<'a> {
         self.nodes.len() - 1
     }
 
-    fn out_of_budget(&self) -> bool {
-        self.options
-            .max_calls
-            .is_some_and(|m| self.counts.intersect_calls() >= m)
+    /// Whether the call budget is spent or the deadline has passed (remembered, so that the
+    /// clock is read at most once per oracle call and a stopped search stays stopped).
+    fn out_of_budget(&mut self) -> bool {
+        self.out_of_time()
+            || self
+                .options
+                .max_calls
+                .is_some_and(|m| self.counts.intersect_calls() >= m)
+    }
+
+    /// Whether the deadline has passed (remembered: a stopped search stays stopped).
+    fn out_of_time(&mut self) -> bool {
+        if !self.interrupted && self.deadline.expired() {
+            self.interrupted = true;
+            self.budget_hit = true;
+        }
+        self.interrupted
+    }
+
+    /// Whether a node still to be walked must not be, because the deadline has passed: the
+    /// walk asks the oracle (the call budget keeps its old meaning: it is checked between
+    /// via points, so a walk may finish past it).
+    fn walk_refused(&mut self, id: NodeId) -> bool {
+        self.nodes[id].walk.is_none() && self.out_of_time()
     }
 
     /// Walks the node's direct path (one intersectSegment per group it changes); at the first
@@ -426,6 +453,9 @@ impl<'a> Search<'a> {
     /// Depth-first search with recursion limit `rec` (CHS Fig 1.3 with backtracking). Solved
     /// and failed subproblems are remembered in the tree.
     pub fn depth_first(&mut self, id: NodeId, rec: u32) -> Result<bool, OracleError> {
+        if self.walk_refused(id) {
+            return Ok(false);
+        }
         self.ensure_walk(id)?;
         match self.nodes[id].status {
             Status::Solved { depth, .. } if depth <= rec => return Ok(true),
@@ -502,6 +532,9 @@ impl<'a> Search<'a> {
     /// Breadth-first: makes sure every subproblem within `remaining` levels below `id` is
     /// walked, and every blocked one above the last level has all its via points and children.
     pub fn expand(&mut self, id: NodeId, remaining: u32) -> Result<(), OracleError> {
+        if self.walk_refused(id) {
+            return Ok(());
+        }
         self.ensure_walk(id)?;
         if remaining == 0 || matches!(self.nodes[id].status, Status::Solved { .. } | Status::Dead) {
             return Ok(());

@@ -1,0 +1,287 @@
+//! Budgets that hold: the deadline stops the via-point search, the learner and queries within
+//! one oracle call. The tests trip a cancel flag from inside the oracle after a fixed number of
+//! calls, so they assert call counts, never wall-clock times.
+
+mod roadmap_support;
+
+use roadmap_support::*;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+use viaroad::deadline::Deadline;
+use viaroad::interval::IntervalList;
+use viaroad::local::{LocalMethod, LocalSpec, Outcome, ViaPoint, ViaPointOptions};
+use viaroad::oracle::{CallCounts, CollisionOracle, OracleError};
+use viaroad::roadmap::{
+    Budget, LearnParams, Learner, QueryOptions, QueryOutcome, QueryPlanner, StopReason,
+};
+use viaroad::space::Motion;
+
+/// Passes every question to the scene's oracle, counts the motions asked about, and raises
+/// `flag` once `trip_at` of them have been answered.
+struct Tripwire {
+    inner: Box<dyn CollisionOracle>,
+    motions: AtomicU64,
+    trip_at: u64,
+    flag: Arc<AtomicBool>,
+}
+
+impl Tripwire {
+    fn new(inner: Box<dyn CollisionOracle>, trip_at: u64) -> Self {
+        Tripwire {
+            inner,
+            motions: AtomicU64::new(0),
+            trip_at,
+            flag: Arc::new(AtomicBool::new(false)),
+        }
+    }
+
+    fn count(&self) {
+        if self.motions.fetch_add(1, Ordering::SeqCst) + 1 >= self.trip_at {
+            self.flag.store(true, Ordering::SeqCst);
+        }
+    }
+
+    fn deadline(&self) -> Deadline {
+        Deadline::none().with_cancel(self.flag.clone())
+    }
+
+    fn motions(&self) -> u64 {
+        self.motions.load(Ordering::SeqCst)
+    }
+}
+
+impl CollisionOracle for Tripwire {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        self.count();
+        self.inner.intervals(motion, counts)
+    }
+
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        self.inner.collides(q, counts)
+    }
+
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        self.count();
+        self.inner.motion_is_free(motion, counts)
+    }
+}
+
+/// A query of a cluttered disc scene that the deep via-point search needs many calls for.
+fn hard_pair(scene: &viaroad::scene::Scene, method: &ViaPoint) -> (Vec<f64>, Vec<f64>, u64) {
+    let oracle = scene.oracle();
+    random_queries(scene, 200, 3)
+        .into_iter()
+        .map(|(s, g)| {
+            let c = method
+                .connect(&scene.space, oracle.as_ref(), &s, &g)
+                .unwrap();
+            let calls = c.counts.intersect_calls();
+            (s, g, calls)
+        })
+        .max_by_key(|p| p.2)
+        .unwrap()
+}
+
+#[test]
+fn the_viapoint_search_stops_within_one_call_of_its_deadline() {
+    let scene = disc_scene(4, 120, 0.05);
+    let method = ViaPoint::new(ViaPointOptions {
+        max_calls: None,
+        ..ViaPointOptions::default()
+    });
+    let (s, g, unlimited) = hard_pair(&scene, &method);
+    assert!(
+        unlimited > 40,
+        "the test needs a long search, got {unlimited} calls"
+    );
+    let wire = Tripwire::new(scene.oracle(), 20);
+    let c = method
+        .connect_within(&scene.space, &wire, &s, &g, &wire.deadline())
+        .unwrap();
+    assert_eq!(c.outcome, Outcome::Interrupted);
+    assert!(c.path.is_empty());
+    assert_eq!(wire.motions(), 20, "asked {} motions", wire.motions());
+    assert_eq!(c.counts.intersect_calls(), 20);
+    // what it certified before the stop is still free
+    let d = discs(&scene);
+    for &(i, j) in &c.discoveries.free_segments {
+        let (p, q) = (
+            &c.discoveries.configs[i as usize],
+            &c.discoveries.configs[j as usize],
+        );
+        assert!(segment_free(p, q, &d), "{p:?} → {q:?}");
+    }
+    // a deadline already past asks nothing
+    let wire = Tripwire::new(scene.oracle(), 1);
+    let c = method
+        .connect_within(
+            &scene.space,
+            &wire,
+            &s,
+            &g,
+            &Deadline::after(Duration::ZERO),
+        )
+        .unwrap();
+    assert_eq!((c.outcome, wire.motions()), (Outcome::Interrupted, 0));
+}
+
+#[test]
+fn learning_stops_within_a_call_per_thread_of_a_cancel_and_keeps_a_valid_roadmap() {
+    let scene = disc_scene(6, 90, 0.05);
+    let local = LocalSpec::roadmap_default().build();
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let wire = Tripwire::new(scene.oracle(), 300);
+        let learner = Learner::new(&scene.space, &wire, local.as_ref(), scene.fingerprint());
+        let learnt = pool
+            .install(|| {
+                learner.learn_within(
+                    &LearnParams::default(),
+                    &Budget::nodes(1_000_000),
+                    1,
+                    &wire.deadline(),
+                    &mut |_| {},
+                )
+            })
+            .unwrap();
+        assert_eq!(learnt.report.stop, StopReason::Cancelled);
+        // each thread finishes the call it is in, nothing more
+        assert!(
+            wire.motions() <= 300 + threads as u64 - 1,
+            "{threads} threads asked {} motions",
+            wire.motions()
+        );
+        let roadmap = &learnt.roadmap;
+        assert!(roadmap.node_count() > 0 && roadmap.node_count() < 1_000_000);
+        roadmap_valid(roadmap, &discs(&scene)).unwrap();
+    }
+    // a deadline already past learns nothing and asks nothing
+    let wire = Tripwire::new(scene.oracle(), 1);
+    let learner = Learner::new(&scene.space, &wire, local.as_ref(), scene.fingerprint());
+    let learnt = learner
+        .learn_within(
+            &LearnParams::default(),
+            &Budget::nodes(100),
+            1,
+            &Deadline::after(Duration::ZERO),
+            &mut |_| {},
+        )
+        .unwrap();
+    assert_eq!(learnt.report.stop, StopReason::TimeBudget);
+    assert_eq!((learnt.roadmap.node_count(), wire.motions()), (0, 0));
+}
+
+/// A sparse roadmap cannot join some solvable queries; with a time limit the query grows a
+/// copy of it around the ends and answers through that ([`QueryOutcome::Grown`]), with a path
+/// the independent checker accepts. The saved roadmap is not changed.
+#[test]
+fn a_query_the_roadmap_cannot_join_grows_it_within_its_time() {
+    let scene = disc_scene(8, 70, 0.06);
+    let roadmap = learn(&scene, &LocalSpec::Straight, &LearnParams::default(), 12, 2).roadmap;
+    let oracle = scene.oracle();
+    let grid = GridComponents::new(&scene, 200);
+    let d = discs(&scene);
+    let plain = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
+    let (s, g) = random_queries(&scene, 400, 9)
+        .into_iter()
+        .find(|(s, g)| grid.solvable(s, g) == Some(true) && !plain.query(s, g).unwrap().is_solved())
+        .expect("a solvable query the sparse roadmap cannot answer");
+    let growing = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            time: Some(Duration::from_secs(60)),
+            ..QueryOptions::default()
+        });
+    let r = growing.query(&s, &g).unwrap();
+    assert_eq!(r.outcome, QueryOutcome::Grown, "{r:?}");
+    assert!(r.grown_nodes > 0);
+    assert!(path_free(&r.path, &d) && path_free(&r.raw_path, &d));
+    assert_eq!((&r.path[0], r.path.last().unwrap()), (&s, &g));
+    // without growing, the same time limit changes nothing
+    let no_grow = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            time: Some(Duration::from_secs(60)),
+            grow: false,
+            ..QueryOptions::default()
+        });
+    assert!(!no_grow.query(&s, &g).unwrap().is_solved());
+}
+
+/// An enclosed start can never be joined: a growing query ends when its time does, unsolved.
+#[test]
+fn an_unanswerable_query_times_out() {
+    let mut ring = disc_scene(1, 0, 0.1);
+    for k in 0..24 {
+        let a = k as f64 * std::f64::consts::TAU / 24.0;
+        ring.obstacles.push(viaroad::scene::Obstacle::Disc {
+            centre: vec![0.5 + 0.2 * a.cos(), 0.5 + 0.2 * a.sin()],
+            radius: 0.04,
+        });
+    }
+    let roadmap = learn(
+        &ring,
+        &LocalSpec::default(),
+        &LearnParams::default(),
+        100,
+        1,
+    )
+    .roadmap;
+    let oracle = ring.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            time: Some(Duration::from_millis(300)),
+            ..QueryOptions::default()
+        });
+    let r = planner.query(&[0.5, 0.5], &[0.02, 0.02]).unwrap();
+    assert_eq!(r.outcome, QueryOutcome::TimedOut);
+    assert!(r.path.is_empty() && !r.is_solved());
+}
+
+/// Growing from nothing (single-query PRM): start and goal become connected nodes.
+#[test]
+fn connect_pair_grows_a_roadmap_from_start_and_goal() {
+    let scene = disc_scene(12, 80, 0.05);
+    let oracle = scene.oracle();
+    let local = LocalSpec::roadmap_default().build();
+    let grid = GridComponents::new(&scene, 200);
+    let (s, g) = random_queries(&scene, 100, 4)
+        .into_iter()
+        .find(|(s, g)| grid.solvable(s, g) == Some(true) && !segment_free(s, g, &discs(&scene)))
+        .unwrap();
+    let learner = Learner::for_scene(&scene, oracle.as_ref(), local.as_ref());
+    let grown = learner
+        .connect_pair(
+            &LearnParams::default(),
+            None,
+            (&s, &g),
+            &Budget::nodes(100_000),
+            3,
+            &Deadline::none(),
+            &mut |_| {},
+        )
+        .unwrap();
+    assert!(grown.connected);
+    assert_eq!(grown.learnt.report.stop, StopReason::Connected);
+    let roadmap = &grown.learnt.roadmap;
+    assert_eq!(roadmap.node(grown.start), &s[..]);
+    assert_eq!(roadmap.node(grown.goal), &g[..]);
+    assert_eq!(
+        roadmap.component(grown.start),
+        roadmap.component(grown.goal)
+    );
+    roadmap_valid(roadmap, &discs(&scene)).unwrap();
+}

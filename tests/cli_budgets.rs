@@ -1,0 +1,169 @@
+//! Budgets on the command line: `solve --roadmap` (single-query roadmap), `--time` on `build`,
+//! `query` and `solve`, numbered streaming answers, and a scene whose own query is invalid
+//! (a warning for `build`, an error for `solve`). Paths are re-checked by the independent
+//! segment–disc test.
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use viaroad::scene::{Obstacle, Scene};
+
+const CLUTTERED: &str = "scenes/discs-cluttered.toml";
+
+fn viaroad(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_viaroad"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Non-zero exit with one `error:` line that names `needle`.
+fn fails_with(args: &[&str], needle: &str) {
+    let o = viaroad(args);
+    let err = text(&o.stderr);
+    assert!(!o.status.success(), "{args:?} succeeded");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(lines.len(), 1, "{args:?}: {err}");
+    assert!(lines[0].contains(needle), "{args:?}: {}", lines[0]);
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("viaroad-budgets-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn discs(path: &str) -> (Vec<Vec<f64>>, Vec<f64>) {
+    let scene = Scene::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(path)).unwrap();
+    scene
+        .obstacles
+        .iter()
+        .map(|o| match o {
+            Obstacle::Disc { centre, radius } => (centre.clone(), *radius),
+            _ => panic!("a disc scene"),
+        })
+        .unzip()
+}
+
+fn path_of(v: &serde_json::Value) -> Vec<Vec<f64>> {
+    serde_json::from_value(v.clone()).unwrap()
+}
+
+#[test]
+fn solve_roadmap_grows_from_start_and_goal_to_a_checked_path() {
+    let o = viaroad(&["solve", CLUTTERED, "--roadmap", "--time", "60", "--json"]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let (centres, radii) = discs(CLUTTERED);
+    let lines: Vec<serde_json::Value> = text(&o.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(!lines.is_empty());
+    for v in &lines {
+        assert_eq!(v["solved"], true, "{v}");
+        assert_eq!(v["stop"], "Connected");
+        assert!(v["nodes"].as_u64().unwrap() >= 2);
+        for key in ["path", "shortened"] {
+            let p = path_of(&v[key]);
+            common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9).unwrap();
+        }
+    }
+}
+
+#[test]
+fn time_budgets_are_checked_and_answers_are_numbered() {
+    let d = temp_dir("time");
+    let rm = d.join("rm.bin").to_string_lossy().into_owned();
+    // a build stopped by its time budget still saves a roadmap
+    let o = viaroad(&["build", CLUTTERED, "-o", &rm, "--time", "0.2"]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(
+        text(&o.stdout).contains("stopped: TimeBudget"),
+        "{}",
+        text(&o.stdout)
+    );
+    assert!(viaroad(&["info", &rm]).status.success());
+    for bad in ["0", "-1", "nan", "inf", "1e300"] {
+        let bad = &format!("--time={bad}");
+        fails_with(&["build", CLUTTERED, "-o", &rm, bad], "--time");
+        fails_with(
+            &[
+                "query",
+                &rm,
+                "--scene",
+                CLUTTERED,
+                "--from",
+                "0.02,0.98",
+                "--to",
+                "0.98,0.02",
+                "--time",
+                bad,
+            ],
+            "--time",
+        );
+        fails_with(&["solve", CLUTTERED, bad], "--time");
+    }
+    let queries = d.join("q.txt");
+    std::fs::write(
+        &queries,
+        "0.02 0.98 0.98 0.02\n0.5 0.97 0.5 0.03\n0.03 0.5 0.97 0.5\n",
+    )
+    .unwrap();
+    let o = viaroad(&[
+        "query",
+        &rm,
+        "--scene",
+        CLUTTERED,
+        "--queries",
+        &queries.to_string_lossy(),
+        "--json",
+        "--time",
+        "30",
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let (centres, radii) = discs(CLUTTERED);
+    let mut numbers: Vec<u64> = Vec::new();
+    for line in text(&o.stdout).lines() {
+        let v: serde_json::Value = serde_json::from_str(line).unwrap();
+        numbers.push(v["query"].as_u64().unwrap());
+        assert_eq!(v["solved"], true, "{v}");
+        let p = path_of(&v["shortened"]);
+        common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9).unwrap();
+    }
+    numbers.sort_unstable();
+    assert_eq!(numbers, vec![1, 2, 3]);
+}
+
+#[test]
+fn an_invalid_scene_query_warns_build_and_stops_solve() {
+    let d = temp_dir("invalid-query");
+    let scene = d.join("blocked.toml");
+    std::fs::write(
+        &scene,
+        "[space]\nkind = \"r2\"\nlower = [0, 0]\nupper = [1, 1]\n\
+         [[obstacle]]\ndisc = { center = [0.5, 0.5], radius = 0.2 }\n\
+         [[query]]\nstart = [0.1, 0.1]\ngoal = [0.5, 0.5]\n",
+    )
+    .unwrap();
+    let scene = scene.to_string_lossy().into_owned();
+    let rm = d.join("rm.bin").to_string_lossy().into_owned();
+    let o = viaroad(&["build", &scene, "-o", &rm, "--nodes", "50"]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let warned: Vec<String> = text(&o.stderr)
+        .lines()
+        .filter(|l| l.starts_with("warning:") && l.contains("goal of query 1"))
+        .map(str::to_string)
+        .collect();
+    assert_eq!(warned.len(), 1, "{}", text(&o.stderr));
+    assert!(warned[0].contains("in collision"));
+    fails_with(&["solve", &scene], "goal of query 1");
+    fails_with(&["solve", &scene, "--roadmap"], "goal of query 1");
+}
