@@ -19,15 +19,19 @@
 //! | [`roadmap`] | learning, persistence, queries |
 //! | [`scene`] | TOML scenes, OMPL.app problems, meshes |
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
+//! | [`limits`] | the largest numbers accepted from users |
+//! | [`safe_file`] | atomic saves that never replace special files; bounded reads |
 #![warn(missing_docs)]
 
 pub mod bench;
 pub mod deadline;
 pub mod geometry;
 pub mod interval;
+pub mod limits;
 pub mod local;
 pub mod oracle;
 pub mod render;
 pub mod roadmap;
+pub mod safe_file;
 pub mod scene;
 pub mod space;

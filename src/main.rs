@@ -5,7 +5,21 @@ mod cli;
 
 use clap::Parser;
 
+/// Lets a closed stdout pipe end the program quietly, as Unix tools do (`viaroad solve … |
+/// head -1`): Rust ignores SIGPIPE, so every later `println!` would panic with "Broken pipe";
+/// with the default action the process ends at the first write to the closed pipe, wherever
+/// that write is (issue 16). `bench local`, which writes to its children's pipes, ignores it
+/// again for itself.
+fn restore_default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to the default, before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() {
+    restore_default_sigpipe();
     let args = cli::Cli::parse();
     if let Err(e) = cli::run(args) {
         // one line: the error and those of its causes that its message does not already say

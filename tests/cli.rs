@@ -431,10 +431,13 @@ fn path_out_writes_ompl_state_files_the_independent_check_certifies() {
         "{solved} solved, {files} files"
     );
 
-    // a path file that cannot be written is its own error, not a panic
-    let nowhere = d.join("no-such-dir").join("p.path");
+    // a path file that cannot be written is its own error, not a panic (a missing directory
+    // is created, as for `build -o`; a regular file in the way of the directory is not)
+    let blocker = d.join("a-file");
+    std::fs::write(&blocker, b"x").unwrap();
+    let nowhere = blocker.join("p.path");
     fails_with(
         &["solve", CLUTTERED, "--path-out", nowhere.to_str().unwrap()],
-        "cannot write",
+        "a-file",
     );
 }

@@ -263,12 +263,12 @@ fn a_failed_save_leaves_the_previous_file_intact() {
     assert_eq!(std::fs::read(&path).unwrap(), before);
     assert_eq!(listing(), vec![std::ffi::OsString::from("map.bin")]);
 
-    // the target is a directory (with content): the rename fails, the directory stays
+    // the target is a directory (with content): refused, the directory stays
     let target_dir = dir.join("taken.bin");
     std::fs::create_dir(&target_dir).unwrap();
     std::fs::write(target_dir.join("keep"), b"keep").unwrap();
     let r = new.save(&target_dir);
-    assert!(matches!(r, Err(RoadmapError::Io { .. })), "{r:?}");
+    assert!(matches!(r, Err(RoadmapError::File(_))), "{r:?}");
     assert_eq!(std::fs::read(target_dir.join("keep")).unwrap(), b"keep");
     assert_eq!(
         listing(),

@@ -7,7 +7,7 @@
 //! here a per-problem call budget applies — count towards the calls but not towards the depth
 //! statistics, exactly as the seed counts them (footnote of Table A.4).
 
-use super::discs::{problem, DiscProblem, GOAL, START};
+use super::discs::{DiscProblem, GOAL, START};
 use crate::local::viapoint::{BasePoint, Depth, ViaLimit, ViaPoint, ViaPointOptions};
 use crate::local::{LocalMethod, Outcome};
 use rayon::prelude::*;
@@ -282,7 +282,16 @@ pub fn rows(budgets: Budgets) -> Vec<Row> {
 /// `radius`, calling `tick` after each (row, problem) pair from any thread. All pairs form one
 /// parallel job list over problems generated once, so a row's slowest problem does not leave
 /// the other threads idle; each row's `seconds` is the CPU time its problems took.
-pub fn run_rows(rows: &mut [Row], problems: u64, seed: u64, radius: f64, tick: &(dyn Fn() + Sync)) {
+///
+/// Fails (before any row runs) if the generator finds no solvable problem at `radius`
+/// ([`super::discs::try_problem`]).
+pub fn run_rows(
+    rows: &mut [Row],
+    problems: u64,
+    seed: u64,
+    radius: f64,
+    tick: &(dyn Fn() + Sync),
+) -> Result<(), super::discs::NoSolvableProblem> {
     let space = DiscProblem::space();
     let methods: Vec<ViaPoint> = rows
         .iter()
@@ -290,8 +299,8 @@ pub fn run_rows(rows: &mut [Row], problems: u64, seed: u64, radius: f64, tick: &
         .collect();
     let set: Vec<_> = (0..problems)
         .into_par_iter()
-        .map(|i| problem(seed, i, radius).oracle())
-        .collect();
+        .map(|i| super::discs::try_problem(seed, i, radius).map(|p| p.oracle()))
+        .collect::<Result<_, _>>()?;
     let jobs: Vec<(usize, usize)> = (0..rows.len())
         .flat_map(|r| (0..set.len()).map(move |p| (r, p)))
         .collect();
@@ -326,6 +335,7 @@ pub fn run_rows(rows: &mut [Row], problems: u64, seed: u64, radius: f64, tick: &
             seconds: mine.iter().map(|x| x.3).sum(),
         };
     }
+    Ok(())
 }
 
 fn opt(v: Option<f64>, digits: usize) -> String {
@@ -435,7 +445,7 @@ mod tests {
     fn a_small_run_fills_the_tables() {
         let mut r = rows(Budgets::default());
         r.retain(|r| r.table == "A.2");
-        run_rows(&mut r, 20, 1, super::super::discs::SEED_RADIUS, &|| {});
+        run_rows(&mut r, 20, 1, super::super::discs::SEED_RADIUS, &|| {}).unwrap();
         for row in &r {
             assert_eq!(row.measured.problems, 20);
             assert!(

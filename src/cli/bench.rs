@@ -15,6 +15,10 @@ use viaroad::bench::local::{
 };
 use viaroad::bench::tables;
 
+/// Most problems of `bench discs`: ten times the seed's 10 000; all are generated and kept
+/// (about 5 kB each) before the first is solved.
+const MAX_DISC_PROBLEMS: usize = 100_000;
+
 /// Benchmarks.
 #[derive(Subcommand)]
 pub enum BenchCommand {
@@ -115,7 +119,7 @@ pub struct BenchLocalArgs {
 /// Arguments of `bench discs`.
 #[derive(Args)]
 pub struct DiscsArgs {
-    /// Number of random problems (the seed used 10 000).
+    /// Number of random problems (the seed used 10 000; at most 100 000).
     #[arg(long, default_value_t = 10_000)]
     pub problems: u64,
     /// Seed of the problem generator.
@@ -149,9 +153,14 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
     if !(a.radius.is_finite() && a.radius > 0.0 && a.radius < 0.5) {
         anyhow::bail!("--radius must lie in (0, 0.5), got {}", a.radius);
     }
-    if a.problems == 0 {
-        anyhow::bail!("--problems must be at least 1");
-    }
+    let problems = super::limits::count_in_range(
+        "--problems",
+        usize::try_from(a.problems).unwrap_or(usize::MAX),
+        MAX_DISC_PROBLEMS,
+        "every problem is generated and kept before the first is solved",
+    )? as u64;
+    // the first problem says within a second whether the radius leaves solvable problems
+    viaroad::bench::discs::try_problem(a.seed, 0, a.radius)?;
     let budgets = a
         .budget
         .map_or_else(tables::Budgets::default, tables::Budgets::both);
@@ -165,9 +174,10 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
     }
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
-    let bar = super::progress_bar(a.problems * rows.len() as u64, "problems");
+    super::output::check_targets(&a.out, &["tables.md", "tables.csv", "tables.json"])?;
+    let bar = super::progress_bar(problems * rows.len() as u64, "problems");
     let start = std::time::Instant::now();
-    tables::run_rows(&mut rows, a.problems, a.seed, a.radius, &|| bar.inc(1));
+    tables::run_rows(&mut rows, problems, a.seed, a.radius, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let md = tables::markdown(&rows);
     println!(
@@ -182,8 +192,7 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
     );
     println!("{md}");
     let write = |name: &str, text: String| -> anyhow::Result<()> {
-        let p = a.out.join(name);
-        std::fs::write(&p, text).with_context(|| format!("cannot write {}", p.display()))
+        super::output::save(&a.out.join(name), text.as_bytes()).map(drop)
     };
     write("tables.md", md)?;
     write("tables.csv", tables::csv(&rows))?;
@@ -241,6 +250,9 @@ fn run_child(job: &RunJob, threads: Option<usize>) -> anyhow::Result<RunRecord> 
 }
 
 fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
+    // this process writes jobs to its children's pipes: a child that died is an error of
+    // that run, not a reason for the whole benchmark to end by SIGPIPE
+    super::output::ignore_sigpipe();
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let date = machine::utc_now();
     let began = std::time::Instant::now();
@@ -281,6 +293,12 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     if a.jobs == 0 {
         anyhow::bail!("--jobs must be at least 1");
     }
+    // outputs that could not be saved are refused before the scenes load and the runs run
+    super::output::check_targets(
+        &a.out,
+        &["summary.md", "runs.csv", "report.json", "results.db"],
+    )?;
+
     // load every scene and its query set first: errors show before hours of running
     let mut loaded = Vec::new();
     for source in &plan.scenes {
@@ -393,10 +411,9 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         failures,
     };
     let md = report.markdown();
-    println!("{md}");
+    super::output::print_quietly(&md)?;
     let write = |name: &str, text: String| -> anyhow::Result<()> {
-        let p = a.out.join(name);
-        std::fs::write(&p, text).with_context(|| format!("cannot write {}", p.display()))
+        super::output::save(&a.out.join(name), text.as_bytes()).map(drop)
     };
     write("summary.md", md)?;
     write("runs.csv", report.csv())?;

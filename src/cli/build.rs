@@ -98,10 +98,10 @@ pub fn run(a: BuildArgs) -> anyhow::Result<()> {
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
+    // a target that cannot be saved to is refused before the learning, not after it
+    viaroad::safe_file::resolve_target(&a.output)?;
     let learnt = learn(&scene, &a.local, &a.learn, 1000)?;
-    if let Some(dir) = a.output.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    }
+    super::output::create_parent(&a.output)?;
     learnt.roadmap.save(&a.output)?;
     report(&learnt, &a.output);
     Ok(())

@@ -8,24 +8,28 @@ use super::query::percentile;
 use anyhow::Context;
 use clap::Args;
 use rand::SeedableRng;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
+use viaroad::limits::MAX_QUERIES;
 use viaroad::oracle::{CallCounts, CollisionOracle, CountedOracle};
 use viaroad::render::Picture;
 use viaroad::roadmap::{QueryPlanner, Roadmap};
-use viaroad::scene::Scene;
+use viaroad::scene::{Scene, SceneError};
 use viaroad::space::Config;
+
+/// The scene the demo learns unless `--scene` names another.
+const DEFAULT_SCENE: &str = "scenes/discs-cluttered.toml";
 
 /// Arguments of `demo`.
 #[derive(Args)]
 pub struct DemoArgs {
     /// The scene.
-    #[arg(long, default_value = "scenes/discs-cluttered.toml")]
+    #[arg(long, default_value = DEFAULT_SCENE)]
     pub scene: PathBuf,
     /// Directory for the roadmap and the picture.
     #[arg(long, default_value = "roadmaps")]
     pub out: PathBuf,
-    /// Random queries to answer.
+    /// Random queries to answer (at most 10⁶).
     #[arg(long, default_value_t = 1000)]
     pub queries: usize,
     #[command(flatten)]
@@ -34,32 +38,61 @@ pub struct DemoArgs {
     pub local: LocalArgs,
 }
 
-/// `n` random collision-free configurations pairs, from a seeded stream.
+/// Draws per free configuration before [`random_queries`] gives up: a scene whose free space
+/// is (almost) empty would otherwise be sampled for ever.
+const MAX_DRAWS: usize = 100_000;
+
+/// `n` random collision-free configurations pairs, from a seeded stream; an error if
+/// [`MAX_DRAWS`] draws in a row find no free configuration.
 pub fn random_queries(
     scene: &Scene,
     oracle: &dyn CollisionOracle,
     n: usize,
     seed: u64,
-) -> Vec<(Config, Config)> {
+) -> anyhow::Result<Vec<(Config, Config)>> {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let mut free = || loop {
-        let mut q = scene.space.sample_uniform(&mut rng);
-        scene.space.normalize(&mut q);
-        if oracle.is_free(&q, &mut CallCounts::default()) {
-            return q;
+    let mut free = || {
+        for _ in 0..MAX_DRAWS {
+            let mut q = scene.space.sample_uniform(&mut rng);
+            scene.space.normalize(&mut q);
+            if oracle.is_free(&q, &mut CallCounts::default()) {
+                return Ok(q);
+            }
         }
+        anyhow::bail!("no free configuration in {MAX_DRAWS} random draws: the scene's free space is (almost) empty")
     };
-    (0..n).map(|_| (free(), free())).collect()
+    let mut out = Vec::with_capacity(n);
+    for _ in 0..n {
+        out.push((free()?, free()?));
+    }
+    Ok(out)
 }
 
 /// Runs `demo`.
 pub fn run(a: DemoArgs) -> anyhow::Result<()> {
-    if a.queries == 0 {
-        anyhow::bail!("--queries must be at least 1");
-    }
-    let scene = Scene::load(&a.scene).with_context(|| {
-        "the demo runs from the repository's root, where scenes/ lives".to_string()
-    })?;
+    super::limits::count_in_range(
+        "--queries",
+        a.queries,
+        MAX_QUERIES,
+        "every query pair is drawn and stored before the first is answered",
+    )?;
+    let scene = match Scene::load(&a.scene) {
+        // the hint only helps with the default scene, not with a file the user named
+        Err(SceneError::Io { source, .. })
+            if a.scene == Path::new(DEFAULT_SCENE)
+                && source.kind() == std::io::ErrorKind::NotFound =>
+        {
+            anyhow::bail!(
+                "cannot read the default scene {DEFAULT_SCENE}: the demo runs from the \
+                 repository's root, where scenes/ lives (or give --scene FILE)"
+            )
+        }
+        r => r?,
+    };
+    // the flags are checked before the first status line, so that none precedes an error
+    a.learn.resolve(1000)?;
+    a.local
+        .spec_or(viaroad::local::LocalSpec::roadmap_default())?;
     let stem = a
         .scene
         .file_stem()
@@ -69,6 +102,9 @@ pub fn run(a: DemoArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     let file = a.out.join(format!("{stem}.bin"));
     let picture = a.out.join(format!("{stem}.svg"));
+    // refused before the learning, not after it
+    viaroad::safe_file::resolve_target(&file)?;
+    viaroad::safe_file::resolve_target(&picture)?;
 
     println!(
         "1. learning a roadmap of {} ({} obstacles, {})",
@@ -96,7 +132,7 @@ pub fn run(a: DemoArgs) -> anyhow::Result<()> {
         oracle.as_ref(),
         a.queries,
         a.learn.seed.wrapping_add(1),
-    );
+    )?;
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
     let t = Instant::now();
     let answers = planner.query_batch(&queries);
@@ -135,8 +171,7 @@ pub fn run(a: DemoArgs) -> anyhow::Result<()> {
         pic.path(&scene, &r.raw_path, false)
             .path(&scene, &r.path, true);
     }
-    pic.save(&picture)
-        .with_context(|| format!("cannot write {}", picture.display()))?;
+    super::output::save(&picture, pic.to_svg().as_bytes())?;
     println!(
         "4. wrote {} (roadmap, raw path dashed, shortened path solid)",
         picture.display()

@@ -2,16 +2,16 @@
 
 use anyhow::Context;
 use clap::Args;
-use std::time::Duration;
+use viaroad::limits::MAX_NODES;
 use viaroad::roadmap::{Budget, LearnParams};
 
 /// How much to learn and how.
 #[derive(Args, Clone, Debug)]
 pub struct LearnArgs {
-    /// Stop at this many nodes (reproducible).
+    /// Stop at this many nodes (reproducible; at most 10⁷).
     #[arg(long)]
     pub nodes: Option<usize>,
-    /// Stop after this many seconds (not reproducible: depends on the machine).
+    /// Stop after this many seconds (not reproducible: depends on the machine; at most 10⁹).
     #[arg(long)]
     pub time: Option<f64>,
     /// Seed of learning.
@@ -23,19 +23,6 @@ pub struct LearnArgs {
     /// Nearest neighbours each new node tries (OMPL's PRM: 10).
     #[arg(long)]
     pub neighbours: Option<usize>,
-}
-
-/// The longest time budget accepted (about 31 years): anything longer is a typo, and
-/// `Duration` itself cannot hold 1e300 s.
-pub const MAX_SECONDS: f64 = 1e9;
-
-/// A time budget given on the command line: a positive number of seconds, at most
-/// [`MAX_SECONDS`].
-pub fn seconds(flag: &str, t: f64) -> anyhow::Result<Option<Duration>> {
-    if !(t.is_finite() && t > 0.0 && t <= MAX_SECONDS) {
-        anyhow::bail!("{flag} must be a positive number of seconds up to {MAX_SECONDS:e}, got {t}");
-    }
-    Ok(Some(Duration::from_secs_f64(t)))
 }
 
 impl LearnArgs {
@@ -52,12 +39,16 @@ impl LearnArgs {
             .validate()
             .map_err(anyhow::Error::msg)
             .context("learning parameters")?;
-        let time = match self.time {
-            Some(t) => seconds("--time", t)?,
-            None => None,
-        };
-        if self.nodes == Some(0) {
-            anyhow::bail!("--nodes must be at least 1");
+        let time = super::limits::optional_seconds("--time", self.time)?;
+        if let Some(n) = self.nodes {
+            // decided in issue 16: a count no memory holds is refused, not run until it fails
+            super::limits::count_in_range(
+                "--nodes",
+                n,
+                MAX_NODES,
+                "a roadmap that large does not fit in memory; to learn until a deadline, \
+                 give --time alone",
+            )?;
         }
         let nodes = match (self.nodes, time) {
             (None, None) => Some(default_nodes),

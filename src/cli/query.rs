@@ -90,7 +90,6 @@ pub fn percentile(sorted: &[f64], p: f64) -> f64 {
 struct Printer {
     json: bool,
     total: usize,
-    path_out: Option<PathBuf>,
     state: Mutex<Printed>,
 }
 
@@ -98,6 +97,8 @@ struct Printer {
 struct Printed {
     ms: Vec<f64>,
     solved: usize,
+    /// Where solved paths go, as they come.
+    path_out: Option<super::path_out::PathOut>,
     /// The first failure to print or write, reported when the batch ends.
     failure: Option<anyhow::Error>,
 }
@@ -124,8 +125,8 @@ impl Printer {
         if writeln!(out, "{line}").and_then(|_| out.flush()).is_err() {
             std::process::exit(0);
         }
-        if let (Some(base), Ok(r)) = (&self.path_out, &a.result) {
-            if let Err(e) = super::path_out::write(base, i, self.total, &r.path) {
+        if let (Some(out), Ok(r)) = (&mut st.path_out, &a.result) {
+            if let Err(e) = out.write(i, &r.path) {
                 st.failure = Some(e);
             }
         }
@@ -200,7 +201,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     if let (true, Some(file)) = (queries.is_empty(), &a.queries) {
         anyhow::bail!("{}: no queries in the file", file.display());
     }
-    let time = super::learn_args::seconds("--time", a.time)?;
+    let time = Some(super::limits::parse_seconds("--time", a.time)?);
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
     let mut defaults = planner.options().clone();
@@ -227,19 +228,30 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         },
     };
     let planner = planner.with_options(options);
-    if !a.json {
+    let path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
+    // a status line must not precede an `error:` line (issue 16): a single query's invalid
+    // input is the command's error, so its status comes after the answer
+    let loaded = || {
         eprintln!(
             "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms",
             a.roadmap.display(),
             roadmap.node_count(),
             roadmap.edge_count()
-        );
+        )
+    };
+    if !a.json && queries.len() > 1 {
+        loaded();
     }
     let printer = Printer {
         json: a.json,
         total: queries.len(),
-        path_out: a.path_out.clone(),
-        state: Mutex::new(Printed::default()),
+        state: Mutex::new(Printed {
+            path_out,
+            ..Printed::default()
+        }),
     };
     let deadline = super::interrupt::on_ctrl_c(Deadline::none());
     planner.query_each(&queries, &deadline, &|i, answer| printer.answer(i, &answer));
@@ -252,6 +264,9 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     }
     st.ms.sort_by(f64::total_cmp);
     if !a.json {
+        if queries.len() == 1 {
+            loaded();
+        }
         println!(
             "{}/{} solved; latency p50 {:.3} ms, p95 {:.3} ms",
             st.solved,
@@ -259,6 +274,9 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             percentile(&st.ms, 0.5),
             percentile(&st.ms, 0.95)
         );
+    }
+    if let Some(out) = st.path_out {
+        out.finish();
     }
     Ok(())
 }

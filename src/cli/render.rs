@@ -32,6 +32,9 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
     if let LocalSpec::ViaPoint(o) = &mut spec {
         o.trace = true;
     }
+    // refused before the solving, not after it
+    viaroad::safe_file::resolve_target(&a.output)?;
+    let mut status = None;
     let mut picture = Picture::new(&scene);
     picture.obstacles(&scene);
     if a.query > 0 {
@@ -58,18 +61,20 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
             .borderlines(&s.connection.borderlines)
             .path(&scene, &s.connection.path, false)
             .path(&scene, &s.shortened, true);
-        eprintln!(
+        status = Some(format!(
             "query {}: {:?}, depth {}, {} intersect calls, {} borderlines",
             a.query,
             s.connection.outcome,
             s.connection.depth,
             s.connection.counts.intersect_calls(),
             s.connection.borderlines.len()
-        );
+        ));
     }
-    picture
-        .save(&a.output)
-        .with_context(|| format!("cannot write {}", a.output.display()))?;
+    super::output::save(&a.output, picture.to_svg().as_bytes())?;
+    // status lines after the save: none precedes an `error:` line (issue 16)
+    if let Some(line) = status {
+        eprintln!("{line}");
+    }
     eprintln!("wrote {}", a.output.display());
     Ok(())
 }

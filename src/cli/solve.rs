@@ -85,10 +85,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     }
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::default())?;
-    let time = match a.time {
-        Some(t) => super::learn_args::seconds("--time", t)?,
-        None => None,
-    };
+    let time = super::limits::optional_seconds("--time", a.time)?;
     let oracle = scene.oracle();
     if scene.queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());
@@ -97,6 +94,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     let groups = spec.build().groups(&scene.space);
+    let mut path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, scene.queries.len())?),
+        None => None,
+    };
     for (i, q) in scene.queries.iter().enumerate() {
         let start = scene.check_config(
             oracle.as_ref(),
@@ -110,8 +111,8 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         )?;
         let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
         let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal, &deadline)?;
-        if let Some(base) = &a.path_out {
-            super::path_out::write(base, i, scene.queries.len(), &s.shortened)?;
+        if let Some(out) = &mut path_out {
+            out.write(i, &s.shortened)?;
         }
         let c = &s.connection;
         if a.json {
@@ -146,6 +147,9 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             );
         }
     }
+    if let Some(out) = path_out {
+        out.finish();
+    }
     Ok(())
 }
 
@@ -153,7 +157,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
 fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
-    let time = super::learn_args::seconds("--time", a.time.unwrap_or(60.0))?;
+    let time = Some(super::limits::parse_seconds(
+        "--time",
+        a.time.unwrap_or(60.0),
+    )?);
     let queries = scene.checked_queries()?;
     if queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());
@@ -161,6 +168,10 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
+    let mut path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
     let oracle = scene.oracle();
     let method = spec.build();
     let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
@@ -194,8 +205,8 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
         let secs = began.elapsed().as_secs_f64();
         let calls = roadmap.header().counts.intersect_calls()
             + answer.as_ref().map_or(0, |r| r.counts.intersect_calls());
-        if let (Some(base), Some(r)) = (&a.path_out, &answer) {
-            super::path_out::write(base, i, queries.len(), &r.path)?;
+        if let (Some(out), Some(r)) = (&mut path_out, &answer) {
+            out.write(i, &r.path)?;
         }
         if a.json {
             println!(
@@ -231,6 +242,9 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
                 roadmap.component_count(),
             );
         }
+    }
+    if let Some(out) = path_out {
+        out.finish();
     }
     Ok(())
 }

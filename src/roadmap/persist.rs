@@ -27,12 +27,12 @@ use super::graph::{Edge, Roadmap};
 use super::params::LearnParams;
 use crate::local::LocalSpec;
 use crate::oracle::CallCounts;
+use crate::safe_file;
 use crate::space::{Space, SpaceKind};
 use serde::{Deserialize, Serialize};
-use std::io::Write;
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The first eight bytes of every roadmap file.
 pub const MAGIC: [u8; 8] = *b"VIAROADM";
@@ -124,9 +124,30 @@ pub enum RoadmapError {
         /// Why it does not parse.
         reason: String,
     },
+    /// The file is not one that may be read or replaced (a device, FIFO, directory …).
+    #[error(transparent)]
+    File(safe_file::FileError),
     /// Encoding failed (does not happen for roadmaps built by this crate).
     #[error("cannot encode roadmap: {0}")]
     Encode(String),
+}
+
+impl RoadmapError {
+    /// Keeps the I/O failures in [`RoadmapError::Io`], the rest in [`RoadmapError::File`].
+    fn from_file(e: safe_file::FileError) -> Self {
+        match e {
+            safe_file::FileError::Io {
+                action,
+                path,
+                source,
+            } => RoadmapError::Io {
+                action,
+                path,
+                source,
+            },
+            other => RoadmapError::File(other),
+        }
+    }
 }
 
 /// The payload as written (borrowing the roadmap).
@@ -300,11 +321,19 @@ impl Roadmap {
             .params
             .validate()
             .map_err(|e| RoadmapError::Corrupted(format!("learning parameters: {e}")))?;
-        if let Err(e) = LocalSpec::from_str(&p.header.local_spec) {
-            return Err(RoadmapError::UnknownLocalMethod {
-                spec: p.header.local_spec.clone(),
-                reason: e.reason,
-            });
+        match LocalSpec::from_str(&p.header.local_spec) {
+            Err(e) => {
+                return Err(RoadmapError::UnknownLocalMethod {
+                    spec: p.header.local_spec.clone(),
+                    reason: e.reason,
+                })
+            }
+            Ok(spec) => crate::limits::check_local_spec(&spec).map_err(|reason| {
+                RoadmapError::UnknownLocalMethod {
+                    spec: p.header.local_spec.clone(),
+                    reason,
+                }
+            })?,
         }
         let labels = p.components;
         let roadmap =
@@ -320,6 +349,7 @@ impl Roadmap {
     /// Saves the roadmap to `path` atomically: the bytes go to a temporary file in the same
     /// directory ([`temp_path`]), which is flushed to disk and then renamed over `path`. If
     /// anything fails, `path` keeps its previous content and the temporary file is removed.
+    /// Special files are refused, never replaced ([`write_atomically`]).
     pub fn save(&self, path: &Path) -> Result<(), RoadmapError> {
         let bytes = self.to_bytes()?;
         write_atomically(path, |w| w.write_all(&bytes))
@@ -337,12 +367,42 @@ impl Roadmap {
     }
 }
 
+/// The bytes of the roadmap file at `path`, reading at most what its fixed header announces:
+/// non-regular files (`/dev/zero`, FIFOs) are refused before they are read, a file whose
+/// header is not a roadmap's is read no further than the header, and a file longer than its
+/// header announces is refused from its size alone.
 fn read(path: &Path) -> Result<Vec<u8>, RoadmapError> {
-    std::fs::read(path).map_err(|source| RoadmapError::Io {
+    let (file, size) = safe_file::open_regular(path).map_err(RoadmapError::from_file)?;
+    let io = |source| RoadmapError::Io {
         action: "read",
         path: path.to_path_buf(),
         source,
-    })
+    };
+    let mut file = std::io::BufReader::new(file);
+    let mut bytes = Vec::with_capacity(FIXED_HEADER_LEN);
+    (&mut file)
+        .take(FIXED_HEADER_LEN as u64)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() < FIXED_HEADER_LEN
+        || bytes[..8] != MAGIC
+        || checksum(&bytes[..28]) != u64::from_le_bytes(bytes[28..36].try_into().expect("8"))
+    {
+        // from_bytes names what is wrong with the header
+        return Ok(bytes);
+    }
+    let payload_len = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes"));
+    let total = payload_len.saturating_add(FIXED_HEADER_LEN as u64);
+    if size > total {
+        return Err(RoadmapError::Corrupted(format!(
+            "{} unexpected bytes after the end of the roadmap",
+            size - total
+        )));
+    }
+    // at most what the header announces, and never more than the file holds
+    bytes.reserve((size.min(total) as usize).saturating_sub(FIXED_HEADER_LEN));
+    file.take(payload_len).read_to_end(&mut bytes).map_err(io)?;
+    Ok(bytes)
 }
 
 /// A space read from a file must be one its constructors accept.
@@ -375,57 +435,19 @@ fn check_space(space: &Space) -> Result<(), RoadmapError> {
 /// Where [`write_atomically`] puts the bytes for `target` before renaming: a hidden file next
 /// to it, named after it, the process and a counter (so concurrent saves do not collide).
 pub fn temp_path(target: &Path) -> PathBuf {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let name = target
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "roadmap".into());
-    target.with_file_name(format!(".{name}.{}-{n}.tmp", std::process::id()))
+    safe_file::temp_path(target)
 }
 
-/// Writes a file the way a crash cannot half-do: `write` fills a temporary file in the same
-/// directory, which is synced and renamed over `target` (and the directory synced, where the
-/// platform allows). On any error the temporary file is removed and `target` is untouched.
+/// Writes a file the way a crash cannot half-do ([`safe_file::write_atomically`]): `write`
+/// fills a temporary file in the same directory, which is synced and renamed over `target`.
+/// On any error the temporary file is removed and `target` is untouched. A target that is not
+/// a regular file (a device, FIFO, directory) is refused, never replaced; a symbolic link is
+/// followed; temporaries left by killed saves of the same target are removed.
 pub fn write_atomically(
     target: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<(), RoadmapError> {
-    let tmp = temp_path(target);
-    let io = |action: &'static str, path: &Path| {
-        let path = path.to_path_buf();
-        move |source| RoadmapError::Io {
-            action,
-            path,
-            source,
-        }
-    };
-    let mut file = std::fs::File::create(&tmp).map_err(io("create", &tmp))?;
-    let written = (|| {
-        let mut buffered = std::io::BufWriter::new(&mut file);
-        write(&mut buffered)?;
-        buffered.flush()?;
-        drop(buffered);
-        file.sync_all()
-    })()
-    .map_err(io("write", &tmp));
-    drop(file);
-    let renamed =
-        written.and_then(|()| std::fs::rename(&tmp, target).map_err(io("replace", target)));
-    if let Err(e) = renamed {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e);
-    }
-    // Make the rename itself durable; failing here leaves the new file in place, which is fine.
-    if let Some(dir) = target.parent() {
-        let dir = if dir.as_os_str().is_empty() {
-            Path::new(".")
-        } else {
-            dir
-        };
-        if let Ok(d) = std::fs::File::open(dir) {
-            let _ = d.sync_all();
-        }
-    }
-    Ok(())
+    safe_file::write_atomically(target, write)
+        .map(drop)
+        .map_err(RoadmapError::from_file)
 }

@@ -53,10 +53,7 @@ pub struct ColladaMesh {
 
 /// Reads a Collada file (see the module documentation for the conventions).
 pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
-    let text = std::fs::read(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = super::read_input(path)?;
     let fail = |message: String| SceneError::Parse {
         path: path.to_path_buf(),
         message,

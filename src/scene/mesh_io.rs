@@ -68,10 +68,7 @@ pub fn vertex_mean(mesh: &TriMesh) -> Point3<f64> {
 /// Reads a Wavefront OBJ file: faces triangulated as fans, `l` and `p` elements ignored,
 /// materials not read.
 pub fn load_obj(path: &Path) -> Result<TriMesh, SceneError> {
-    let file = std::fs::File::open(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let file = super::open_input(path)?;
     let options = tobj::LoadOptions {
         triangulate: true,
         ignore_lines: true,
@@ -114,10 +111,7 @@ pub fn load_obj(path: &Path) -> Result<TriMesh, SceneError> {
 
 /// Reads an STL file, ASCII or binary.
 pub fn load_stl(path: &Path) -> Result<TriMesh, SceneError> {
-    let mut file = std::fs::File::open(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let mut file = super::open_input(path)?;
     let parse = |message: String| SceneError::Parse {
         path: path.to_path_buf(),
         message,

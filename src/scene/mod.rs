@@ -23,6 +23,7 @@ use crate::oracle::discs::Discs;
 use crate::oracle::polygons::Polygons;
 use crate::oracle::polyhedra::Polyhedra;
 use crate::oracle::{Bounded, CallCounts, CollisionOracle, CountedOracle};
+use crate::safe_file::FileError;
 use crate::space::{Config, Space, SpaceError, SpaceKind};
 use std::path::{Path, PathBuf};
 
@@ -45,6 +46,9 @@ pub enum SceneError {
         /// Why.
         source: std::io::Error,
     },
+    /// The file is not a regular file (a device, FIFO, directory), or too large to be a scene.
+    #[error(transparent)]
+    File(FileError),
     /// The file is not valid TOML / INI / mesh syntax.
     #[error("{path}: {message}")]
     Parse {
@@ -93,6 +97,104 @@ pub enum SceneError {
         /// The configuration.
         config: Config,
     },
+}
+
+/// Keeps I/O failures in [`SceneError::Io`], the rest (special or huge files) in
+/// [`SceneError::File`].
+fn input_error(e: FileError) -> SceneError {
+    match e {
+        FileError::Io { path, source, .. } => SceneError::Io { path, source },
+        other => SceneError::File(other),
+    }
+}
+
+/// Opens an input file (scene, mesh, query list) if it is a regular file of at most
+/// [`crate::limits::MAX_TEXT_FILE_BYTES`]: `/dev/zero` or a FIFO would otherwise be read until
+/// memory runs out, or block for ever.
+pub(crate) fn open_input(path: &Path) -> Result<std::fs::File, SceneError> {
+    let (file, size) = crate::safe_file::open_regular(path).map_err(input_error)?;
+    let limit = crate::limits::MAX_TEXT_FILE_BYTES;
+    if size > limit {
+        return Err(SceneError::File(FileError::TooLarge {
+            path: path.to_path_buf(),
+            size,
+            limit,
+        }));
+    }
+    Ok(file)
+}
+
+/// The bytes of an input file ([`open_input`]'s checks).
+pub(crate) fn read_input(path: &Path) -> Result<Vec<u8>, SceneError> {
+    crate::safe_file::read_regular(path, crate::limits::MAX_TEXT_FILE_BYTES).map_err(input_error)
+}
+
+/// The text of an input file ([`open_input`]'s checks).
+pub(crate) fn read_input_text(path: &Path) -> Result<String, SceneError> {
+    crate::safe_file::read_text(path).map_err(input_error)
+}
+
+/// Refuses robot and obstacle coordinates beyond [`crate::limits::MAX_COORDINATE`] (and disc
+/// radii beyond it): the oracles square and multiply coordinates, which would overflow into
+/// infinities and NaNs (issue 16). The bounds are checked by [`Space`] itself.
+pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
+    let max = crate::limits::MAX_COORDINATE;
+    let too_big = |what: String| SceneError::Invalid {
+        path: scene.source.clone().unwrap_or_default(),
+        message: format!("{what} has a coordinate beyond ±{max:e}, where distances overflow"),
+    };
+    let big = |v: f64| v.is_nan() || v.abs() > max;
+    match &scene.robot {
+        Robot::Point => {}
+        Robot::Polygons(parts) => {
+            if parts
+                .iter()
+                .flat_map(|p| &p.vertices)
+                .any(|v| big(v.x) || big(v.y))
+            {
+                return Err(too_big("the robot".into()));
+            }
+        }
+        Robot::Mesh(m) => {
+            if m.vertices.iter().any(|v| big(v.x) || big(v.y) || big(v.z)) {
+                return Err(too_big("the robot".into()));
+            }
+        }
+    }
+    for (i, o) in scene.obstacles.iter().enumerate() {
+        let bad = match o {
+            Obstacle::Disc { centre, radius } => centre.iter().any(|&c| big(c)) || big(*radius),
+            Obstacle::Polygon(p) => p.vertices.iter().any(|v| big(v.x) || big(v.y)),
+            Obstacle::Mesh(m) => m.vertices.iter().any(|v| big(v.x) || big(v.y) || big(v.z)),
+        };
+        if bad {
+            return Err(too_big(format!("obstacle {}", i + 1)));
+        }
+    }
+    Ok(())
+}
+
+/// Warnings for the scene's SE(3) queries whose quaternion is not of unit length (within
+/// 10⁻⁶): they are normalised, as OMPL's `SO3StateSpace::enforceBounds` does, but a length far
+/// from 1 may be a typo, so it is said rather than corrected silently (issue 16).
+pub(crate) fn quaternion_warnings(scene: &Scene) -> Vec<String> {
+    if scene.space.kind() != SpaceKind::Se3 {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for (i, q) in scene.queries.iter().enumerate() {
+        for (what, c) in [("start", &q.start), ("goal", &q.goal)] {
+            let Some(quat) = c.get(3..7) else { continue };
+            let n = quat.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if n.is_finite() && n >= 1e-9 && (n - 1.0).abs() > 1e-6 {
+                out.push(format!(
+                    "{what} of query {}: quaternion of length {n} normalised to length 1",
+                    i + 1
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// The moving body.

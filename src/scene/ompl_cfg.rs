@@ -31,6 +31,7 @@ use super::toml_format::{check_queries_on_load, default_name};
 use super::{Obstacle, Query, Robot, Scene, SceneError};
 use crate::geometry::{GeometryError, Polygon};
 use crate::oracle::polygons::footprint_polygons;
+use crate::safe_file::FileError;
 use crate::space::rotation::{ompl_axis_angle, wrap_angle};
 use crate::space::{Config, Space};
 use nalgebra::Vector3;
@@ -39,10 +40,7 @@ use std::path::Path;
 
 /// Loads an OMPL.app problem (see the module documentation).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = super::read_input_text(path)?;
     let problem = Problem::parse(&text, path)?;
     let mut warnings = Vec::new();
     if let Some(control) = problem.text("control") {
@@ -174,6 +172,8 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         source: Some(path.to_path_buf()),
         warnings,
     };
+    super::check_magnitudes(&scene)?;
+    scene.warnings.extend(super::quaternion_warnings(&scene));
     check_queries_on_load(&mut scene)?;
     Ok(scene)
 }
@@ -189,6 +189,8 @@ pub fn read_states(path: &Path, space: &Space) -> Result<Vec<Config>, SceneError
 /// Writes states in the layout [`read_states`] reads and OMPL.app's `.path` files use: one state
 /// per line, coordinates separated by spaces, printed so that they read back exactly. A path
 /// written here can be checked by OMPL's own tools (the peer's `check` mode) with no conversion.
+/// The file is written atomically and never replaces a special file
+/// ([`crate::safe_file::write_atomically`]).
 pub fn write_states(path: &Path, states: &[Config]) -> Result<(), SceneError> {
     let mut text = String::new();
     for q in states {
@@ -196,10 +198,15 @@ pub fn write_states(path: &Path, states: &[Config]) -> Result<(), SceneError> {
         text.push_str(&row.join(" "));
         text.push('\n');
     }
-    std::fs::write(path, text).map_err(|source| SceneError::Write {
-        path: path.to_path_buf(),
-        source,
-    })
+    crate::safe_file::write_atomically(path, |w| w.write_all(text.as_bytes()))
+        .map(drop)
+        .map_err(|e| match e {
+            FileError::Io { source, .. } => SceneError::Write {
+                path: path.to_path_buf(),
+                source,
+            },
+            other => SceneError::File(other),
+        })
 }
 
 /// Reads query pairs: on each line a start state followed by a goal state (the format of
@@ -219,10 +226,7 @@ pub fn read_query_pairs(path: &Path, space: &Space) -> Result<Vec<Query>, SceneE
 
 /// Rows of `per_line` states each.
 fn read_rows(path: &Path, space: &Space, per_line: usize) -> Result<Vec<Vec<Config>>, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = super::read_input_text(path)?;
     let parse = |line: usize, message: String| SceneError::Parse {
         path: path.to_path_buf(),
         message: format!("line {line}: {message}"),

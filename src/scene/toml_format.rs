@@ -147,10 +147,7 @@ struct QuerySpec {
 
 /// Reads and validates a TOML scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = super::read_input_text(path)?;
     from_str(&text, path)
 }
 
@@ -165,6 +162,8 @@ pub fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         warnings: Vec::new(),
     };
     let mut scene = reader.scene(file)?;
+    super::check_magnitudes(&scene)?;
+    scene.warnings.extend(super::quaternion_warnings(&scene));
     check_queries_on_load(&mut scene)?;
     Ok(scene)
 }
@@ -327,6 +326,13 @@ impl Reader<'_> {
                     Robot::Mesh(m) => m.radius(),
                     Robot::Point => 1.0,
                 };
+                let max = crate::limits::MAX_COORDINATE;
+                if !(radius.is_finite() && radius <= max) {
+                    return Err(self.invalid(format!(
+                        "the robot is too large: its radius about its reference point is \
+                         {radius:?}, more than {max:e}, where distances overflow"
+                    )));
+                }
                 let scale = match file.space.rotation_scale {
                     Some(s) if !(s.is_finite() && s > 0.0) => {
                         return Err(self.invalid(format!(
@@ -679,13 +685,28 @@ impl Reader<'_> {
 
     fn polygon(&self, what: &str, p: &PolygonSpec) -> Result<Polygon, SceneError> {
         let v = self.points::<2>(what, "polygon vertex", &p.vertices)?;
-        let polygon = Polygon::new(v.iter().map(|[x, y]| Point2::new(*x, *y)).collect())
-            .map_err(|e| self.geometry(what, e))?;
-        if !is_simple(&polygon) {
+        let vertices: Vec<Point2<f64>> = v.iter().map(|[x, y]| Point2::new(*x, *y)).collect();
+        // crossing edges first: a bow tie has zero signed area, and "needs a positive area"
+        // would not say what is wrong with it (issue 16)
+        // (vertices all on one line have no area in any sense: that message stays theirs)
+        let spread = vertices.windows(2).skip(1).any(|w| {
+            let (a, b) = (w[0] - vertices[0], w[1] - vertices[0]);
+            a.x * b.y - a.y * b.x != 0.0
+        });
+        let crosses = spread
+            && !is_simple(&Polygon {
+                vertices: vertices.clone(),
+            });
+        let polygon = if crosses {
+            None
+        } else {
+            Some(Polygon::new(vertices).map_err(|e| self.geometry(what, e))?)
+        };
+        let Some(polygon) = polygon.filter(is_simple) else {
             return Err(self.invalid(format!(
                 "{what}: the polygon's edges cross or touch; give a simple polygon (or several)"
             )));
-        }
+        };
         Ok(polygon)
     }
 

@@ -79,7 +79,9 @@ impl Group {
 /// Invalid space definitions and configurations.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SpaceError {
-    /// Bounds of the wrong length, NaN, or lower > upper.
+    /// Bounds of the wrong length, NaN, lower ≥ upper (zero width leaves the via-point planner
+    /// no room beside a motion), or beyond [`crate::limits::MAX_COORDINATE`] (where distances
+    /// overflow).
     #[error("invalid bounds: {0}")]
     Bounds(String),
     /// A configuration with the wrong number of coordinates.
@@ -173,6 +175,21 @@ impl Space {
             if l > u {
                 return Err(SpaceError::Bounds(format!(
                     "coordinate {i}: lower {l} > upper {u}"
+                )));
+            }
+            // decided in issue 16: a flat coordinate leaves no room beside a motion for the
+            // via points, and every motion in the flat space runs into every obstacle on it
+            if l == u {
+                return Err(SpaceError::Bounds(format!(
+                    "coordinate {i}: lower = upper = {l:?}, the space has no width there; \
+                     give bounds of positive width"
+                )));
+            }
+            // beyond this, widths, distances and their squares overflow (issue 16)
+            let max = crate::limits::MAX_COORDINATE;
+            if l.abs() > max || u.abs() > max {
+                return Err(SpaceError::Bounds(format!(
+                    "coordinate {i}: bounds [{l:?}, {u:?}] exceed ±{max:e}, where distances overflow"
                 )));
             }
         }

@@ -98,6 +98,9 @@ pub enum BenchError {
         /// Why.
         source: std::io::Error,
     },
+    /// An output that is a special file (never replaced), or another unsafe write.
+    #[error(transparent)]
+    File(#[from] crate::safe_file::FileError),
     /// The benchmark database cannot be written.
     #[error("benchmark database: {0}")]
     Sqlite(#[from] rusqlite::Error),

@@ -319,12 +319,8 @@ pub fn write_plots(dir: &Path, report: &Report) -> Result<Vec<PathBuf>, BenchErr
         ];
         for (what, title, axis, boxes) in plots {
             let path = dir.join(format!("{stem}-{what}.svg"));
-            std::fs::write(&path, box_plot(&title, axis, &boxes)).map_err(|source| {
-                BenchError::Io {
-                    path: path.clone(),
-                    source,
-                }
-            })?;
+            let svg = box_plot(&title, axis, &boxes);
+            crate::safe_file::write_atomically(&path, |w| w.write_all(svg.as_bytes()))?;
             written.push(path);
         }
     }

@@ -13,7 +13,7 @@ use crate::space::{Config, Group, Space};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 /// Why a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -358,12 +358,16 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
     let scored = set.scored();
     let needed = target_count(job.target, scored.len());
     let time = match job.time_limit {
-        Some(t) if t.is_finite() && t > 0.0 => Some(Duration::from_secs_f64(t)),
-        Some(t) => {
-            return Err(BenchError::Invalid(format!(
-                "the time limit must be positive, got {t}"
-            )))
-        }
+        Some(t) => match crate::limits::duration_from_secs(t) {
+            Some(d) => Some(d),
+            None => {
+                return Err(BenchError::Invalid(format!(
+                    "the time limit must be a positive number of seconds of at most {:e}, \
+                     got {t:?}",
+                    crate::limits::MAX_SECONDS
+                )))
+            }
+        },
         None => None,
     };
     let mut stages: Vec<StageRecord> = Vec::new();

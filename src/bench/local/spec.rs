@@ -3,6 +3,7 @@
 
 use super::queries::QueryChoice;
 use super::BenchError;
+use crate::limits::{MAX_GENERATED_DISCS, MAX_NODES, MAX_QUERIES, MAX_RUNS, MAX_SECONDS};
 use crate::local::LocalSpec;
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::space::Space;
@@ -88,7 +89,13 @@ impl FromStr for SceneSource {
                     count = v
                         .trim()
                         .parse()
-                        .map_err(|_| bad(format!("n={v} is not a count")))?
+                        .map_err(|_| bad(format!("n={v} is not a count")))?;
+                    if count > MAX_GENERATED_DISCS {
+                        return Err(bad(format!(
+                            "n={v} is more than the {MAX_GENERATED_DISCS} discs a generated \
+                             scene may have"
+                        )));
+                    }
                 }
                 "r" => {
                     radius = v
@@ -244,6 +251,9 @@ impl Default for Schedule {
     }
 }
 
+/// Most stages a schedule may have (each is a measurement of every query).
+pub const MAX_STAGES: usize = 10_000;
+
 impl Schedule {
     /// Checks the numbers.
     pub fn validate(&self) -> Result<(), BenchError> {
@@ -256,6 +266,23 @@ impl Schedule {
             return Err(BenchError::Invalid(format!(
                 "the growth factor must be a number above 1, got {}",
                 self.growth
+            )));
+        }
+        if self.cap > MAX_NODES {
+            return Err(BenchError::Invalid(format!(
+                "the node cap {} is more than the {MAX_NODES} nodes a roadmap may have",
+                self.cap
+            )));
+        }
+        // stages are counted before they are listed: a growth of 1 + 1e-15 would list
+        // billions of them
+        let count =
+            ((self.cap as f64).ln() - (self.first.min(self.cap) as f64).ln()) / self.growth.ln();
+        if count > MAX_STAGES as f64 {
+            return Err(BenchError::Invalid(format!(
+                "the growth factor {} makes about {count:.0} stages from {} to {} nodes; \
+                 at most {MAX_STAGES} are allowed",
+                self.growth, self.first, self.cap
             )));
         }
         Ok(())
@@ -324,13 +351,30 @@ impl Plan {
         if self.runs == 0 {
             return Err(BenchError::Invalid("--runs must be at least 1".into()));
         }
+        if self.runs > MAX_RUNS {
+            return Err(BenchError::Invalid(format!(
+                "--runs {} is more than the {MAX_RUNS} runs allowed",
+                self.runs
+            )));
+        }
         self.schedule.validate()?;
         if let Some(t) = self.time_limit {
-            if !(t.is_finite() && t > 0.0) {
+            if crate::limits::duration_from_secs(t).is_none() {
                 return Err(BenchError::Invalid(format!(
-                    "the time limit must be positive, got {t}"
+                    "the time limit must be a positive number of seconds of at most \
+                     {MAX_SECONDS:e}, got {t:?}"
                 )));
             }
+        }
+        if let QueryChoice::Auto { count } | QueryChoice::Random { count } = self.queries {
+            if count > MAX_QUERIES {
+                return Err(BenchError::Invalid(format!(
+                    "--queries {count} is more than the {MAX_QUERIES} random queries allowed"
+                )));
+            }
+        }
+        for m in &self.methods {
+            crate::limits::check_local_spec(&m.local).map_err(BenchError::Invalid)?;
         }
         if self.attach == 0 {
             return Err(BenchError::Invalid(

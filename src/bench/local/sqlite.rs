@@ -390,6 +390,8 @@ fn fill(conn: &Connection, report: &Report) -> Result<(), rusqlite::Error> {
 /// `ompl_benchmark_statistics.py` does without `--append`). The database is written to a
 /// temporary file beside it and renamed, so a failure leaves any previous one intact.
 pub fn write_database(path: &Path, report: &Report) -> Result<(), BenchError> {
+    // a special file (or a directory) at `path` is refused, not renamed over
+    let path = &crate::safe_file::resolve_target(path)?;
     let tmp = path.with_extension("db.partial");
     let io = |source| BenchError::Io {
         path: tmp.clone(),
