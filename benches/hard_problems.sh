@@ -247,7 +247,7 @@ run_viaroad() { # NAME T SEED
   jq -cn --argjson m "$m" --arg problem "$name" --argjson T "$T" --argjson seed "$seed" \
     --arg viaroad "$VIAROAD" --arg commit "$VCOMMIT" --argjson threads "$THREADS" --arg qlimit "$qlimit" \
     --argjson load_s "$load_s" --argjson brc "$brc" --argjson bwall "$bwall" --arg bout "$bout" \
-    --arg berr "$(tail -c 300 "$WORK/$tag.build.err")" --arg qerr "$(tail -c 300 "$WORK/$tag.query.err" 2>/dev/null)" \
+    --arg berr "$(tail -c 300 "$WORK/$tag.build.err" 2>/dev/null)" --arg qerr "$(tail -c 300 "$WORK/$tag.query.err" 2>/dev/null)" \
     --argjson info "$info" --argjson qrc "$qrc" --argjson qwall "$qwall" --argjson q "$qjson" --argjson chk "$chk" \
     --arg start "$start" --arg goal "$goal" '
     $m + {side: "viaroad", kind: "build+query", problem: $problem, T: $T, seed: $seed, viaroad: $viaroad,
@@ -255,12 +255,18 @@ run_viaroad() { # NAME T SEED
       load_s: $load_s, build_rc: $brc, build_timed_out: ($brc == 124 or $brc == 137), build_wall_s: $bwall,
       build_budget_held: ($brc == 0 and $bwall <= 1.05 * $T + $load_s),
       build_stdout: $bout, build_stderr: $berr,
-      build_reported_s: (try ($bout | capture("in (?<s>[0-9.]+) s") | .s | tonumber) catch null),
-      build_stopped: (try ($bout | capture("stopped: (?<r>[A-Za-z]+)") | .r) catch null)} + $info +
+      build_reported_s: (($bout | capture("in (?<s>[0-9.]+) s") | .s | tonumber) // null),
+      build_stopped: (($bout | capture("stopped: (?<r>[A-Za-z]+)") | .r) // null)} + $info +
      {query_rc: $qrc, query_timed_out: ($qrc == 124 or $qrc == 137), query_wall_s: $qwall,
       query_error: (if $qrc != 0 and $qrc != -1 and ($qerr | length) > 0 then $qerr else null end)} + $q +
      {solved: ($q.solved // false)} + $chk +
-     {time_to_solve_s: (if ($q.solved // false) then ($bwall + $qwall) else null end)}' >>"$VJSON"
+     {time_to_solve_s: (if ($q.solved // false) then ($bwall + $qwall) else null end)}' >"$WORK/line.json"
+  # never lose a run: if the record could not be assembled, keep the bare facts
+  [ -s "$WORK/line.json" ] || jq -cn --arg problem "$name" --argjson T "$T" --argjson seed "$seed" --arg brc "$brc" \
+    --arg bwall "$bwall" --arg qrc "$qrc" --arg qwall "$qwall" --arg qout "$qout" \
+    '{side: "viaroad", kind: "build+query", problem: $problem, T: $T, seed: $seed, record_error: true,
+      build_rc: $brc, build_wall_s: $bwall, query_rc: $qrc, query_wall_s: $qwall, query_stdout: $qout}' >"$WORK/line.json"
+  cat "$WORK/line.json" >>"$VJSON"
   tail -n 1 "$VJSON" | jq -c '{problem, seed, build_wall_s, nodes, components, query_wall_s, outcome, solved, check_valid}' >&2
 }
 
