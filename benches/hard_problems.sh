@@ -170,8 +170,14 @@ export RAYON_NUM_THREADS=$THREADS
 HOST=$(hostname)
 CPUS=$(nproc)
 CPU_MODEL=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
-VCOMMIT=$( (git -C "$(dirname "$VIAROAD")" rev-parse --short HEAD 2>/dev/null || echo unknown) | tr -d '\n')
-[ -n "$(git -C "$(dirname "$VIAROAD")" status --porcelain -- src 2>/dev/null)" ] && VCOMMIT="$VCOMMIT+dirty"
+# the last commit that touched the sources of the binary's checkout (commits to benches/ do not count)
+VTOP=$(git -C "$(dirname "$VIAROAD")" rev-parse --show-toplevel 2>/dev/null || true)
+VCOMMIT=unknown
+if [ -n "$VTOP" ]; then
+  VCOMMIT=$(git -C "$VTOP" log -1 --format=%h -- src Cargo.toml Cargo.lock 2>/dev/null || echo unknown)
+  [ -n "$(git -C "$VTOP" status --porcelain -- src Cargo.toml Cargo.lock 2>/dev/null)" ] && VCOMMIT="$VCOMMIT+dirty"
+  [ "$VIAROAD" -ot "$VTOP/src" ] && VCOMMIT="$VCOMMIT (binary older than src/?)"
+fi
 
 load1() { cut -d' ' -f1 /proc/loadavg; }
 now() { date +%s.%N; }
