@@ -212,7 +212,12 @@ print(" ".join(repr(v) for v in [x, y, z] + q))
 PY
 }
 
-has_flag() { "$VIAROAD" "$1" --help 2>/dev/null | grep -q -- "$2"; }
+# does `viaroad SUBCOMMAND --help` list FLAG? (help captured first: `| grep -q` under pipefail
+# fails at random when grep exits before the writer is done, SIGPIPE)
+has_flag() { # SUBCOMMAND FLAG
+  local help; help=$("$VIAROAD" "$1" --help 2>/dev/null) || true
+  grep -Eq -- "$2([^-a-zA-Z0-9_]|\$)" <<<"$help"
+}
 
 run_viaroad() { # NAME T SEED
   local name=$1 T=$2 seed=$3 cfg=$SCENES/$1.cfg
