@@ -118,11 +118,13 @@ for p in order:
 SQ = [r for r in V if r.get("kind") == "solve-roadmap"]
 if SQ:
     L.append("\n### viaroad: one command, `solve CFG --roadmap --time T`\n")
-    L.append("| problem | T s | seed | wall s | solved | `ompl_peer check` |")
-    L.append("|---|---|---|---|---|---|")
+    L.append("| problem | T s | seed | load | wall s | ≤ 1.05 T + load? | outcome | solved | `ompl_peer check` |")
+    L.append("|---|---|---|---|---|---|---|---|---|")
     for r in SQ:
         chk = r.get("check_valid")
-        L.append(f"| {r['problem']} | {r['T']} | {r['seed']} | {f(r.get('wall_s'))}{' (killed)' if r.get('timed_out') else ''} | "
+        held = r.get('wall_s') is not None and not r.get('timed_out') and r['wall_s'] <= 1.05 * r['T'] + (r.get('load_s') or 0)
+        L.append(f"| {r['problem']} | {r['T']} | {r['seed']} | {r['load1']:.2f} | {f(r.get('wall_s'))}{' (killed)' if r.get('timed_out') else ''} | "
+                 f"{'yes' if held else 'no'} | {r.get('outcome') or '–'} | "
                  f"{'yes' if r.get('solved') else 'no'} | {'–' if chk is None else ('valid' if chk else '**INVALID**')} |")
 L.append("\n### OMPL 1.5 + FCL peer: `ompl_peer solve CFG --planner P --time T --runs 3 --seed 1`\n")
 L.append("| problem | T s | planner | load | solved | time_s per run | vertices per run | simplified valid |")
@@ -137,8 +139,8 @@ for p in order:
             ", ".join(str(r.get("vertices", "–")) for r in rs),
             ", ".join(("yes" if r.get("simplified_valid") else "no") if r["solved"] else "–" for r in rs)))
 L.append("\n### Per problem\n")
-L.append("| problem | T s | viaroad solved | viaroad median time to solve s | median nodes | build wall max / T | query wall max s | paths valid | PRM solved | PRM median time_s | RRTConnect solved | RRTConnect median time_s |")
-L.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+L.append("| problem | T s | viaroad solved | viaroad median time to solve s | median nodes | build wall max / T | query wall max s | paths valid | `solve --roadmap` solved | PRM solved | PRM median time_s | RRTConnect solved | RRTConnect median time_s |")
+L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for p in order:
     vr = [r for r in V if r["problem"] == p and r.get("kind") == "build+query"]
     T = (vr or [r for r in P if r["problem"] == p])[0]["T"]
@@ -152,11 +154,14 @@ for p in order:
     bw = [r.get("build_wall_s") for r in vr if r.get("build_wall_s") is not None]
     qw = [r.get("query_wall_s") for r in vr if r.get("query_wall_s") is not None]
     checked = [r for r in sol if r.get("check_valid") is not None]
-    L.append("| {} | {} | {}/{} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
+    sq = [r for r in SQ if r["problem"] == p]
+    sq_txt = "{}/{} ({} valid)".format(sum(1 for r in sq if r.get("solved")), len(sq),
+        sum(1 for r in sq if r.get("check_valid"))) if sq else "–"
+    L.append("| {} | {} | {}/{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
         p, T, len(sol), len(vr), f(med([r.get("time_to_solve_s") for r in sol])) if sol else "–",
         f(med([r.get("nodes") for r in vr]), 0) if vr else "–",
         f(max(bw) / T, 2) if bw else "–", f(max(qw)) if qw else "–",
-        f"{sum(1 for r in checked if r['check_valid'])}/{len(sol)}" if sol else "–",
+        f"{sum(1 for r in checked if r['check_valid'])}/{len(sol)}" if sol else "–", sq_txt,
         pr[0], pr[1], rr[0], rr[1]))
 text = "\n".join(L) + "\n"
 open(os.path.join(out, "summary.md"), "w").write(text)
@@ -287,8 +292,11 @@ run_solve_roadmap() { # NAME T SEED: the one-command form, only when the binary 
   local cmd=("$VIAROAD" solve "$cfg" --roadmap --time "$T" --json --path-out "$path")
   has_flag solve --seed && cmd+=(--seed "$seed")
   local m; m=$(meta); rm -f "$path"
+  local start load_s t0; start=$(cfg_state "$cfg" start); t0=$(now)
+  "$VIAROAD" probe "$cfg" --from "$start" --to "$start" >/dev/null 2>&1
+  load_s=$(since "$t0")
   echo "[$(date -u +%T)] viaroad solve --roadmap $tag (load $(load1))" >&2
-  local t0 rc wall out
+  local rc wall out
   t0=$(now)
   out=$(timeout -k 5 $((2 * T + 30)) "${cmd[@]}" 2>"$WORK/$tag.err" | tail -n 1)
   rc=${PIPESTATUS[0]}; wall=$(since "$t0")
@@ -298,9 +306,9 @@ run_solve_roadmap() { # NAME T SEED: the one-command form, only when the binary 
     chk=$(timeout 600 "$PEER" check "$cfg" "$path" 2>/dev/null | tail -n 1 | jq -c '{check_valid: .valid, path_states: .states}' 2>/dev/null || echo '{"check_valid": null}')
   fi
   jq -cn --argjson m "$m" --arg problem "$name" --argjson T "$T" --argjson seed "$seed" --arg commit "$VCOMMIT" \
-    --argjson threads "$THREADS" --argjson rc "$rc" --argjson wall "$wall" --argjson q "$q" --argjson chk "$chk" '
+    --argjson threads "$THREADS" --argjson load_s "$load_s" --argjson rc "$rc" --argjson wall "$wall" --argjson q "$q" --argjson chk "$chk" '
     $m + {side: "viaroad", kind: "solve-roadmap", problem: $problem, T: $T, seed: $seed, viaroad_commit: $commit,
-      threads: $threads, rc: $rc, timed_out: ($rc == 124 or $rc == 137), wall_s: $wall} + $q +
+      threads: $threads, load_s: $load_s, rc: $rc, timed_out: ($rc == 124 or $rc == 137), wall_s: $wall} + $q +
      {solved: ($q.solved // false)} + $chk' >>"$VJSON"
 }
 
