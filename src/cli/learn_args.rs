@@ -2,7 +2,6 @@
 
 use anyhow::Context;
 use clap::Args;
-use std::time::Duration;
 use viaroad::limits::MAX_NODES;
 use viaroad::roadmap::{Budget, LearnParams};
 
@@ -24,13 +23,6 @@ pub struct LearnArgs {
     /// Nearest neighbours each new node tries (OMPL's PRM: 10).
     #[arg(long)]
     pub neighbours: Option<usize>,
-}
-
-/// A time budget given on the command line: a positive number of seconds, at most
-/// [`viaroad::limits::MAX_SECONDS`] (one check for every `--time`:
-/// [`super::limits::parse_seconds`]).
-pub fn seconds(flag: &str, t: f64) -> anyhow::Result<Option<Duration>> {
-    super::limits::parse_seconds(flag, t).map(Some)
 }
 
 impl LearnArgs {

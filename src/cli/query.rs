@@ -95,12 +95,10 @@ struct Printer {
 
 #[derive(Default)]
 struct Printed {
-    /// The status line printed before the first answer (not before an error: issue 16).
-    loaded: Option<String>,
-    /// Where the paths go ([`super::path_out::PathOut`]: no stale numbered files).
-    path_out: Option<super::path_out::PathOut>,
     ms: Vec<f64>,
     solved: usize,
+    /// Where solved paths go, as they come.
+    path_out: Option<super::path_out::PathOut>,
     /// The first failure to print or write, reported when the batch ends.
     failure: Option<anyhow::Error>,
 }
@@ -115,9 +113,6 @@ impl Printer {
             // a single query's invalid input is the command's error, not an answer
             st.failure = Some(anyhow::anyhow!("{e}"));
             return;
-        }
-        if let Some(line) = st.loaded.take() {
-            eprintln!("{line}");
         }
         let t = a.elapsed.as_secs_f64() * 1e3;
         st.ms.push(t);
@@ -206,7 +201,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     if let (true, Some(file)) = (queries.is_empty(), &a.queries) {
         anyhow::bail!("{}: no queries in the file", file.display());
     }
-    let time = super::learn_args::seconds("--time", a.time)?;
+    let time = Some(super::limits::parse_seconds("--time", a.time)?);
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
     let mut defaults = planner.options().clone();
@@ -233,24 +228,27 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         },
     };
     let planner = planner.with_options(options);
-    // printed with the first answer, so that it never precedes an `error:` line (issue 16)
-    let loaded = (!a.json).then(|| {
-        format!(
+    let path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
+    // a status line must not precede an `error:` line (issue 16): a single query's invalid
+    // input is the command's error, so its status comes after the answer
+    let loaded = || {
+        eprintln!(
             "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms",
             a.roadmap.display(),
             roadmap.node_count(),
             roadmap.edge_count()
         )
-    });
-    let path_out = match &a.path_out {
-        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
-        None => None,
     };
+    if !a.json && queries.len() > 1 {
+        loaded();
+    }
     let printer = Printer {
         json: a.json,
         total: queries.len(),
         state: Mutex::new(Printed {
-            loaded,
             path_out,
             ..Printed::default()
         }),
@@ -266,6 +264,9 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     }
     st.ms.sort_by(f64::total_cmp);
     if !a.json {
+        if queries.len() == 1 {
+            loaded();
+        }
         println!(
             "{}/{} solved; latency p50 {:.3} ms, p95 {:.3} ms",
             st.solved,
@@ -274,7 +275,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             percentile(&st.ms, 0.95)
         );
     }
-    if let Some(out) = st.path_out.take() {
+    if let Some(out) = st.path_out {
         out.finish();
     }
     Ok(())

@@ -85,10 +85,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     }
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::default())?;
-    let time = match a.time {
-        Some(t) => super::learn_args::seconds("--time", t)?,
-        None => None,
-    };
+    let time = super::limits::optional_seconds("--time", a.time)?;
     let oracle = scene.oracle();
     if scene.queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());
@@ -160,7 +157,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
 fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
-    let time = super::learn_args::seconds("--time", a.time.unwrap_or(60.0))?;
+    let time = Some(super::limits::parse_seconds(
+        "--time",
+        a.time.unwrap_or(60.0),
+    )?);
     let queries = scene.checked_queries()?;
     if queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());
@@ -168,15 +168,15 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
+    let mut path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
     let oracle = scene.oracle();
     let method = spec.build();
     let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
         .with_attempt_cap(time.map(Learner::attempt_cap_for));
     let groups = method.groups(&scene.space);
-    let mut path_out = match &a.path_out {
-        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
-        None => None,
-    };
     for (i, q) in queries.iter().enumerate() {
         let began = Instant::now();
         let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
