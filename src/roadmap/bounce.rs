@@ -50,6 +50,7 @@ pub fn random_direction<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Vec<f64> {
 /// configurations of `[start, result…]` are joined by certified free motions in one of
 /// `groups`. Stops early when the current configuration has no free section around it (it
 /// touches an obstacle), or when `deadline` has passed.
+#[allow(clippy::too_many_arguments)]
 pub fn random_bounce<R: Rng + ?Sized>(
     space: &Space,
     oracle: &dyn CollisionOracle,

@@ -126,6 +126,7 @@ pub(super) struct Search<'a> {
 }
 
 impl<'a> Search<'a> {
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         space: &'a Space,
         oracle: &'a dyn CollisionOracle,
