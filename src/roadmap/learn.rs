@@ -37,7 +37,7 @@ use super::nn::NearestNeighbours;
 use super::params::{Budget, LearnParams};
 use super::persist::Header;
 use crate::local::{direct_length, path_length, Connection, LocalMethod};
-use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::scene::Scene;
 use crate::space::{Config, Group, Space};
 use petgraph::unionfind::UnionFind;
@@ -585,25 +585,22 @@ impl<'a> Learner<'a> {
         budget: &Budget,
         (seed, round, size): (u64, u64, usize),
     ) -> Result<(), LearnError> {
-        let samples: Vec<(Option<Config>, CallCounts)> = (0..size as u64)
+        let samples: Vec<(Result<Option<Config>, OracleError>, CallCounts)> = (0..size as u64)
             .into_par_iter()
             .map(|i| {
                 let mut rng = stream(seed, round, i, SAMPLE_STREAM);
                 let mut counts = CallCounts::default();
-                for _ in 0..params.sample_attempts {
-                    let mut q = self.space.sample_uniform(&mut rng);
-                    self.space.normalize(&mut q);
-                    if self.oracle.is_free(&q, &mut counts) {
-                        return (Some(q), counts);
-                    }
-                }
-                (None, counts)
+                let (space, oracle, n) = (self.space, self.oracle, params.sample_attempts);
+                let q = params
+                    .sampler
+                    .sample(space, oracle, n, &mut rng, &mut counts);
+                (q, counts)
             })
             .collect();
         let mut candidates = Vec::with_capacity(samples.len());
         for (q, counts) in samples {
             work.counts += counts;
-            candidates.extend(q);
+            candidates.extend(q?);
         }
         let shared: &Work<'_> = work;
         let plans: Vec<Result<Vec<Attempt>, OracleError>> = (0..candidates.len())
