@@ -25,8 +25,10 @@
 //! intersect call per group moved.
 //!
 //! **Gaussian neighbours.** Position coordinates get independent normal offsets of standard
-//! deviation `σ = sigma · extent`, clamped to the bounds (OMPL's `sampleGaussian` +
-//! `enforceBounds`). An orientation turns by a random rotation whose angle has standard
+//! deviation `σ = sigma · extent` (OMPL's `sampleGaussian`). Departure: a neighbour outside the
+//! bounds is not clamped onto them (OMPL's `enforceBounds`) but counts as colliding, as the
+//! scene's oracle treats the bounds as walls ([`crate::oracle::Bounded`]); clamping would put
+//! samples exactly on the walls. An orientation turns by a random rotation whose angle has standard
 //! deviation `σ / rotation_scale`, so that robot points move about `σ` as in
 //! [`Space::distance`] (departure: OMPL scales by the orientation space's own extent); beyond
 //! π/2 the orientation is drawn uniformly, as OMPL's SO(3) sampler does.
@@ -104,7 +106,7 @@ fn uniform<R: Rng + ?Sized>(space: &Space, rng: &mut R) -> Config {
 }
 
 /// A configuration near `mean`: normal offsets of standard deviation `sigma` (a distance) in
-/// the position, clamped to the bounds, and a random turn of about `sigma / rotation_scale`
+/// the position (possibly outside the bounds), and a random turn of about `sigma / rotation_scale`
 /// (see the [module](self)).
 pub fn gaussian_near<R: Rng + ?Sized>(
     space: &Space,
@@ -115,8 +117,7 @@ pub fn gaussian_near<R: Rng + ?Sized>(
     let mut q = mean.to_vec();
     let p = space.position_dim();
     for i in 0..p {
-        let (l, u) = (space.lower()[i], space.upper()[i]);
-        q[i] = (mean[i] + sigma * normal(rng)).clamp(l, u);
+        q[i] = mean[i] + sigma * normal(rng);
     }
     let angle_sigma = sigma / space.rotation_scale();
     match space.kind() {
@@ -139,6 +140,12 @@ pub fn gaussian_near<R: Rng + ?Sized>(
     }
     space.normalize(&mut q);
     q
+}
+
+/// Free: inside the bounds (walls, whatever the oracle does about them) and free under the
+/// oracle (one counted state check).
+fn free(space: &Space, oracle: &dyn CollisionOracle, q: &[f64], counts: &mut CallCounts) -> bool {
+    space.in_bounds(q) && oracle.is_free(q, counts)
 }
 
 impl Sampler {
@@ -170,7 +177,8 @@ impl Sampler {
                 for _ in 0..attempts {
                     let a = uniform(space, rng);
                     let b = gaussian_near(space, &a, sigma * extent, rng);
-                    let (fa, fb) = (oracle.is_free(&a, counts), oracle.is_free(&b, counts));
+                    let fa = oracle.is_free(&a, counts);
+                    let fb = free(space, oracle, &b, counts);
                     if fa != fb {
                         return Ok(Some(if fa { a } else { b }));
                     }
@@ -184,12 +192,12 @@ impl Sampler {
                         continue;
                     }
                     let b = gaussian_near(space, &a, sigma * extent, rng);
-                    if oracle.is_free(&b, counts) {
+                    if free(space, oracle, &b, counts) {
                         continue;
                     }
                     let mut m = space.interpolate(&b, &a, 0.5);
                     space.normalize(&mut m);
-                    if oracle.is_free(&m, counts) {
+                    if free(space, oracle, &m, counts) {
                         return Ok(Some(m));
                     }
                 }
@@ -504,7 +512,7 @@ fn obstacle_based<R: Rng + ?Sized>(
             space.normalize(&mut q);
         }
         // the exact boundary is known; one state check guards against rounding
-        return Ok(oracle.is_free(&q, counts).then_some(q));
+        return Ok(free(space, oracle, &q, counts).then_some(q));
     }
     Ok(None)
 }
