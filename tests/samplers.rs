@@ -266,3 +266,111 @@ proptest! {
         }
     }
 }
+
+fn viaroad(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_viaroad"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn build_takes_a_sampler_and_info_shows_it() {
+    let dir = scratch("cli_build");
+    let out = dir.join("corridor.bin");
+    let o = viaroad(&[
+        "build",
+        "scenes/se2-corridor.toml",
+        "-o",
+        &out.to_string_lossy(),
+        "--nodes",
+        "60",
+        "--sampler",
+        "bridge:sigma=0.05",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let scene = load("scenes/se2-corridor.toml");
+    let roadmap = Roadmap::load(&out, scene.fingerprint()).unwrap();
+    assert_eq!(
+        roadmap.header().params.sampler,
+        Sampler::Bridge { sigma: 0.05 }
+    );
+    let info = viaroad(&["info", &out.to_string_lossy()]);
+    let text = String::from_utf8_lossy(&info.stdout);
+    assert!(
+        text.contains("sampler          bridge:sigma=0.05"),
+        "{text}"
+    );
+    let bad = viaroad(&[
+        "build",
+        "scenes/se2-corridor.toml",
+        "-o",
+        &dir.join("bad.bin").to_string_lossy(),
+        "--nodes",
+        "60",
+        "--sampler",
+        "bridge:sigma=-1",
+    ]);
+    assert!(!bad.status.success());
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.contains("sigma must be a positive number"), "{err}");
+    assert!(!dir.join("bad.bin").exists());
+}
+
+#[test]
+fn bench_local_compares_samplers() {
+    let dir = scratch("cli_bench");
+    let o = viaroad(&[
+        "bench",
+        "local",
+        "gen:discs:n=40,r=0.06,seed=3",
+        "--methods",
+        "viapoint",
+        "--samplers",
+        "uniform",
+        "bridge:sigma=0.05",
+        "--runs",
+        "1",
+        "--nodes",
+        "80",
+        "--first",
+        "10",
+        "--growth",
+        "2",
+        "--queries",
+        "10",
+        "--in-process",
+        "--out",
+        &dir.to_string_lossy(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let runs = json["scenes"][0]["runs"].as_array().unwrap();
+    let got: Vec<(String, String)> = runs
+        .iter()
+        .map(|r| {
+            (
+                r["method"].as_str().unwrap().to_string(),
+                r["sampler"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("viapoint".to_string(), "uniform".to_string()),
+            (
+                "viapoint @bridge:sigma=0.05".to_string(),
+                "bridge:sigma=0.05".to_string()
+            )
+        ]
+    );
+    // the bridge test spends more state checks per node than uniform sampling
+    let checks = |r: &serde_json::Value| r["stages"][0]["counts"]["state_checks"].as_u64().unwrap();
+    assert!(checks(&runs[1]) > checks(&runs[0]));
+    let csv = std::fs::read_to_string(dir.join("runs.csv")).unwrap();
+    assert!(csv.lines().next().unwrap().contains(",sampler,"));
+    assert_eq!(csv.lines().count(), 3);
+}
