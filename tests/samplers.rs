@@ -27,7 +27,9 @@ fn all_samplers() -> Vec<Sampler> {
         "gaussian:sigma=0.02",
         "bridge",
         "bridge:sigma=0.03",
-        "mix:uniform=1,bridge=1,gaussian=1,obstacle=1",
+        "gap",
+        "gap:sigma=0.03",
+        "mix:uniform=1,bridge=1,gaussian=1,obstacle=1,gap=1",
     ]
     .iter()
     .map(|s| s.parse().unwrap())
@@ -116,7 +118,12 @@ fn narrow_passage_samplers_sample_near_obstacles() {
         samples.iter().map(|q| disc_clearance(q, &d)).sum::<f64>() / samples.len() as f64
     };
     let uniform = mean_clearance("uniform");
-    for s in ["obstacle", "gaussian:sigma=0.02", "bridge:sigma=0.05"] {
+    for s in [
+        "obstacle",
+        "gaussian:sigma=0.02",
+        "bridge:sigma=0.05",
+        "gap:sigma=0.05",
+    ] {
         let c = mean_clearance(s);
         eprintln!("{s}: mean clearance {c:.4} (uniform {uniform:.4})");
         // with 2000 samples the means are known to a few per cent; the samplers halve it
@@ -236,6 +243,7 @@ fn sampler_strategy() -> impl Strategy<Value = Sampler> {
             .clone()
             .prop_map(|sigma| Sampler::Gaussian { sigma }),
         positive.clone().prop_map(|sigma| Sampler::Bridge { sigma }),
+        positive.clone().prop_map(|sigma| Sampler::Gap { sigma }),
     ];
     prop_oneof![
         simple.clone(),

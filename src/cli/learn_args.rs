@@ -24,8 +24,9 @@ pub struct LearnArgs {
     #[arg(long)]
     pub neighbours: Option<usize>,
     /// Where construction draws new nodes: `uniform`, `obstacle`, `gaussian:sigma=0.1`,
-    /// `bridge:sigma=0.1`, or a mix such as `mix:uniform=1,bridge=1,gaussian=1` (sigma and
-    /// margin are shares of the space's extent). Default: the learner's.
+    /// `bridge:sigma=0.1`, `gap:sigma=0.1` (the bridge test with exact intervals), or a mix
+    /// such as `mix:uniform=1,bridge=1,gaussian=1` (sigma and margin are shares of the space's
+    /// extent). Default: the learner's.
     #[arg(long, value_name = "SPEC")]
     pub sampler: Option<Sampler>,
 }

@@ -7,6 +7,7 @@
 //! | `obstacle:margin=M` | a colliding draw, a free draw, walk from the free one towards the colliding one and keep the last free configuration (`ObstacleBasedValidStateSampler`) |
 //! | `gaussian:sigma=S` | a uniform draw and a Gaussian neighbour; if exactly one is free, keep it (`GaussianValidStateSampler`) |
 //! | `bridge:sigma=S` | a colliding draw and a colliding Gaussian neighbour; keep their midpoint if free (`BridgeTestValidStateSampler`) |
+//! | `gap:sigma=S` | the bridge test with exact intervals: a colliding draw and a colliding Gaussian neighbour; the centre of the free gap between them nearest their midpoint (no OMPL counterpart) |
 //! | `mix:uniform=1,bridge(sigma=0.05)=2` | each candidate picks one of these by weight |
 //!
 //! Each candidate runs at most [`LearnParams::sample_attempts`](super::LearnParams) attempts, as
@@ -23,6 +24,13 @@
 //! lies near the obstacle without touching it. For a rigid body the walk is the local method's
 //! direct path (CHS §1.5): one straight motion per DOF group, in random order, so it costs one
 //! intersect call per group moved.
+//!
+//! **The gap sampler is the bridge test done exactly.** OMPL's bridge test keeps a bridge only
+//! when its midpoint happens to be free, so most bridges across a narrow passage are wasted.
+//! With intervals (one intersect call per DOF group along the direct path between the two
+//! colliding ends) every free gap between them is known; the sampler keeps the centre of the
+//! gap nearest the bridge's midpoint — the point of that straight line farthest from both
+//! obstacles.
 //!
 //! **Gaussian neighbours.** Position coordinates get independent normal offsets of standard
 //! deviation `σ = sigma · extent` (OMPL's `sampleGaussian`). Departure: a neighbour outside the
@@ -74,6 +82,12 @@ pub enum Sampler {
     /// Bridge test (Hsu et al. 2003): the free midpoint of two colliding configurations at a
     /// Gaussian distance, so samples fall into gaps between obstacles.
     Bridge {
+        /// Standard deviation of the bridge's length, as a share of the extent.
+        sigma: f64,
+    },
+    /// The bridge test with exact intervals: of two colliding configurations at a Gaussian
+    /// distance, the centre of the free gap between them nearest their midpoint.
+    Gap {
         /// Standard deviation of the bridge's length, as a share of the extent.
         sigma: f64,
     },
@@ -203,6 +217,22 @@ impl Sampler {
                 }
                 Ok(None)
             }
+            Sampler::Gap { sigma } => {
+                for _ in 0..attempts {
+                    let a = uniform(space, rng);
+                    if oracle.is_free(&a, counts) {
+                        continue;
+                    }
+                    let b = gaussian_near(space, &a, sigma * extent, rng);
+                    if free(space, oracle, &b, counts) {
+                        continue;
+                    }
+                    if let Some(q) = gap_centre(space, oracle, &a, &b, rng, counts)? {
+                        return Ok(Some(q));
+                    }
+                }
+                Ok(None)
+            }
             Sampler::Mix(parts) => {
                 let total: f64 = parts.iter().map(|(_, w)| w).sum();
                 if parts.is_empty() || total.is_nan() || total <= 0.0 {
@@ -234,7 +264,7 @@ impl Sampler {
                     Err(format!("margin must lie in (0, 1], got {margin}"))
                 }
             }
-            Sampler::Gaussian { sigma } | Sampler::Bridge { sigma } => {
+            Sampler::Gaussian { sigma } | Sampler::Bridge { sigma } | Sampler::Gap { sigma } => {
                 if sigma.is_finite() && *sigma > 0.0 {
                     Ok(())
                 } else {
@@ -266,6 +296,7 @@ impl Sampler {
             Sampler::Obstacle { margin } => ("obstacle", vec![format!("margin={margin}")]),
             Sampler::Gaussian { sigma } => ("gaussian", vec![format!("sigma={sigma}")]),
             Sampler::Bridge { sigma } => ("bridge", vec![format!("sigma={sigma}")]),
+            Sampler::Gap { sigma } => ("gap", vec![format!("sigma={sigma}")]),
             Sampler::Mix(parts) => (
                 "mix",
                 parts
@@ -320,9 +351,12 @@ impl Sampler {
             "bridge" => Ok(Sampler::Bridge {
                 sigma: value("sigma", DEFAULT_SIGMA)?,
             }),
+            "gap" => Ok(Sampler::Gap {
+                sigma: value("sigma", DEFAULT_SIGMA)?,
+            }),
             "mix" => Err("a mix cannot contain a mix".into()),
             other => Err(format!(
-                "unknown sampler `{other}`; expected uniform, obstacle, gaussian, bridge or mix"
+                "unknown sampler `{other}`; expected uniform, obstacle, gaussian, bridge, gap or mix"
             )),
         }
     }
@@ -515,6 +549,62 @@ fn obstacle_based<R: Rng + ?Sized>(
         return Ok(free(space, oracle, &q, counts).then_some(q));
     }
     Ok(None)
+}
+
+/// The gap sampler's step (see the [module](self)): the direct path from `a` to `b` (both
+/// colliding), one straight motion per DOF group in random order, asked for all its collision
+/// intervals; returns the centre of the free section whose centre lies nearest the path's
+/// middle (by length), if it is free.
+fn gap_centre<R: Rng + ?Sized>(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    a: &[f64],
+    b: &[f64],
+    rng: &mut R,
+    counts: &mut CallCounts,
+) -> Result<Option<Config>, OracleError> {
+    let mut groups = space.groups(false);
+    if groups.len() > 1 && rng.random::<bool>() {
+        groups.reverse();
+    }
+    // (motion, its free sections, length before it, its length)
+    let mut legs = Vec::with_capacity(groups.len());
+    let mut current = a.to_vec();
+    let mut offset = 0.0;
+    for g in &groups {
+        if space.same_in_group(&current, b, g) {
+            continue;
+        }
+        let motion = space.group_motion(&current, b, g);
+        let hits = oracle.intersect(&motion, counts)?;
+        let gaps = hits.complement_within(motion.range);
+        let length = space.motion_length(&motion, motion.range.lo, motion.range.hi);
+        legs.push((motion, gaps, offset, length, g.kind));
+        offset += length;
+        current = space.with_group_of(&current, b, g);
+    }
+    let middle = 0.5 * offset;
+    let mut best: Option<(f64, Config, GroupKind)> = None;
+    for (motion, gaps, before, length, kind) in &legs {
+        let span = motion.range.hi - motion.range.lo;
+        for gap in gaps.iter().filter(|s| s.length() > 0.0) {
+            let t = gap.centre();
+            let at = before + length * (t - motion.range.lo) / span;
+            if best
+                .as_ref()
+                .is_none_or(|(d, _, _)| (at - middle).abs() < *d)
+            {
+                best = Some(((at - middle).abs(), motion.at(t), *kind));
+            }
+        }
+    }
+    let Some((_, mut q, kind)) = best else {
+        return Ok(None);
+    };
+    if kind != GroupKind::Linear {
+        space.normalize(&mut q);
+    }
+    Ok(free(space, oracle, &q, counts).then_some(q))
 }
 
 #[cfg(test)]
