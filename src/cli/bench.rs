@@ -24,9 +24,10 @@ const MAX_DISC_PROBLEMS: usize = 100_000;
 pub enum BenchCommand {
     /// Regenerate the seed's Tables A.1–A.4 on random disc problems.
     Discs(DiscsArgs),
-    /// Compare local methods inside the same learner on the same scenes and queries: time and
-    /// nodes to 99 % of the queries, oracle calls, memory; Markdown on stdout, CSV, JSON, an
-    /// SQLite database in OMPL's benchmark schema (Planner Arena) and SVG box plots in --out.
+    /// Compare local methods (and samplers) inside the same learner on the same scenes and
+    /// queries: time and nodes to 99 % of the queries, oracle calls, memory; Markdown on
+    /// stdout, CSV, JSON, an SQLite database in OMPL's benchmark schema (Planner Arena) and SVG
+    /// box plots in --out.
     Local(BenchLocalArgs),
     /// One run of `bench local` (internal): reads the job as JSON on stdin and prints the
     /// record as JSON on stdout.
@@ -58,6 +59,12 @@ pub struct BenchLocalArgs {
     /// the feedback variants of one method.
     #[arg(long, num_args = 1.., default_values = ["straight", "sampled:res=0.01", "viapoint:max=3,calls=1000+both", "viapoint"])]
     pub methods: Vec<String>,
+    /// Samplers of construction, each crossed with every method: `uniform`, `obstacle`,
+    /// `gaussian:sigma=0.1`, `bridge:sigma=0.1`, `gap:sigma=0.1`,
+    /// `mix:uniform=1,bridge=1,gaussian=1` (default:
+    /// the learner's default sampler only).
+    #[arg(long, num_args = 1.., value_name = "SPEC")]
+    pub samplers: Vec<viaroad::roadmap::Sampler>,
     /// Runs per scene and method (run r learns with seed S + r).
     #[arg(long, default_value_t = 5)]
     pub runs: u32,
@@ -266,7 +273,12 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         FeedbackChoice::Off => Some(false),
         FeedbackChoice::Both => None,
     };
-    let methods = Method::parse_all(&a.methods, feedback)?;
+    let samplers = if a.samplers.is_empty() {
+        vec![viaroad::roadmap::Sampler::default()]
+    } else {
+        a.samplers.clone()
+    };
+    let methods = Method::parse_all_with(&a.methods, feedback, &samplers)?;
     let queries = match (&a.query_file, a.random_queries) {
         (Some(f), _) => QueryChoice::File(f.clone()),
         (None, true) => QueryChoice::Random { count: a.queries },

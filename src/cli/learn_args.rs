@@ -3,7 +3,7 @@
 use anyhow::Context;
 use clap::Args;
 use viaroad::limits::MAX_NODES;
-use viaroad::roadmap::{Budget, LearnParams};
+use viaroad::roadmap::{Budget, LearnParams, Sampler};
 
 /// How much to learn and how.
 #[derive(Args, Clone, Debug)]
@@ -23,6 +23,12 @@ pub struct LearnArgs {
     /// Nearest neighbours each new node tries (OMPL's PRM: 10).
     #[arg(long)]
     pub neighbours: Option<usize>,
+    /// Where construction draws new nodes: `uniform`, `obstacle`, `gaussian:sigma=0.1`,
+    /// `bridge:sigma=0.1`, `gap:sigma=0.1` (the bridge test with exact intervals), or a mix
+    /// such as `mix:uniform=1,bridge=1,gaussian=1` (sigma and margin are shares of the space's
+    /// extent). Default: the learner's.
+    #[arg(long, value_name = "SPEC")]
+    pub sampler: Option<Sampler>,
 }
 
 impl LearnArgs {
@@ -34,6 +40,9 @@ impl LearnArgs {
         };
         if let Some(k) = self.neighbours {
             params.neighbours = k;
+        }
+        if let Some(s) = &self.sampler {
+            params.sampler = s.clone();
         }
         params
             .validate()

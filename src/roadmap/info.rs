@@ -99,6 +99,7 @@ impl fmt::Display for RoadmapInfo {
             Some(n) => writeln!(f, "budget           {n} nodes, {} rounds", self.rounds)?,
             None => writeln!(f, "budget           time, {} rounds", self.rounds)?,
         }
+        writeln!(f, "sampler          {}", p.sampler)?;
         let radius = p.radius.map_or("none".to_string(), |r| r.to_string());
         writeln!(
             f,

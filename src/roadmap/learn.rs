@@ -38,7 +38,7 @@ use super::params::{Budget, LearnParams};
 use super::persist::Header;
 use crate::deadline::Deadline;
 use crate::local::{direct_length, path_length, Connection, LocalMethod, Outcome};
-use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::scene::Scene;
 use crate::space::{Config, Group, Space};
 use petgraph::unionfind::UnionFind;
@@ -795,28 +795,32 @@ impl<'a> Learner<'a> {
         deadline: &Deadline,
         (seed, round, size): (u64, u64, usize),
     ) -> Result<(), LearnError> {
-        let samples: Vec<(Option<Config>, CallCounts)> = (0..size as u64)
+        let samples: Vec<(Result<Option<Config>, OracleError>, CallCounts)> = (0..size as u64)
             .into_par_iter()
             .map(|i| {
                 let mut rng = stream(seed, round, i, SAMPLE_STREAM);
                 let mut counts = CallCounts::default();
+                // one attempt at a time, so that the deadline is checked between attempts (an
+                // attempt of the obstacle-based samplers asks the oracle about motions)
+                let mut q = Ok(None);
                 for _ in 0..params.sample_attempts {
                     if deadline.expired() {
                         break;
                     }
-                    let mut q = self.space.sample_uniform(&mut rng);
-                    self.space.normalize(&mut q);
-                    if self.oracle.is_free(&q, &mut counts) {
-                        return (Some(q), counts);
+                    q = params
+                        .sampler
+                        .sample(self.space, self.oracle, 1, &mut rng, &mut counts);
+                    if !matches!(q, Ok(None)) {
+                        break;
                     }
                 }
-                (None, counts)
+                (q, counts)
             })
             .collect();
         let mut candidates = Vec::with_capacity(samples.len());
         for (q, counts) in samples {
             work.counts += counts;
-            candidates.extend(q);
+            candidates.extend(q?);
         }
         self.connect_candidates(work, params, budget, deadline, candidates)?;
         Ok(())

@@ -4,6 +4,7 @@
 //! | file | concept |
 //! |---|---|
 //! | [`params`] | learning parameters (recorded in the file) and the budget |
+//! | [`sampler`] | where new nodes are drawn: uniform, obstacle-based, Gaussian, bridge test |
 //! | [`nn`] | nearest neighbours: an incremental kd-tree over the space's embeddings |
 //! | [`graph`] | nodes, edges, components: the [`Roadmap`] |
 //! | [`bounce`] | random-bounce walks driven by exact free sections |
@@ -46,6 +47,7 @@ pub mod nn;
 pub mod params;
 pub mod persist;
 pub mod query;
+pub mod sampler;
 
 pub use graph::{Edge, Roadmap};
 pub use info::RoadmapInfo;
@@ -57,3 +59,4 @@ pub use persist::{Header, RoadmapError, FORMAT_VERSION, MAGIC};
 pub use query::{
     BatchAnswer, Endpoint, QueryError, QueryOptions, QueryOutcome, QueryPlanner, QueryResult,
 };
+pub use sampler::Sampler;

@@ -1,5 +1,6 @@
 //! The learning parameters (recorded in every roadmap file) and the budget that ends learning.
 
+use super::sampler::Sampler;
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
 
@@ -29,8 +30,12 @@ pub struct LearnParams {
     /// budget has only as many as nodes are missing. The rounds' composition fixes the result:
     /// the same seed and round size give the same roadmap with any thread count.
     pub round_size: usize,
-    /// Tries per candidate to draw a collision-free configuration before giving up on it.
+    /// Tries per candidate to draw a collision-free configuration before giving up on it
+    /// (OMPL's `nr_attempts` of a valid state sampler).
     pub sample_attempts: usize,
+    /// How construction draws its candidates: uniformly, or near obstacles to find narrow
+    /// passages ([`Sampler`], spec strings such as `bridge:sigma=0.05`).
+    pub sampler: Sampler,
     /// Also try neighbours that are already in the new node's component, adding edges that close
     /// cycles (shorter paths, more local-method calls). Off in OS94 and OMPL's PRM.
     pub cycle_edges: bool,
@@ -54,6 +59,7 @@ impl Default for LearnParams {
             bounce_nodes: false,
             round_size: 64,
             sample_attempts: 100,
+            sampler: Sampler::default(),
             cycle_edges: false,
             feedback: true,
             stall_rounds: 100,
@@ -92,6 +98,9 @@ impl LearnParams {
         if self.sample_attempts == 0 {
             return Err("sample_attempts must be at least 1".into());
         }
+        self.sampler
+            .validate()
+            .map_err(|e| format!("sampler `{}`: {e}", self.sampler))?;
         if self.stall_rounds == 0 {
             return Err("stall_rounds must be at least 1".into());
         }

@@ -38,7 +38,7 @@ use std::str::FromStr;
 pub const MAGIC: [u8; 8] = *b"VIAROADM";
 
 /// The version of the layout written by this build (and the only one it reads).
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Bytes before the payload.
 pub const FIXED_HEADER_LEN: usize = 36;

@@ -12,6 +12,10 @@
 //! is not learning time) and its **nodes needed** the roadmap's size there
 //! ([`crate::roadmap::Learner::learn_in_stages`]).
 //!
+//! **Samplers** ([`crate::roadmap::Sampler`]: uniform, obstacle-based, Gaussian, bridge test,
+//! mixtures) are compared the same way: `--samplers A B C` crosses every method with every
+//! sampler, and the label of a run with a non-default sampler ends in ` @SPEC`.
+//!
 //! | file | concept |
 //! |---|---|
 //! | [`spec`] | what to run: scenes × methods × runs, the node schedule, one self-contained [`RunJob`] |

@@ -100,6 +100,8 @@ pub struct MethodSummary {
     pub local_spec: String,
     /// Feedback on.
     pub feedback: bool,
+    /// Canonical sampler spec.
+    pub sampler: String,
     /// Runs.
     pub runs: usize,
     /// Runs that reached the target share of the scored queries.
@@ -246,6 +248,7 @@ impl SceneReport {
                     method: m.clone(),
                     local_spec: first.local_spec.clone(),
                     feedback: first.feedback,
+                    sampler: first.sampler.clone(),
                     runs: rs.len(),
                     reached: rs.iter().filter(|r| r.stop == RunStop::Target).count(),
                     reached_solvable: to_solvable.iter().flatten().count(),
@@ -324,11 +327,9 @@ impl SceneReport {
             if !on.feedback {
                 continue;
             }
-            if let Some(j) = self
-                .methods
-                .iter()
-                .position(|off| !off.feedback && off.local_spec == on.local_spec)
-            {
+            if let Some(j) = self.methods.iter().position(|off| {
+                !off.feedback && off.local_spec == on.local_spec && off.sampler == on.sampler
+            }) {
                 out.push((i, j));
             }
         }
@@ -565,7 +566,7 @@ impl Report {
     /// One CSV row per run.
     pub fn csv(&self) -> String {
         let mut o = String::from(
-            "scene,method,local_spec,feedback,run,seed,threads,stop,queries,scored,separate,invalid_queries,needed,time_to_target_s,nodes_at_target,time_to_solvable_s,nodes_to_solvable,nodes,edges,components,learn_s,segment_calls,line_calls,state_checks,pairs_tested,attempts,connected,solved,claimed,invalid_paths,invalid_raw_paths,separate_solved,query_p50_ms,query_p95_ms,query_mean_ms,path_length_raw,path_length,roadmap_bytes,peak_rss_mib,wall_s,stages\n",
+            "scene,method,local_spec,feedback,sampler,run,seed,threads,stop,queries,scored,separate,invalid_queries,needed,time_to_target_s,nodes_at_target,time_to_solvable_s,nodes_to_solvable,nodes,edges,components,learn_s,segment_calls,line_calls,state_checks,pairs_tested,attempts,connected,solved,claimed,invalid_paths,invalid_raw_paths,separate_solved,query_p50_ms,query_p95_ms,query_mean_ms,path_length_raw,path_length,roadmap_bytes,peak_rss_mib,wall_s,stages\n",
         );
         let opt = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
         for s in &self.scenes {
@@ -573,11 +574,12 @@ impl Report {
                 let at = first_stage_solving(r, &s.solvable, s.solvable_needed);
                 let _ = writeln!(
                     o,
-                    "\"{}\",\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    "\"{}\",\"{}\",\"{}\",{},\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                     r.scene,
                     r.method,
                     r.local_spec,
                     r.feedback,
+                    r.sampler,
                     r.run,
                     r.seed,
                     r.threads,

@@ -88,6 +88,9 @@ pub struct RunRecord {
     pub local_spec: String,
     /// Feedback of discoveries.
     pub feedback: bool,
+    /// Canonical sampler spec of construction.
+    #[serde(default)]
+    pub sampler: String,
     /// Run index.
     pub run: u32,
     /// Learning seed.
@@ -346,6 +349,7 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
     let groups = local.groups(&scene.space);
     let params = LearnParams {
         feedback: job.method.feedback,
+        sampler: job.method.sampler.clone(),
         ..LearnParams::default()
     };
     let learner = Learner::for_scene(scene, oracle.as_ref(), local.as_ref());
@@ -458,6 +462,7 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
         method: job.method.label(),
         local_spec: job.method.local.to_string(),
         feedback: job.method.feedback,
+        sampler: job.method.sampler.to_string(),
         run: job.run,
         seed: job.seed,
         threads: rayon::current_num_threads(),

@@ -5,6 +5,7 @@ use super::queries::QueryChoice;
 use super::BenchError;
 use crate::limits::{MAX_GENERATED_DISCS, MAX_NODES, MAX_QUERIES, MAX_RUNS, MAX_SECONDS};
 use crate::local::LocalSpec;
+use crate::roadmap::Sampler;
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::space::Space;
 use rand::{Rng, SeedableRng};
@@ -148,21 +149,36 @@ impl<'de> Deserialize<'de> for SceneSource {
     }
 }
 
-/// One benchmarked method: a local method, and whether what it discovers is fed back into the
-/// roadmap ([`crate::roadmap::LearnParams::feedback`], CHS §1.6).
+/// One benchmarked method: a local method, whether what it discovers is fed back into the
+/// roadmap ([`crate::roadmap::LearnParams::feedback`], CHS §1.6), and where construction draws
+/// its nodes ([`crate::roadmap::LearnParams::sampler`]): samplers are compared like local
+/// methods, inside the same learner on the same queries.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Method {
     /// The local method.
     pub local: LocalSpec,
     /// Feedback of via points and free segments.
     pub feedback: bool,
+    /// The sampler of construction.
+    #[serde(default)]
+    pub sampler: Sampler,
 }
 
 impl Method {
     /// A short name: the method and the parameters that differ from its defaults, with
-    /// `+nofeedback` when feedback is off (`viapoint`, `viapoint:beta=0.5`,
-    /// `sampled:res=0.01`, `viapoint+nofeedback`).
+    /// `+nofeedback` when feedback is off and ` @SAMPLER` when the sampler is not the
+    /// learner's default (`viapoint`, `viapoint:beta=0.5`, `sampled:res=0.01`,
+    /// `viapoint+nofeedback`, `viapoint @bridge:sigma=0.1`).
     pub fn label(&self) -> String {
+        let base = self.local_label();
+        if self.sampler == Sampler::default() {
+            base
+        } else {
+            format!("{base} @{}", self.sampler)
+        }
+    }
+
+    fn local_label(&self) -> String {
         let spec = self.local.to_string();
         let base = match &self.local {
             LocalSpec::ViaPoint(_) => {
@@ -197,6 +213,19 @@ impl Method {
     /// `+feedback` or `+both`; without a suffix `feedback` decides (`None`: both variants).
     /// Duplicates are dropped, the order is kept.
     pub fn parse_all(items: &[String], feedback: Option<bool>) -> Result<Vec<Method>, BenchError> {
+        Self::parse_all_with(items, feedback, &[Sampler::default()])
+    }
+
+    /// [`parse_all`](Self::parse_all) crossed with `samplers`: every method with every
+    /// sampler, samplers varying fastest.
+    pub fn parse_all_with(
+        items: &[String],
+        feedback: Option<bool>,
+        samplers: &[Sampler],
+    ) -> Result<Vec<Method>, BenchError> {
+        if samplers.is_empty() {
+            return Err(BenchError::Invalid("no samplers given".into()));
+        }
         let mut out: Vec<Method> = Vec::new();
         for item in items {
             let (spec, variants): (&str, Vec<bool>) =
@@ -211,12 +240,15 @@ impl Method {
                 };
             for local in LocalSpec::parse_grid(spec)? {
                 for &f in &variants {
-                    let m = Method {
-                        local: local.clone(),
-                        feedback: f,
-                    };
-                    if !out.contains(&m) {
-                        out.push(m);
+                    for sampler in samplers {
+                        let m = Method {
+                            local: local.clone(),
+                            feedback: f,
+                            sampler: sampler.clone(),
+                        };
+                        if !out.contains(&m) {
+                            out.push(m);
+                        }
                     }
                 }
             }
@@ -516,6 +548,33 @@ mod tests {
         assert_eq!(both.len(), 2);
         assert_eq!(both[1].label(), "sampled:res=0.02+nofeedback");
         assert!(Method::parse_all(&["curved".to_string()], None).is_err());
+    }
+
+    #[test]
+    fn methods_cross_with_samplers() {
+        let samplers: Vec<Sampler> = ["uniform", "bridge:sigma=0.05", "uniform"]
+            .iter()
+            .map(|s| s.parse().unwrap())
+            .collect();
+        let m = Method::parse_all_with(
+            &["straight".to_string(), "viapoint".to_string()],
+            Some(true),
+            &samplers,
+        )
+        .unwrap();
+        let labels: Vec<String> = m.iter().map(Method::label).collect();
+        assert_eq!(
+            labels,
+            [
+                "straight",
+                "straight @bridge:sigma=0.05",
+                "viapoint",
+                "viapoint @bridge:sigma=0.05"
+            ]
+        );
+        let json = serde_json::to_string(&m[3]).unwrap();
+        assert_eq!(serde_json::from_str::<Method>(&json).unwrap(), m[3]);
+        assert!(Method::parse_all_with(&["viapoint".to_string()], None, &[]).is_err());
     }
 
     #[test]

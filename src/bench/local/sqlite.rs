@@ -195,9 +195,10 @@ const PROGRESS_COLUMNS: [(&str, &str); 9] = [
 ];
 
 /// OMPL's planner settings text: `name = value` lines, each followed by `;`, sorted by name.
-fn settings(local_spec: &str, feedback: bool) -> String {
+fn settings(local_spec: &str, feedback: bool, sampler: &str) -> String {
     let params = LearnParams {
         feedback,
+        sampler: sampler.parse().unwrap_or_default(),
         ..LearnParams::default()
     };
     let mut kv: Vec<(String, String)> = vec![("local_method".into(), local_spec.to_string())];
@@ -296,7 +297,7 @@ fn fill(conn: &Connection, report: &Report) -> Result<(), rusqlite::Error> {
         )?;
         let experiment = conn.last_insert_rowid();
         for r in &scene.runs {
-            let s = settings(&r.local_spec, r.feedback);
+            let s = settings(&r.local_spec, r.feedback, &r.sampler);
             let existing: Option<i64> = conn
                 .query_row(
                     "SELECT id FROM plannerConfigs WHERE (name = ?1 AND settings = ?2)",
@@ -420,7 +421,7 @@ mod tests {
 
     #[test]
     fn settings_look_like_ompl_logs() {
-        let s = settings("straight", false);
+        let s = settings("straight", false, "uniform");
         assert!(s.starts_with("learn."));
         assert!(s.contains("learn.feedback = false\n;"));
         assert!(s.contains("local_method = straight\n;"));
