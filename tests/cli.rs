@@ -4,53 +4,9 @@
 
 mod common;
 
+use common::cli::{fails_with, stderr, stdout, viaroad, write};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn viaroad(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_viaroad"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// A failure: non-zero exit, exactly one `error:` line naming `needle`, no panic.
-fn fails_with(args: &[&str], needle: &str) {
-    let o = viaroad(args);
-    let err = stderr(&o);
-    assert!(!o.status.success(), "{args:?} succeeded");
-    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
-    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
-    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
-    assert_eq!(lines.len(), 1, "{args:?}: {err}");
-    assert!(
-        lines[0].contains(needle),
-        "{args:?}: expected `{needle}` in `{}`",
-        lines[0]
-    );
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("viaroad-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_string_lossy().into_owned()
-}
 
 const EXAMPLE: &str = "scenes/discs-example.toml";
 const CLUTTERED: &str = "scenes/discs-cluttered.toml";
@@ -440,4 +396,8 @@ fn path_out_writes_ompl_state_files_the_independent_check_certifies() {
         &["solve", CLUTTERED, "--path-out", nowhere.to_str().unwrap()],
         "a-file",
     );
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    common::cli::temp_dir("cli", name)
 }

@@ -5,41 +5,12 @@
 
 mod common;
 
+use common::cli::{fails_with, stderr, stdout, viaroad};
+
 use std::path::PathBuf;
-use std::process::{Command, Output};
 use viaroad::scene::{Obstacle, Scene};
 
 const CLUTTERED: &str = "scenes/discs-cluttered.toml";
-
-fn viaroad(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_viaroad"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-/// Non-zero exit with one `error:` line that names `needle`.
-fn fails_with(args: &[&str], needle: &str) {
-    let o = viaroad(args);
-    let err = text(&o.stderr);
-    assert!(!o.status.success(), "{args:?} succeeded");
-    assert!(!err.contains("panicked"), "{args:?}: {err}");
-    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
-    assert_eq!(lines.len(), 1, "{args:?}: {err}");
-    assert!(lines[0].contains(needle), "{args:?}: {}", lines[0]);
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("viaroad-budgets-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn discs(path: &str) -> (Vec<Vec<f64>>, Vec<f64>) {
     let scene = Scene::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(path)).unwrap();
@@ -60,9 +31,9 @@ fn path_of(v: &serde_json::Value) -> Vec<Vec<f64>> {
 #[test]
 fn solve_roadmap_grows_from_start_and_goal_to_a_checked_path() {
     let o = viaroad(&["solve", CLUTTERED, "--roadmap", "--time", "60", "--json"]);
-    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let (centres, radii) = discs(CLUTTERED);
-    let lines: Vec<serde_json::Value> = text(&o.stdout)
+    let lines: Vec<serde_json::Value> = stdout(&o)
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
         .collect();
@@ -84,12 +55,8 @@ fn time_budgets_are_checked_and_answers_are_numbered() {
     let rm = d.join("rm.bin").to_string_lossy().into_owned();
     // a build stopped by its time budget still saves a roadmap
     let o = viaroad(&["build", CLUTTERED, "-o", &rm, "--time", "0.2"]);
-    assert!(o.status.success(), "{}", text(&o.stderr));
-    assert!(
-        text(&o.stdout).contains("stopped: TimeBudget"),
-        "{}",
-        text(&o.stdout)
-    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("stopped: TimeBudget"), "{}", stdout(&o));
     assert!(viaroad(&["info", &rm]).status.success());
     for bad in ["0", "-1", "nan", "inf", "1e300"] {
         let bad = &format!("--time={bad}");
@@ -104,7 +71,6 @@ fn time_budgets_are_checked_and_answers_are_numbered() {
                 "0.02,0.98",
                 "--to",
                 "0.98,0.02",
-                "--time",
                 bad,
             ],
             "--time",
@@ -128,10 +94,10 @@ fn time_budgets_are_checked_and_answers_are_numbered() {
         "--time",
         "30",
     ]);
-    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let (centres, radii) = discs(CLUTTERED);
     let mut numbers: Vec<u64> = Vec::new();
-    for line in text(&o.stdout).lines() {
+    for line in stdout(&o).lines() {
         let v: serde_json::Value = serde_json::from_str(line).unwrap();
         numbers.push(v["query"].as_u64().unwrap());
         assert_eq!(v["solved"], true, "{v}");
@@ -156,14 +122,18 @@ fn an_invalid_scene_query_warns_build_and_stops_solve() {
     let scene = scene.to_string_lossy().into_owned();
     let rm = d.join("rm.bin").to_string_lossy().into_owned();
     let o = viaroad(&["build", &scene, "-o", &rm, "--nodes", "50"]);
-    assert!(o.status.success(), "{}", text(&o.stderr));
-    let warned: Vec<String> = text(&o.stderr)
+    assert!(o.status.success(), "{}", stderr(&o));
+    let warned: Vec<String> = stderr(&o)
         .lines()
         .filter(|l| l.starts_with("warning:") && l.contains("goal of query 1"))
         .map(str::to_string)
         .collect();
-    assert_eq!(warned.len(), 1, "{}", text(&o.stderr));
+    assert_eq!(warned.len(), 1, "{}", stderr(&o));
     assert!(warned[0].contains("in collision"));
     fails_with(&["solve", &scene], "goal of query 1");
     fails_with(&["solve", &scene, "--roadmap"], "goal of query 1");
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    common::cli::temp_dir("budgets", name)
 }

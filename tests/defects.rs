@@ -5,60 +5,14 @@
 
 mod common;
 
+use common::cli::{fails_alone_with as fails_with, stderr, stdout, viaroad};
+
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-
-fn viaroad(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_viaroad"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-/// A failure: exit status 1, stderr exactly one line, an `error:` line containing `needle`,
-/// nothing on stdout.
-fn fails_with(args: &[&str], needle: &str) -> String {
-    let o = viaroad(args);
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
-    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
-    let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(lines.len(), 1, "{args:?}: one line expected, got: {err}");
-    assert!(lines[0].starts_with("error: "), "{args:?}: {err}");
-    assert!(
-        lines[0].contains(needle),
-        "{args:?}: expected `{needle}` in `{}`",
-        lines[0]
-    );
-    assert_eq!(stdout(&o), "", "{args:?}: status printed before the error");
-    lines[0].to_string()
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("viaroad-defects-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use std::process::{Command, Stdio};
 
 fn s(p: &Path) -> String {
     p.to_string_lossy().into_owned()
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    s(&p)
 }
 
 const EXAMPLE: &str = "scenes/discs-example.toml";
@@ -1021,4 +975,12 @@ fn library_refuses_special_files_with_typed_errors() {
         assert!(matches!(r, Err(SpaceError::Bounds(_))), "{r:?}");
     }
     assert!(Space::se2([-1e100, 0.0], [1e100, 1.0], 1.0).is_ok());
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    common::cli::temp_dir("defects", name)
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    common::cli::write(dir, name, text)
 }

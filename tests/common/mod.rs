@@ -73,5 +73,6 @@ pub fn certify_by_advancement(rate: f64, clearance_at: impl Fn(f64) -> f64) -> R
     Ok(())
 }
 
+pub mod cli;
 pub mod rigid;
 pub mod rigid2d;
