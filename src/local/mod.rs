@@ -110,6 +110,43 @@ pub struct Connection {
 }
 
 impl Connection {
+    /// The outcome of checking a direct path: `corners` (after `a`, ending at `z`) when it was
+    /// free, with its pieces recorded as certified free segments; blocked otherwise.
+    pub fn from_corners(
+        a: &[f64],
+        z: &[f64],
+        corners: Option<Vec<Config>>,
+        counts: CallCounts,
+    ) -> Self {
+        let mut discoveries = Discoveries::new(a, z);
+        let (outcome, path) = match corners {
+            Some(corners) => {
+                let mut prev = 0u32;
+                for (k, c) in corners.iter().enumerate() {
+                    let idx = if k + 1 == corners.len() {
+                        1
+                    } else {
+                        discoveries.add(c.clone())
+                    };
+                    discoveries.free_segments.push((prev, idx));
+                    prev = idx;
+                }
+                let mut path = vec![a.to_vec()];
+                path.extend(corners);
+                (Outcome::Connected, path)
+            }
+            None => (Outcome::Blocked, Vec::new()),
+        };
+        Connection {
+            outcome,
+            path,
+            depth: 0,
+            counts,
+            discoveries,
+            borderlines: Vec::new(),
+        }
+    }
+
     /// An attempt that did not start because the deadline had passed.
     pub fn interrupted(a: &[f64], z: &[f64]) -> Self {
         Connection {
@@ -226,6 +263,20 @@ pub fn check_direct(
         corners.push(z.to_vec());
     }
     Ok(Some(corners))
+}
+
+/// The direct path from `a` to `z` as a connection attempt (CHS's depth 0): one exact call
+/// per DOF group it changes, the corners and free segments recorded for feedback.
+pub fn direct_connection(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    a: &[f64],
+    z: &[f64],
+) -> Result<Connection, OracleError> {
+    let mut counts = CallCounts::default();
+    let corners = check_direct(space, oracle, groups, a, z, &mut counts)?;
+    Ok(Connection::from_corners(a, z, corners, counts))
 }
 
 /// Total length of a path of corners joined by direct paths.

@@ -1,6 +1,6 @@
 //! The straight-line local method: the direct path or nothing.
 
-use super::{check_direct, Connection, Discoveries, LocalMethod, Outcome};
+use super::{check_direct, Connection, LocalMethod};
 use crate::deadline::Deadline;
 use crate::oracle::sampled::Sampled;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
@@ -58,32 +58,6 @@ impl LocalMethod for StraightLine {
                 check_direct(space, &sampled, &groups, a, z, &mut counts)?
             }
         };
-        let mut discoveries = Discoveries::new(a, z);
-        let (outcome, path) = match corners {
-            Some(corners) => {
-                let mut prev = 0u32;
-                for (k, c) in corners.iter().enumerate() {
-                    let idx = if k + 1 == corners.len() {
-                        1
-                    } else {
-                        discoveries.add(c.clone())
-                    };
-                    discoveries.free_segments.push((prev, idx));
-                    prev = idx;
-                }
-                let mut path = vec![a.to_vec()];
-                path.extend(corners);
-                (Outcome::Connected, path)
-            }
-            None => (Outcome::Blocked, Vec::new()),
-        };
-        Ok(Connection {
-            outcome,
-            path,
-            depth: 0,
-            counts,
-            discoveries,
-            borderlines: Vec::new(),
-        })
+        Ok(Connection::from_corners(a, z, corners, counts))
     }
 }

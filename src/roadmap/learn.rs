@@ -37,7 +37,9 @@ use super::nn::NearestNeighbours;
 use super::params::{Budget, LearnParams};
 use super::persist::Header;
 use crate::deadline::Deadline;
-use crate::local::{direct_length, path_length, Connection, LocalMethod, Outcome};
+use crate::local::{
+    direct_connection, direct_length, path_length, Connection, LocalMethod, Outcome,
+};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::scene::Scene;
 use crate::space::{Config, Group, Space};
@@ -759,10 +761,11 @@ impl<'a> Learner<'a> {
         targets: &[(Target, &[f64])],
         mut joined: Vec<Target>,
         component: impl Fn(Target) -> Target,
-        cycle_edges: bool,
+        (cycle_edges, deep): (bool, Option<usize>),
         deadline: &Deadline,
     ) -> Result<Vec<Attempt>, OracleError> {
         let mut out = Vec::with_capacity(targets.len());
+        let groups = deep.map(|_| self.local.groups(self.space));
         for &(target, tq) in targets {
             let comp = component(target);
             if !cycle_edges && joined.contains(&comp) {
@@ -771,13 +774,19 @@ impl<'a> Learner<'a> {
             if deadline.expired() {
                 break;
             }
-            let mut connection = self.local.connect_within(
-                self.space,
-                self.oracle,
-                q,
-                tq,
-                &deadline.within(self.attempt_cap),
-            )?;
+            // cheap attempts beyond the nearest `deep` ones (LearnParams::deep_neighbours)
+            let mut connection = match (&groups, deep) {
+                (Some(groups), Some(d)) if out.len() >= d => {
+                    direct_connection(self.space, self.oracle, groups, q, tq)?
+                }
+                _ => self.local.connect_within(
+                    self.space,
+                    self.oracle,
+                    q,
+                    tq,
+                    &deadline.within(self.attempt_cap),
+                )?,
+            };
             connection.borderlines.clear();
             if connection.is_connected() {
                 joined.push(comp);
@@ -874,7 +883,7 @@ impl<'a> Learner<'a> {
                     &targets,
                     Vec::new(),
                     component,
-                    params.cycle_edges,
+                    (params.cycle_edges, params.deep_neighbours),
                     deadline,
                 )
             })
@@ -1004,7 +1013,7 @@ impl<'a> Learner<'a> {
                                 &targets,
                                 joined,
                                 component,
-                                params.cycle_edges,
+                                (params.cycle_edges, params.deep_neighbours),
                                 deadline,
                             )?
                         }

@@ -47,6 +47,13 @@ pub struct LearnParams {
     /// Learning stops after this many consecutive rounds that added no node (a scene with no
     /// free space, or a node budget larger than the scene allows).
     pub stall_rounds: usize,
+    /// Cheap attempts first: a new node runs the full local method only towards its nearest
+    /// `d` neighbours in components it has not joined; the farther ones get only the direct
+    /// path (one exact call per DOF group). `None` (OS94, OMPL): the full method towards every
+    /// neighbour. A deep via-point search costs up to its call budget, and its chance to pay
+    /// off falls with the distance (CHS §1.6: a roadmap calls its local method thousands of
+    /// times and covers the rest itself).
+    pub deep_neighbours: Option<usize>,
 }
 
 impl Default for LearnParams {
@@ -63,6 +70,7 @@ impl Default for LearnParams {
             cycle_edges: false,
             feedback: true,
             stall_rounds: 100,
+            deep_neighbours: None,
         }
     }
 }
@@ -103,6 +111,9 @@ impl LearnParams {
             .map_err(|e| format!("sampler `{}`: {e}", self.sampler))?;
         if self.stall_rounds == 0 {
             return Err("stall_rounds must be at least 1".into());
+        }
+        if self.deep_neighbours == Some(0) {
+            return Err("deep_neighbours must be at least 1 (or none: every neighbour)".into());
         }
         Ok(())
     }
