@@ -11,8 +11,8 @@
 //!   poses — a local yardstick for an FCL state check (the issue's target is "a motion within
 //!   10× the cost of one state check").
 //!
-//! Before criterion runs, one untimed-by-criterion pass per scene prints the mean wall time of
-//! each kind of call (`oracle_scenes <scene>: …`), so that two builds can be compared back to
+//! Before criterion runs, five passes per scene outside criterion print the mean wall time of
+//! each kind of call (the least of the five) (`oracle_scenes <scene>: …`), so that two builds can be compared back to
 //! back with `cargo bench --bench oracle_scenes -- --list` (no criterion sampling at all).
 //! Scenes are parsed outside the timed loops.
 
@@ -167,25 +167,37 @@ impl Case {
         .unwrap()
     }
 
-    /// One pass over every kind of call, timed by hand: mean microseconds per call.
+    /// Every kind of call, timed by hand: mean microseconds per call (least of five passes).
     fn summary(&self) {
+        // the least of five passes: the machine is shared, and others only ever add time
         let per_call = |n: usize, f: &mut dyn FnMut()| {
-            let t = Instant::now();
-            f();
-            t.elapsed().as_secs_f64() * 1e6 / n.max(1) as f64
+            (0..5)
+                .map(|_| {
+                    let t = Instant::now();
+                    f();
+                    t.elapsed().as_secs_f64() * 1e6 / n.max(1) as f64
+                })
+                .fold(f64::INFINITY, f64::min)
         };
-        let mut counts = CallCounts::default();
+        let mut counts = [CallCounts::default(), CallCounts::default()];
         let mut hit = [0usize; 2];
         let it = per_call(self.translations.len(), &mut || {
             for m in &self.translations {
-                hit[0] += usize::from(!self.oracle.intervals(m, &mut counts).unwrap().is_empty());
+                hit[0] +=
+                    usize::from(!self.oracle.intervals(m, &mut counts[0]).unwrap().is_empty());
             }
         });
         let ir = per_call(self.rotations.len(), &mut || {
             for m in &self.rotations {
-                hit[1] += usize::from(!self.oracle.intervals(m, &mut counts).unwrap().is_empty());
+                hit[1] +=
+                    usize::from(!self.oracle.intervals(m, &mut counts[1]).unwrap().is_empty());
             }
         });
+        let pairs = [0, 1].map(|k| {
+            counts[k].pairs_tested
+                / (5 * [&self.translations, &self.rotations][k].len().max(1)) as u64
+        });
+        let mut counts = CallCounts::default();
         let ft = per_call(self.translations.len(), &mut || {
             for m in &self.translations {
                 black_box(self.oracle.motion_is_free(m, &mut counts).unwrap());
@@ -209,13 +221,15 @@ impl Case {
         let (nr, no) = self.oracle.face_counts();
         eprintln!(
             "oracle_scenes {}: {nr} x {no} faces; mean µs per call: intervals translation {it:.0} \
-             ({}/{} collide), rotation {ir:.0} ({}/{}); is_free translation {ft:.0}, rotation \
+             ({}/{} collide, {} pairs tested), rotation {ir:.0} ({}/{}, {} pairs); is_free translation {ft:.0}, rotation \
              {fr:.0}; collides {st:.1}; parry state check {ps:.1}",
             self.name,
-            hit[0],
+            hit[0] / 5,
             self.translations.len(),
-            hit[1],
-            self.rotations.len()
+            pairs[0],
+            hit[1] / 5,
+            self.rotations.len(),
+            pairs[1]
         );
     }
 }

@@ -402,6 +402,110 @@ impl CylBox {
     }
 }
 
+/// Bounds of a tree node in cylindrical coordinates about a rotation axis (CHS §2.3.2): height
+/// range, radius range and, away from the axis, an angular sector. Height and radius do not
+/// change while the node turns about the axis, the sector turns with it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CylBounds {
+    /// Height along the axis.
+    pub h: (f64, f64),
+    /// Distance from the axis.
+    pub rho: (f64, f64),
+    /// Radial offset of the node's centre from the axis, in the frame's `(e1, e2)` plane.
+    centre: (f64, f64),
+    /// Radius of the disc (about `centre`) that holds the node's projection onto that plane.
+    spread: f64,
+}
+
+impl CylBounds {
+    /// The angular sector `(middle, half width)` (half width < π/2), or `None` when the node
+    /// comes close to the axis.
+    pub fn sector(&self) -> Option<(f64, f64)> {
+        let rc = self.centre.0.hypot(self.centre.1);
+        // the disc of radius `spread` about a point at distance rc > spread subtends
+        // ±asin(spread / rc); the factor keeps clear of the asin's steep end and of rounding
+        if rc <= 1.01 * self.spread || rc <= 0.0 {
+            return None;
+        }
+        let half = (self.spread / rc).asin() * (1.0 + 1e-9) + 1e-12;
+        Some((self.centre.1.atan2(self.centre.0), half))
+    }
+
+    /// Whether the fixed coordinates (height, radius) of two nodes overlap.
+    pub fn fixed_overlap(&self, o: &CylBounds) -> bool {
+        self.h.0 <= o.h.1 && o.h.0 <= self.h.1 && self.rho.0 <= o.rho.1 && o.rho.0 <= self.rho.1
+    }
+}
+
+impl CylFrame {
+    /// The same frame seen from another frame: `rot` maps this frame's coordinates to the
+    /// other's.
+    pub fn rotated(&self, rot: &nalgebra::Matrix3<f64>) -> CylFrame {
+        CylFrame {
+            e1: rot * self.e1,
+            e2: rot * self.e2,
+            axis: rot * self.axis,
+        }
+    }
+
+    /// Cylindrical bounds of the box with centre `c` (relative to a point of the axis) and
+    /// half extents `half`, grown by `margin`, both in the coordinates of this frame's vectors.
+    /// Conservative: the height range is the box's projection (exact), the radius range and
+    /// the sector come from the smallest disc about the centre's projection that holds the
+    /// projections of the box's corners.
+    pub fn node_bounds(&self, c: &V3, half: &V3, margin: f64) -> CylBounds {
+        let z = self.axis.dot(c);
+        let hz = self.axis.abs().dot(half);
+        // the corners relative to the centre are ±(s ∘ half); their distance from the axis
+        // direction, at most over the four sign patterns
+        let mut spread2: f64 = 0.0;
+        for s in [
+            [1.0, 1.0, 1.0],
+            [1.0, 1.0, -1.0],
+            [1.0, -1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+        ] {
+            let v = V3::new(s[0] * half.x, s[1] * half.y, s[2] * half.z);
+            let along = self.axis.dot(&v);
+            spread2 = spread2.max(v.norm_squared() - along * along);
+        }
+        // rounding: a relative 1e-12 of the sizes involved, far below the margin's 4e-11 of
+        // the scene for scene-sized numbers, added on top of it
+        let round = 1e-12 * (c.norm() + half.norm());
+        let spread = spread2.max(0.0).sqrt() + margin + round;
+        let centre = (self.e1.dot(c), self.e2.dot(c));
+        let rc = centre.0.hypot(centre.1);
+        CylBounds {
+            h: (z - hz - margin - round, z + hz + margin + round),
+            rho: ((rc - spread).max(0.0), rc + spread),
+            centre,
+            spread,
+        }
+    }
+}
+
+/// For a node with sector `m` turned by `+φ` against a fixed node with sector `f`: the hull of
+/// the angles of `window` (at most one turn) at which the sectors overlap; `None` if none.
+pub(crate) fn sector_window(m: (f64, f64), f: (f64, f64), window: Interval) -> Option<Interval> {
+    let half = m.1 + f.1;
+    if half >= PI {
+        return Some(window);
+    }
+    let start = wrap_pi(f.0 - m.0 - half);
+    let spans = super::trig::arc_in_window(
+        super::trig::Arc::Part {
+            start,
+            length: 2.0 * half,
+        },
+        window,
+    );
+    let s = spans.as_slice();
+    Some(Interval {
+        lo: s.first()?.lo,
+        hi: s.last()?.hi,
+    })
+}
+
 /// Distance from the origin to the triangle `xy` in the plane (0 if inside).
 fn origin_distance_2d(xy: &[(f64, f64); 3]) -> f64 {
     let cross = |a: (f64, f64), b: (f64, f64)| a.0 * b.1 - a.1 * b.0;

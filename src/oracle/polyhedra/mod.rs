@@ -401,45 +401,53 @@ impl Polyhedra {
     /// containment.
     fn collides_at(&self, pose: &Pose, counts: &mut CallCounts) -> bool {
         let (robot, obst) = (&self.robot, &self.obstacles);
-        let world = pose.world_box(&robot.aabb).grown(self.tol.dist);
-        let mut hit = false;
-        let check_pair = |o: u32, counts: &mut CallCounts| -> bool {
-            let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
-            let obox = Aabb::of_points(of.v.iter()).grown(self.tol.dist);
-            let mut found = false;
-            let mut test = |r: u32| {
-                let rf = Face::new(robot.corners(r));
-                if self.enveloping && !Aabb::of_points(rf.v.iter()).overlaps(&obox) {
-                    return true;
-                }
-                counts.pairs_tested += 6;
-                if predicate::faces_meet(&rf, &of, &self.tol) {
-                    found = true;
-                    return false;
-                }
-                true
-            };
-            if self.enveloping {
-                robot.bvh.visit_overlapping(&obox, &mut test);
-            } else {
-                for r in 0..robot.faces.len() as u32 {
-                    if !test(r) {
-                        break;
-                    }
-                }
-            }
-            found
+        let m = self.tol.dist;
+        let test = |rf: &Face, of: &Face, counts: &mut CallCounts| -> bool {
+            counts.pairs_tested += 6;
+            predicate::faces_meet(rf, of, &self.tol)
         };
+        let mut hit = false;
         if self.enveloping {
-            obst.bvh.visit_overlapping(&world, |o| {
-                hit = check_pair(o, counts);
-                !hit
-            });
+            // both trees at once (CHS §2.2, enveloping): a robot node's box placed at the pose
+            // against an obstacle node's box, and the same in the robot's frame; the leaves'
+            // faces by their own boxes in the robot's frame
+            let world = pose.world_box(&robot.aabb).grown(m);
+            if !world.overlaps(&obst.aabb) {
+                return containment::at_pose(self, pose, counts);
+            }
+            robot.bvh.visit_pairs(
+                &obst.bvh,
+                (),
+                |_, rb, ob, ()| {
+                    (pose.world_box(rb).overlaps(&ob.grown(m))
+                        && rb.overlaps(&pose.body_box(ob).grown(m)))
+                    .then_some(())
+                },
+                |ri, oi, ()| {
+                    for &o in oi {
+                        let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
+                        let obox = Aabb::of_points(of.v.iter()).grown(m);
+                        for &r in ri {
+                            let rf = Face::new(robot.corners(r));
+                            if Aabb::of_points(rf.v.iter()).overlaps(&obox)
+                                && test(&rf, &of, counts)
+                            {
+                                hit = true;
+                                return false;
+                            }
+                        }
+                    }
+                    true
+                },
+            );
         } else {
-            for o in 0..obst.faces.len() as u32 {
-                if check_pair(o, counts) {
-                    hit = true;
-                    break;
+            'all: for o in 0..obst.faces.len() as u32 {
+                let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
+                for r in 0..robot.faces.len() as u32 {
+                    if test(&Face::new(robot.corners(r)), &of, counts) {
+                        hit = true;
+                        break 'all;
+                    }
                 }
             }
         }

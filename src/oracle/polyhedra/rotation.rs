@@ -19,7 +19,7 @@
 //! conjunctions are evaluated on small interval lists ([`Spans`]).
 
 use super::body::Face;
-use super::envelope::{Aabb, AngleRange, CylBox, CylFrame};
+use super::envelope::{sector_window, Aabb, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
 use super::spans::Spans;
 use super::trig::{arc_in_window, Arc, Trig};
@@ -167,77 +167,156 @@ pub(crate) fn sweep(
     }
 
     let cyl = CylFrame::new(&axis);
-    let back = AngleRange::new(-phis.hi, -phis.lo);
     let whole = Spans::single(phis);
     let mut robot_boxes: Vec<Option<CylBox>> = vec![None; robot.faces.len()];
-    let mut per_obstacle = |o: u32, sink: &mut Sink, counts: &mut CallCounts| -> bool {
-        let ids = obst.faces[o as usize];
-        let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
-        let obox = cyl.box_of(&of.v, margin);
-        let per_pair = |r: u32| -> bool {
-            let rc = robot.corners(r);
-            let pair_window = if ph.enveloping {
-                let rbox = robot_boxes[r as usize].get_or_insert_with(|| cyl.box_of(&rc, margin));
-                if !rbox.fixed_overlap(&obox) {
-                    return true;
-                }
-                match rbox.turn_window(&obox) {
-                    Some((start, length)) => arc_in_window(Arc::Part { start, length }, phis),
-                    None => whole,
-                }
-            } else {
-                whole
-            };
-            if pair_window.is_empty() {
+    // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
+    // cylindrical box) for φ in `w`; returns whether to go on
+    let mut pair = |r: u32,
+                    o: u32,
+                    of: &Face,
+                    obox: &CylBox,
+                    w: Interval,
+                    sink: &mut Sink,
+                    counts: &mut CallCounts|
+     -> bool {
+        let rc = robot.corners(r);
+        let pair_window = if ph.enveloping {
+            let rbox = robot_boxes[r as usize].get_or_insert_with(|| cyl.box_of(&rc, margin));
+            if !rbox.fixed_overlap(obox) {
                 return true;
             }
-            for &e in robot.owned_edges(r) {
-                let (p, q) = robot.edge(e);
-                counts.pairs_tested += 1;
-                for iv in edge_face(&p, &q, &of, &axis, &pair_window, &tol).as_slice() {
-                    if !sink.add(*iv) {
-                        return false;
-                    }
-                }
+            match rbox.turn_window(obox) {
+                Some((start, length)) => arc_in_window(Arc::Part { start, length }, w),
+                None => Spans::single(w),
             }
-            let rf = Face::new(rc);
-            for &e in obst.owned_edges(o) {
-                let [a, b] = obst.edges[e as usize];
-                let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
-                let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
-                counts.pairs_tested += 1;
-                for iv in edge_face(&p, &q, &rf, &-axis, &pair_window, &tol).as_slice() {
-                    if !sink.add(*iv) {
-                        return false;
-                    }
-                }
-            }
-            true
-        };
-        if ph.enveloping {
-            // the obstacle face as seen from the robot turns by −φ
-            let swept =
-                of.v.iter()
-                    .fold(Aabb::EMPTY, |b, y| b.merge(&back.arc_box(y, &axis)))
-                    .grown(margin);
-            robot.bvh.visit_overlapping(&swept, per_pair)
         } else {
-            (0..robot.faces.len() as u32).all(per_pair)
+            whole
+        };
+        if pair_window.is_empty() {
+            return true;
         }
+        for &e in robot.owned_edges(r) {
+            let (p, q) = robot.edge(e);
+            counts.pairs_tested += 1;
+            for iv in edge_face(&p, &q, of, &axis, &pair_window, &tol).as_slice() {
+                if !sink.add(*iv) {
+                    return false;
+                }
+            }
+        }
+        let ids = obst.faces[o as usize];
+        let rf = Face::new(rc);
+        for &e in obst.owned_edges(o) {
+            let [a, b] = obst.edges[e as usize];
+            let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
+            let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
+            counts.pairs_tested += 1;
+            for iv in edge_face(&p, &q, &rf, &-axis, &pair_window, &tol).as_slice() {
+                if !sink.add(*iv) {
+                    return false;
+                }
+            }
+        }
+        true
     };
     if ph.enveloping {
-        obst.bvh
-            .visit_overlapping(&swept_world, |o| per_obstacle(o, sink, counts));
+        // both trees at once, in cylindrical coordinates about the axis (CHS §2.3.2): height
+        // and radius of a node do not change while the robot turns, so nodes whose ranges miss
+        // are pruned for the whole turn; away from the axis both nodes have an angular sector,
+        // and the robot's, turned by φ, meets the obstacle's only for φ in a window that
+        // narrows on the way down. Robot nodes are bounded in the robot's frame, obstacle
+        // nodes in the world (the same cylinder, its frame turned by the pose).
+        // Besides, each robot node's ball (about its box's centre) swept along its arc gives
+        // a world box for the whole turn (computed once per node and call), and each robot
+        // face its swept world box (the arcs of its corners).
+        let world_cyl = cyl.rotated(&pose.rot);
+        type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
+        let mut robot_nodes: Vec<Option<NodeBounds>> = vec![None; robot.bvh.node_count()];
+        let mut robot_swept: Vec<Option<Aabb>> = vec![None; robot.faces.len()];
+        robot.bvh.visit_pairs(
+            &obst.bvh,
+            phis,
+            |a, rb, ob, w| {
+                let (rn, rsector, swept) = *robot_nodes[a as usize].get_or_insert_with(|| {
+                    let half = 0.5 * (rb.hi - rb.lo);
+                    let n = cyl.node_bounds(&rb.centre(), &half, margin);
+                    let c = pose.rot * rb.centre();
+                    let ball = half.norm() * (1.0 + 1e-12) + margin;
+                    let swept = turning.arc_box(&c, axis_w).grown(ball).shifted(&pose.pos);
+                    (n, n.sector(), swept)
+                });
+                if !swept.overlaps(ob) {
+                    return None;
+                }
+                let on = world_cyl.node_bounds(
+                    &(ob.centre() - pose.pos),
+                    &(0.5 * (ob.hi - ob.lo)),
+                    margin,
+                );
+                if !rn.fixed_overlap(&on) {
+                    return None;
+                }
+                match (rsector, on.sector()) {
+                    (Some(m), Some(f)) => sector_window(m, f, w),
+                    _ => Some(w),
+                }
+            },
+            |ri, oi, w| {
+                for &o in oi {
+                    let ow = obst.corners(o);
+                    let owbox = Aabb::of_points(ow.iter());
+                    if !ri.iter().any(|&r| {
+                        robot_swept[r as usize]
+                            .get_or_insert_with(|| {
+                                face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
+                            })
+                            .overlaps(&owbox)
+                    }) {
+                        continue;
+                    }
+                    let of = Face::new(ow.map(|x| pose.body_point(&x)));
+                    let obox = cyl.box_of(&of.v, margin);
+                    for &r in ri {
+                        let swept = robot_swept[r as usize].get_or_insert_with(|| {
+                            face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
+                        });
+                        if !swept.overlaps(&owbox) {
+                            continue;
+                        }
+                        if !pair(r, o, &of, &obox, w, sink, counts) {
+                            return false;
+                        }
+                    }
+                }
+                true
+            },
+        );
     } else {
-        for o in 0..obst.faces.len() as u32 {
-            if !per_obstacle(o, sink, counts) {
-                break;
+        'all: for o in 0..obst.faces.len() as u32 {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = cyl.box_of(&of.v, margin);
+            for r in 0..robot.faces.len() as u32 {
+                if !pair(r, o, &of, &obox, phis, sink, counts) {
+                    break 'all;
+                }
             }
         }
     }
     if !sink.done() {
         containment::rotation(ph, pose, axis_w, phis, sink, counts);
     }
+}
+
+/// The world box around everything a robot face (body-frame corners `c`) at `pose` sweeps while
+/// turning about the world `axis` through `pose`'s position: the arcs of its corners (the face
+/// is the hull of its corners, and a turned hull is the hull of the turned corners), grown by
+/// `margin` and by a relative 1e-12 against rounding.
+fn face_swept(pose: &Pose, c: &[V3; 3], axis: &V3, turning: &AngleRange, margin: f64) -> Aabb {
+    let b = c.iter().fold(Aabb::EMPTY, |b, x| {
+        b.merge(&turning.arc_box(&(pose.rot * x), axis))
+    });
+    let size = b.lo.abs().max().max(b.hi.abs().max());
+    b.grown(margin + 1e-12 * size).shifted(&pose.pos)
 }
 
 /// The world box around everything a body-frame box at `pose` sweeps while turning about the

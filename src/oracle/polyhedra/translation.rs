@@ -13,7 +13,7 @@
 //! [`IntervalList::from_unsorted`]: crate::interval::IntervalList::from_unsorted
 
 use super::body::Face;
-use super::envelope::{sphere_sweep, Aabb, FrameBox, MotionFrame};
+use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
 use super::{containment, Polyhedra, Pose, Sink};
 use crate::interval::Interval;
@@ -123,71 +123,93 @@ pub(crate) fn sweep(
 
     let frame = MotionFrame::new(&dir);
     let mut robot_boxes: Vec<Option<FrameBox>> = vec![None; robot.faces.len()];
-    let mut per_obstacle = |o: u32, sink: &mut Sink, counts: &mut CallCounts| -> bool {
-        let ids = obst.faces[o as usize];
-        let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
-        let obox = frame.box_of(&of.v);
-        let per_pair = |r: u32| -> bool {
-            let rc = robot.corners(r);
-            let pair_window = if ph.enveloping {
-                let rbox = robot_boxes[r as usize].get_or_insert_with(|| frame.box_of(&rc));
-                match rbox
-                    .sweep_window(&obox, speed, margin)
-                    .and_then(|w| w.meet(&window))
-                {
-                    Some(w) => w,
-                    None => return true,
-                }
-            } else {
-                window
-            };
-            // robot edges moving by +λ·dir against the obstacle face
-            for &e in robot.owned_edges(r) {
-                let (p, q) = robot.edge(e);
-                counts.pairs_tested += 1;
-                if let Some(iv) = edge_face(&p, &q, &of, &dir, pair_window, &tol) {
-                    if !sink.add(iv) {
-                        return false;
-                    }
-                }
+    // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its box in
+    // the motion frame) for λ in `w`; returns whether to go on
+    let mut pair = |r: u32,
+                    o: u32,
+                    of: &Face,
+                    obox: &FrameBox,
+                    w: Interval,
+                    sink: &mut Sink,
+                    counts: &mut CallCounts|
+     -> bool {
+        let rc = robot.corners(r);
+        let pair_window = if ph.enveloping {
+            let rbox = robot_boxes[r as usize].get_or_insert_with(|| frame.box_of(&rc));
+            match rbox
+                .sweep_window(obox, speed, margin)
+                .and_then(|x| x.meet(&w))
+            {
+                Some(x) => x,
+                None => return true,
             }
-            // obstacle edges moving by −λ·dir against the robot face
-            let rf = Face::new(rc);
-            for &e in obst.owned_edges(o) {
-                let [a, b] = obst.edges[e as usize];
-                let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
-                counts.pairs_tested += 1;
-                if let Some(iv) = edge_face(&p, &q, &rf, &-dir, pair_window, &tol) {
-                    if !sink.add(iv) {
-                        return false;
-                    }
-                }
-            }
-            true
-        };
-        if ph.enveloping {
-            // the obstacle face as seen from the robot moves by −λ·dir
-            let b = Aabb::of_points(of.v.iter());
-            let swept = b
-                .shifted(&(-dir * window.lo))
-                .merge(&b.shifted(&(-dir * window.hi)))
-                .grown(margin);
-            robot.bvh.visit_overlapping(&swept, per_pair)
         } else {
-            (0..robot.faces.len() as u32).all(per_pair)
+            w
+        };
+        // robot edges moving by +λ·dir against the obstacle face
+        for &e in robot.owned_edges(r) {
+            let (p, q) = robot.edge(e);
+            counts.pairs_tested += 1;
+            if let Some(iv) = edge_face(&p, &q, of, &dir, pair_window, &tol) {
+                if !sink.add(iv) {
+                    return false;
+                }
+            }
         }
+        // obstacle edges moving by −λ·dir against the robot face
+        let ids = obst.faces[o as usize];
+        let rf = Face::new(rc);
+        for &e in obst.owned_edges(o) {
+            let [a, b] = obst.edges[e as usize];
+            let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
+            counts.pairs_tested += 1;
+            if let Some(iv) = edge_face(&p, &q, &rf, &-dir, pair_window, &tol) {
+                if !sink.add(iv) {
+                    return false;
+                }
+            }
+        }
+        true
     };
     if ph.enveloping {
-        let swept = robot_world
-            .shifted(&(dir_w * window.lo))
-            .merge(&robot_world.shifted(&(dir_w * window.hi)))
-            .grown(margin);
-        obst.bvh
-            .visit_overlapping(&swept, |o| per_obstacle(o, sink, counts));
+        // both trees at once: a robot node's box, placed at the pose (world frame) and moved
+        // by λ·dir_w, against an obstacle node's box grown by the margin gives the λ for
+        // which the two may meet (exact for two boxes, so conservative for their contents);
+        // the window only narrows on the way down, and a pair of leaves passes it on to the
+        // per-face boxes of the motion frame
+        let dir_body = dir;
+        robot.bvh.visit_pairs(
+            &obst.bvh,
+            window,
+            |_, rb, ob, w| {
+                let placed = pose.world_box(rb);
+                let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
+                // the same test in the robot's frame (the obstacle box turned into it), which
+                // is tight where the first one is loose
+                rb.sweep_range(&dir_body, &pose.body_box(ob).grown(margin))?
+                    .meet(&w)
+            },
+            |ri, oi, w| {
+                for &o in oi {
+                    let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+                    let obox = frame.box_of(&of.v);
+                    for &r in ri {
+                        if !pair(r, o, &of, &obox, w, sink, counts) {
+                            return false;
+                        }
+                    }
+                }
+                true
+            },
+        );
     } else {
-        for o in 0..obst.faces.len() as u32 {
-            if !per_obstacle(o, sink, counts) {
-                break;
+        'all: for o in 0..obst.faces.len() as u32 {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = frame.box_of(&of.v);
+            for r in 0..robot.faces.len() as u32 {
+                if !pair(r, o, &of, &obox, window, sink, counts) {
+                    break 'all;
+                }
             }
         }
     }
