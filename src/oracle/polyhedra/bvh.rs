@@ -160,7 +160,11 @@ impl Bvh {
                 if !leaves(ia, ib, w) {
                     return false;
                 }
-            } else if b_leaf || (!a_leaf && na.bounds.diagonal() >= nb.bounds.diagonal()) {
+            } else if b_leaf
+                || (!a_leaf
+                    && (na.bounds.hi - na.bounds.lo).norm_squared()
+                        >= (nb.bounds.hi - nb.bounds.lo).norm_squared())
+            {
                 stack.push((na.first, b, w));
                 stack.push((na.first + 1, b, w));
             } else {

@@ -27,6 +27,7 @@ use super::{containment, Polyhedra, Pose, Sink};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
+use std::f64::consts::PI;
 
 type V3 = Vector3<f64>;
 
@@ -53,16 +54,60 @@ pub(crate) fn turn(x: &V3, axis: &V3, phi: f64) -> V3 {
     axis * ((1.0 - c) * axis.dot(x)) + x * c + axis.cross(x) * s
 }
 
-fn at_least(f: Trig, slack: f64, hull: Interval) -> Spans {
-    f.plus(slack).nonneg_in(hull)
+/// A window of angles summarised for cheap bounds: `a cos φ + b sin φ + c` over the window
+/// lies within `amp · chord` of its value at the middle (`|f(φ) − f(m)| ≤ amp · 2 sin(|φ − m|/2)`),
+/// which rules most atoms in or out without solving for their zeros.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Around {
+    hull: Interval,
+    cos: f64,
+    sin: f64,
+    chord: f64,
 }
 
-fn at_most(f: Trig, slack: f64, hull: Interval) -> Spans {
-    f.neg().plus(slack).nonneg_in(hull)
+impl Around {
+    /// The summary of `[lo, hi]` (at most one turn).
+    pub fn new(hull: Interval) -> Around {
+        let half = (0.5 * (hull.hi - hull.lo)).min(PI);
+        let (sin, cos) = (0.5 * (hull.lo + hull.hi)).sin_cos();
+        Around {
+            hull,
+            cos,
+            sin,
+            // a relative 1e-9 and an absolute 1e-12 on top for the rounding of the sines
+            chord: 2.0 * (0.5 * half).sin() * (1.0 + 1e-9) + 1e-12,
+        }
+    }
+
+    /// Bounds of `f` over the window (conservative, with a relative 1e-12 for rounding).
+    pub fn bounds(&self, f: &Trig) -> (f64, f64) {
+        let mid = f.alpha * self.cos + f.beta * self.sin + f.gamma;
+        let amp = (f.alpha * f.alpha + f.beta * f.beta).sqrt();
+        let spread = amp * self.chord + 1e-12 * (f.alpha.abs() + f.beta.abs() + f.gamma.abs());
+        (mid - spread, mid + spread)
+    }
+
+    /// `{φ ∈ hull : f(φ) + slack ≥ 0}`, solved only when the bounds cannot tell.
+    fn at_least(&self, f: Trig, slack: f64) -> Spans {
+        let (lo, hi) = self.bounds(&f);
+        if lo + slack >= 0.0 {
+            Spans::single(self.hull)
+        } else if hi + slack < 0.0 {
+            Spans::EMPTY
+        } else {
+            f.plus(slack).nonneg_in(self.hull)
+        }
+    }
+
+    /// `{φ ∈ hull : f(φ) ≤ slack}`.
+    fn at_most(&self, f: Trig, slack: f64) -> Spans {
+        self.at_least(f.neg(), slack)
+    }
 }
 
 /// `{φ ∈ window : S(l_{p_φ, q_φ}, f)}` for an edge turning by φ about the unit `axis` (through
 /// the origin) against a fixed face. `window` lies within one turn.
+#[cfg(test)]
 pub(crate) fn edge_face(
     p: &V3,
     q: &V3,
@@ -74,10 +119,28 @@ pub(crate) fn edge_face(
     let (Some(first), Some(last)) = (window.as_slice().first(), window.as_slice().last()) else {
         return Spans::EMPTY;
     };
-    let hull = Interval {
+    let around = Around::new(Interval {
         lo: first.lo,
         hi: last.hi,
-    };
+    });
+    edge_face_around(p, q, f, axis, window, &around, tol)
+}
+
+/// [`edge_face`] with the window's hull summarised by the caller (shared by the six edge–face
+/// pairs of a pair of faces).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn edge_face_around(
+    p: &V3,
+    q: &V3,
+    f: &Face,
+    axis: &V3,
+    window: &Spans,
+    around: &Around,
+    tol: &Tolerance,
+) -> Spans {
+    if window.is_empty() {
+        return Spans::EMPTY;
+    }
     let d = q - p;
     let nn = f.n.norm();
     let dl = d.norm();
@@ -91,22 +154,22 @@ pub(crate) fn edge_face(
     let hp = lin(&f.n, p, axis).plus(-f.offset);
     let hq = lin(&f.n, q, axis).plus(-f.offset);
     // outward: g ≥ 0, hq ≥ 0, hp ≤ 0, D_i ≥ 0; inward: g ≤ 0, hp ≥ 0, hq ≤ 0, D_i ≤ 0
-    let mut out = window.intersect(&at_least(hq, th, hull));
+    let mut out = window.intersect(&around.at_least(hq, th));
     if !out.is_empty() {
-        out = out.intersect(&at_most(hp, th, hull));
+        out = out.intersect(&around.at_most(hp, th));
     }
-    let mut inw = window.intersect(&at_least(hp, th, hull));
+    let mut inw = window.intersect(&around.at_least(hp, th));
     if !inw.is_empty() {
-        inw = inw.intersect(&at_most(hq, th, hull));
+        inw = inw.intersect(&around.at_most(hq, th));
     }
     if out.is_empty() && inw.is_empty() {
         return Spans::EMPTY;
     }
     if !out.is_empty() {
-        out = out.intersect(&at_least(g, kg, hull));
+        out = out.intersect(&around.at_least(g, kg));
     }
     if !inw.is_empty() {
-        inw = inw.intersect(&at_most(g, kg, hull));
+        inw = inw.intersect(&around.at_most(g, kg));
     }
     let m = p.cross(&d);
     let e = f.edges();
@@ -117,10 +180,10 @@ pub(crate) fn edge_face(
         let di = lin(ei, &m, axis).minus(lin(&ei.cross(vi), &d, axis));
         let slack = tol.dist * dl * ei.norm();
         if !out.is_empty() {
-            out = out.intersect(&at_least(di, slack, hull));
+            out = out.intersect(&around.at_least(di, slack));
         }
         if !inw.is_empty() {
-            inw = inw.intersect(&at_most(di, slack, hull));
+            inw = inw.intersect(&around.at_most(di, slack));
         }
     }
     let both = out.union(&inw);
@@ -192,26 +255,49 @@ pub(crate) fn sweep(
         } else {
             whole
         };
-        if pair_window.is_empty() {
+        let (Some(first), Some(last)) = (
+            pair_window.as_slice().first(),
+            pair_window.as_slice().last(),
+        ) else {
             return true;
-        }
-        for &e in robot.owned_edges(r) {
-            let (p, q) = robot.edge(e);
-            counts.pairs_tested += 1;
-            for iv in edge_face(&p, &q, of, &axis, &pair_window, &tol).as_slice() {
-                if !sink.add(*iv) {
-                    return false;
+        };
+        let around = Around::new(Interval {
+            lo: first.lo,
+            hi: last.hi,
+        });
+        // an edge meets a face only where its ends are not both strictly on one side of the
+        // face's plane (the predicate's first atoms, with their slack doubled): if all three
+        // corners of a face stay on one side for the whole window, its edges are skipped
+        let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
+            let th = 2.0 * tol.dist * face.n.norm();
+            let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
+            b.iter().all(|(lo, _)| *lo > th) || b.iter().all(|(_, hi)| *hi < -th)
+        };
+        let rf = Face::new(rc);
+        if !ph.enveloping || !one_side(&rc, of, &axis) {
+            for &e in robot.owned_edges(r) {
+                let (p, q) = robot.edge(e);
+                counts.pairs_tested += 1;
+                for iv in
+                    edge_face_around(&p, &q, of, &axis, &pair_window, &around, &tol).as_slice()
+                {
+                    if !sink.add(*iv) {
+                        return false;
+                    }
                 }
             }
         }
+        if ph.enveloping && one_side(&of.v, &rf, &-axis) {
+            return true;
+        }
         let ids = obst.faces[o as usize];
-        let rf = Face::new(rc);
         for &e in obst.owned_edges(o) {
             let [a, b] = obst.edges[e as usize];
             let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
             let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
             counts.pairs_tested += 1;
-            for iv in edge_face(&p, &q, &rf, &-axis, &pair_window, &tol).as_slice() {
+            for iv in edge_face_around(&p, &q, &rf, &-axis, &pair_window, &around, &tol).as_slice()
+            {
                 if !sink.add(*iv) {
                     return false;
                 }
