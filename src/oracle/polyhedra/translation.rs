@@ -13,7 +13,7 @@
 //! [`IntervalList::from_unsorted`]: crate::interval::IntervalList::from_unsorted
 
 use super::body::Face;
-use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
+use super::envelope::{sphere_sweep, Aabb, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
 use super::{containment, Polyhedra, Pose, Sink};
 use crate::interval::Interval;
@@ -178,11 +178,12 @@ pub(crate) fn sweep(
         // the window only narrows on the way down, and a pair of leaves passes it on to the
         // per-face boxes of the motion frame
         let dir_body = dir;
+        let mut placed: Vec<Option<Aabb>> = vec![None; robot.bvh.node_count()];
         robot.bvh.visit_pairs(
             &obst.bvh,
             window,
-            |_, rb, ob, w| {
-                let placed = pose.world_box(rb);
+            |a, rb, ob, w| {
+                let placed = placed[a as usize].get_or_insert_with(|| pose.world_box(rb));
                 let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
                 // the same test in the robot's frame (the obstacle box turned into it), which
                 // is tight where the first one is loose
