@@ -218,11 +218,35 @@ impl Case {
                 black_box(self.parry_collides(q));
             }
         });
+        // the median motion, each timed alone (least of five): a few motions deep in collision
+        // (thousands of pieces) dominate the means
+        let median = |ms: &[Motion]| -> f64 {
+            let mut t: Vec<f64> = ms
+                .iter()
+                .map(|m| {
+                    (0..5)
+                        .map(|_| {
+                            let t = Instant::now();
+                            black_box(
+                                self.oracle
+                                    .intervals(m, &mut CallCounts::default())
+                                    .unwrap(),
+                            );
+                            t.elapsed().as_secs_f64() * 1e6
+                        })
+                        .fold(f64::INFINITY, f64::min)
+                })
+                .collect();
+            t.sort_by(f64::total_cmp);
+            t.get(t.len() / 2).copied().unwrap_or(f64::NAN)
+        };
+        let (mt, mr) = (median(&self.translations), median(&self.rotations));
         let (nr, no) = self.oracle.face_counts();
         eprintln!(
             "oracle_scenes {}: {nr} x {no} faces; mean µs per call: intervals translation {it:.0} \
              ({}/{} collide, {} pairs tested), rotation {ir:.0} ({}/{}, {} pairs); is_free translation {ft:.0}, rotation \
-             {fr:.0}; collides {st:.1}; parry state check {ps:.1}",
+             {fr:.0}; collides {st:.1}; parry state check {ps:.1}; median µs of intervals: \
+             translation {mt:.0}, rotation {mr:.0}",
             self.name,
             hit[0] / 5,
             self.translations.len(),
