@@ -59,9 +59,10 @@ use std::f64::consts::TAU;
 
 type V3 = Vector3<f64>;
 
-/// Robots with at most this many faces are tested at a pose by querying the obstacle tree with
-/// their box (a double descent of both trees costs more than it saves for a few leaves: OMPL.app's
-/// Home robot, 60 faces, took 1.9× as long by it).
+/// Robots with at most this many faces are tested at a pose and along a translation by querying
+/// the obstacle tree with their (swept) box and their own tree per obstacle face (a double descent
+/// of both trees costs more than it saves for a few leaves: OMPL.app's Home robot, 60 faces, took
+/// 1.9× as long by it at a pose, Twistycool's, 28 faces, 1.5× along translations).
 const SMALL_ROBOT: usize = 128;
 
 /// Most full turns a rotational motion may sweep (the collision set repeats every turn; this

@@ -171,7 +171,27 @@ pub(crate) fn sweep(
         }
         true
     };
-    if ph.enveloping {
+    if ph.enveloping && robot.faces.len() <= super::SMALL_ROBOT {
+        // a robot of a few leaves: the obstacle tree queried with the robot's swept box, the
+        // robot's tree with each obstacle face's box swept back along the motion
+        let robot_world = pose.world_box(&robot.aabb);
+        let swept = robot_world
+            .shifted(&(dir_w * window.lo))
+            .merge(&robot_world.shifted(&(dir_w * window.hi)))
+            .grown(margin);
+        obst.bvh.visit_overlapping(&swept, |o| {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = frame.box_of(&of.v);
+            let b = Aabb::of_points(of.v.iter());
+            let back = b
+                .shifted(&(-dir * window.lo))
+                .merge(&b.shifted(&(-dir * window.hi)))
+                .grown(margin);
+            robot
+                .bvh
+                .visit_overlapping(&back, |r| pair(r, o, &of, &obox, window, sink, counts))
+        });
+    } else if ph.enveloping {
         // both trees at once: a robot node's box, placed at the pose (world frame) and moved
         // by λ·dir_w, against an obstacle node's box grown by the margin gives the λ for
         // which the two may meet (exact for two boxes, so conservative for their contents);
