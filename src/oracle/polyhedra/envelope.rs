@@ -190,12 +190,15 @@ fn trig_range(
     let f1 = a * cs1.0 + b * cs1.1 + c;
     let (mut lo, mut hi) = (f0.min(f1), f0.max(f1));
     if amp > 0.0 {
-        // maximum at θ = atan2(b, a), minimum at θ + π (mod 2π)
-        let theta = b.atan2(a);
-        if angle_in(theta, p0, p1) {
+        // maximum at θ = atan2(b, a), minimum at θ + π (mod 2π); θ from the fast arctangent,
+        // so an extreme within its error of the range counts as inside (a box a little larger,
+        // never smaller)
+        let theta = fast_atan2(b, a);
+        let (q0, q1) = (p0 - ATAN_ERR, p1 + ATAN_ERR);
+        if angle_in(theta, q0, q1) {
             hi = c + amp;
         }
-        if angle_in(theta + PI, p0, p1) {
+        if angle_in(theta + PI, q0, q1) {
             lo = c - amp;
         }
     }
