@@ -70,6 +70,36 @@ pub(crate) fn edge_face(
     Some(Interval { lo, hi })
 }
 
+/// The λ of `window` at which the triangle `corners`, moved by `λ·dir`, reaches the plane of the
+/// fixed face `f`: an edge of it meets `f` only there (the first atoms of the predicate: one end
+/// on each side of the plane, within its slack). All corners move alike, so their signed
+/// distances share one slope and the condition `min ≤ slack`, `max ≥ −slack` is one interval.
+/// The slack is twice the predicate's, which keeps rounding on the safe side.
+fn straddle(
+    corners: &[V3; 3],
+    f: &Face,
+    dir: &V3,
+    tol: &Tolerance,
+    window: Interval,
+) -> Option<Interval> {
+    let th = 2.0 * tol.dist * f.n.norm();
+    let a = corners.map(|x| f.n.dot(&x) - f.offset);
+    let (lo, hi) = (a[0].min(a[1]).min(a[2]), a[0].max(a[1]).max(a[2]));
+    let k = f.n.dot(dir);
+    // lo + λk ≤ th and hi + λk ≥ −th
+    let (x, y) = ((th - lo) / k, (-th - hi) / k);
+    let iv = if k > 0.0 {
+        Interval { lo: y, hi: x }
+    } else if k < 0.0 {
+        Interval { lo: x, hi: y }
+    } else if lo <= th && hi >= -th {
+        window
+    } else {
+        return None;
+    };
+    iv.meet(&window)
+}
+
 /// Position of vertex `v` among the corners `ids` of a face.
 fn corner(ids: &[u32; 3], v: u32) -> usize {
     ids.iter().position(|&i| i == v).unwrap_or(0)
@@ -146,24 +176,40 @@ pub(crate) fn sweep(
         } else {
             w
         };
-        // robot edges moving by +λ·dir against the obstacle face
-        for &e in robot.owned_edges(r) {
-            let (p, q) = robot.edge(e);
-            counts.pairs_tested += 1;
-            if let Some(iv) = edge_face(&p, &q, of, &dir, pair_window, &tol) {
-                if !sink.add(iv) {
-                    return false;
+        // robot edges moving by +λ·dir against the obstacle face, only while the robot face
+        // reaches the obstacle face's plane
+        let rf = Face::new(rc);
+        let robot_window = if ph.enveloping {
+            straddle(&rc, of, &dir, &tol, pair_window)
+        } else {
+            Some(pair_window)
+        };
+        if let Some(w) = robot_window {
+            for &e in robot.owned_edges(r) {
+                let (p, q) = robot.edge(e);
+                counts.pairs_tested += 1;
+                if let Some(iv) = edge_face(&p, &q, of, &dir, w, &tol) {
+                    if !sink.add(iv) {
+                        return false;
+                    }
                 }
             }
         }
-        // obstacle edges moving by −λ·dir against the robot face
+        // obstacle edges moving by −λ·dir against the robot face, likewise
+        let obstacle_window = if ph.enveloping {
+            straddle(&of.v, &rf, &-dir, &tol, pair_window)
+        } else {
+            Some(pair_window)
+        };
+        let Some(w) = obstacle_window else {
+            return true;
+        };
         let ids = obst.faces[o as usize];
-        let rf = Face::new(rc);
         for &e in obst.owned_edges(o) {
             let [a, b] = obst.edges[e as usize];
             let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
             counts.pairs_tested += 1;
-            if let Some(iv) = edge_face(&p, &q, &rf, &-dir, pair_window, &tol) {
+            if let Some(iv) = edge_face(&p, &q, &rf, &-dir, w, &tol) {
                 if !sink.add(iv) {
                     return false;
                 }
