@@ -3,8 +3,16 @@
 //!
 //! The hierarchy, coarse to fine:
 //! 1. the robot's bounding sphere / box swept over the whole motion against the obstacles'
-//!    bounding box and tree ([`super::bvh`]) — far-away obstacle parts cost nothing;
-//! 2. per-face boxes in a frame aligned with the motion: for a translation, a Cartesian frame
+//!    bounding box — a motion far from everything costs nothing;
+//! 2. the robot's tree against the obstacles' tree ([`super::bvh`], `Bvh::visit_pairs`), each
+//!    pair of nodes with a window of the motion parameter in which they may meet: along a
+//!    translation, the λ for which a robot node's box (placed in the world, and the obstacle
+//!    node's box turned into the robot's frame) moved by λ overlaps the other box; for a turn,
+//!    the cylindrical bounds of both nodes ([`CylBounds`]: height and radius ranges fixed, an
+//!    angular sector that turns with φ, [`sector_window`]) and the box around a robot node's
+//!    ball swept along its arc. A pair whose window is empty is pruned with all its
+//!    descendants;
+//! 3. per-face boxes in a frame aligned with the motion: for a translation, a Cartesian frame
 //!    whose z-axis is the direction of motion (x and y stay fixed, z grows with λ:
 //!    [`MotionFrame`]); for a rotation, cylindrical coordinates about the axis — height and
 //!    radius stay fixed, the angle grows with φ ([`CylBox`]). Two faces can only meet where
@@ -12,8 +20,9 @@
 //!    overlaps, which also gives a window for the exact computation.
 //!
 //! The seed computes the boxes once per polyhedron and direction; we compute the robot's
-//! lazily per call (a call has one direction) and the obstacle's only for faces the tree
-//! returns.
+//! lazily per call (a call has one direction) and the obstacle's only for faces the trees
+//! return. Angles come from a polynomial arctangent ([`fast_atan2`]) whose error bound
+//! ([`ATAN_ERR`]) widens every angular bound, so bounds stay conservative.
 
 use crate::interval::Interval;
 use nalgebra::Vector3;

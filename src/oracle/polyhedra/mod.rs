@@ -16,9 +16,16 @@
 //!   results of all pairs are merged by one sort, `O(n log n)`;
 //! - containment is decided along the path one surface point describes (`containment.rs`);
 //! - enveloping (`envelope.rs`, `bvh.rs`) rules out far-away pairs first: a ball about the
-//!   robot's reference point against a ball around each obstacle for the whole motion, the
-//!   robot's swept box against the obstacles' box and tree, each obstacle face's swept box
-//!   against the robot's tree, then per-face boxes in a frame aligned with the motion.
+//!   robot's reference point against a ball around each obstacle for the whole motion, then the
+//!   robot's tree against the obstacles' tree, descended together with bounds swept over the
+//!   motion (boxes along a translation, cylindrical height/radius/sector bounds and swept balls
+//!   for a turn) that narrow the motion's window on the way down, then per-face boxes in a
+//!   frame aligned with the motion, then — per pair of faces — whether each face reaches the
+//!   other's plane at all. Robots of at most [`SMALL_ROBOT`] faces query the obstacle tree with
+//!   their swept box instead (static test and translations), which is cheaper for a few leaves.
+//!   Every bound is conservative, with margins for rounding, so culling never loses a contact
+//!   (tests/oracle_polyhedra.rs compares with brute force and with parry on alpha-1.5 and
+//!   Apartment).
 //!
 //! `CallCounts::pairs_tested` counts the edge–face pairs evaluated after culling, the
 //! point–face tests of containment, and for a static test six edge–face pairs per pair of
