@@ -21,7 +21,7 @@
 //!   motion (boxes along a translation, cylindrical height/radius/sector bounds and swept balls
 //!   for a turn) that narrow the motion's window on the way down, then per-face boxes in a
 //!   frame aligned with the motion, then — per pair of faces — whether each face reaches the
-//!   other's plane at all. Robots of at most [`SMALL_ROBOT`] faces query the obstacle tree with
+//!   other's plane at all. Robots of at most 128 faces query the obstacle tree with
 //!   their swept box instead (static test and translations), which is cheaper for a few leaves.
 //!   Every bound is conservative, with margins for rounding, so culling never loses a contact
 //!   (tests/oracle_polyhedra.rs compares with brute force and with parry on alpha-1.5 and
