@@ -911,3 +911,177 @@ fn counts_pairs_and_culls_far_obstacles() {
     // the call itself is not counted by the oracle
     assert_eq!(a.segment_calls + a.line_calls + a.state_checks, 0);
 }
+
+// ---------------------------------------------------------------------------------------------
+// big meshes: OMPL.app's alpha-1.5 and Apartment, as `viaroad` loads them
+
+/// An OMPL.app problem from `scenes/ompl/3D`: the robot (body frame) and the obstacles.
+fn ompl_problem(name: &str) -> (TriMesh, Vec<TriMesh>) {
+    use viaroad::scene::{Obstacle, Robot, Scene};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/ompl/3D")
+        .join(format!("{name}.cfg"));
+    let scene = Scene::load(&path).unwrap();
+    let Robot::Mesh(robot) = scene.robot else {
+        panic!("{name}: not a mesh robot")
+    };
+    let obstacles = scene
+        .obstacles
+        .into_iter()
+        .map(|o| match o {
+            Obstacle::Mesh(m) => m,
+            other => panic!("{name}: obstacle {other:?}"),
+        })
+        .collect();
+    (robot, obstacles)
+}
+
+/// A start near the obstacles: a random obstacle vertex, moved by up to `spread` per axis.
+fn start_near(rng: &mut ChaCha8Rng, obstacles: &[TriMesh], spread: f64) -> Vec<f64> {
+    let m = &obstacles[rng.random_range(0..obstacles.len())];
+    let v = m.vertices[rng.random_range(0..m.vertices.len())];
+    let p = [0, 1, 2].map(|i| v[i] + spread * rng.random_range(-1.0..1.0));
+    config(p, &random_rotation(rng))
+}
+
+/// The radius of `robot` about its reference point.
+fn radius(robot: &TriMesh) -> f64 {
+    robot
+        .vertices
+        .iter()
+        .map(|v| v.coords.norm())
+        .fold(0.0, f64::max)
+}
+
+/// The culling by both trees (robot nodes against obstacle nodes, swept along the motion) must
+/// not lose a pair: on thousands of triangles, every kind of motion, started next to the
+/// obstacles, agrees with parry at fine resolution, and so do the static test and the yes/no
+/// check.
+#[test]
+fn big_meshes_agree_with_parry() {
+    for (name, motions, samples, seed) in [("alpha-1.5", 40, 600, 21), ("Apartment", 10, 200, 22)] {
+        let (robot, obstacles) = ompl_problem(name);
+        let oracle = Polyhedra::new(robot.clone(), obstacles.clone());
+        let reference = Reference {
+            robot: soup_shape(&robot),
+            grown: None,
+            obstacles: obstacles.iter().map(soup_shape).collect(),
+        };
+        let r = radius(&robot);
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let (mut colliding, mut free) = (0, 0);
+        for _ in 0..motions {
+            let start = start_near(&mut rng, &obstacles, r);
+            let (m, span) = random_motion(&mut rng, start, r);
+            let got = compare(&oracle, &reference, &m, span, samples, 1e-6)
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            let on_segment = got.iter().any(|iv| iv.meet(&m.range).is_some());
+            assert_eq!(
+                oracle
+                    .motion_is_free(&m, &mut CallCounts::default())
+                    .unwrap(),
+                !on_segment,
+                "{name}: yes/no check against {got:?}, motion {m:?}"
+            );
+            colliding += usize::from(!got.is_empty());
+            free += usize::from(got.is_empty());
+            for k in [0, samples / 3, samples / 2] {
+                let t = span.lo + span.length() * k as f64 / samples as f64;
+                let q = m.at(t);
+                let near = got
+                    .iter()
+                    .any(|iv| (iv.lo - t).abs() < 1e-7 || (iv.hi - t).abs() < 1e-7);
+                let hit = oracle.collides(&q, &mut CallCounts::default());
+                assert!(
+                    near || hit == reference.intersects(&q),
+                    "{name}: static test at t = {t} says {hit}; intervals {got:?}, motion {m:?}"
+                );
+            }
+        }
+        // both answers must be exercised, or the test proves nothing
+        assert!(
+            colliding >= motions / 5 && free >= motions / 10,
+            "{name}: {colliding} colliding, {free} free"
+        );
+    }
+}
+
+/// A piece of `mesh`: its triangles with a corner within `r` of `centre`.
+fn crop(mesh: &TriMesh, centre: &Vector3<f64>, r: f64) -> Option<TriMesh> {
+    let tris: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .filter(|t| {
+            t.iter()
+                .any(|&k| (mesh.vertices[k as usize].coords - centre).norm() <= r)
+        })
+        .copied()
+        .collect();
+    TriMesh::new(mesh.vertices.clone(), tris).ok()
+}
+
+/// On pieces of alpha-1.5 (a few hundred triangles each, so that brute force stays cheap), the
+/// culled answer equals the brute-force one — every edge–face pair evaluated — to 1e-9, with
+/// far fewer pairs; the yes/no check and the static test agree with brute force too.
+#[test]
+fn big_mesh_culling_equals_brute_force() {
+    let (robot, obstacles) = ompl_problem("alpha-1.5");
+    let r = radius(&robot);
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let (mut colliding, mut fewer) = (0, 0);
+    let cases = 12;
+    for case in 0..cases {
+        let start = start_near(&mut rng, &obstacles, 0.3 * r);
+        let p = Vector3::new(start[0], start[1], start[2]);
+        let piece_robot = crop(&robot, &Vector3::zeros(), 0.15 * r);
+        let piece_env: Vec<TriMesh> = obstacles
+            .iter()
+            .filter_map(|o| crop(o, &p, 0.25 * r))
+            .collect();
+        let (Some(piece_robot), false) = (piece_robot, piece_env.is_empty()) else {
+            continue;
+        };
+        let fast = Polyhedra::new(piece_robot.clone(), piece_env.clone());
+        let brute = Polyhedra::new(piece_robot, piece_env).with_enveloping(false);
+        let (m, span) = random_motion(&mut rng, start, 0.5 * r);
+        let (mut cf, mut cb) = (CallCounts::default(), CallCounts::default());
+        let a = fast.intervals(&m, &mut cf).unwrap();
+        let b = brute.intervals(&m, &mut cb).unwrap();
+        assert_eq!(
+            a.len(),
+            b.len(),
+            "case {case}: {a:?} vs {b:?}, motion {m:?}"
+        );
+        for (x, y) in a.iter().zip(b.iter()) {
+            assert!(
+                (x.lo - y.lo).abs() <= 1e-9 && (x.hi - y.hi).abs() <= 1e-9,
+                "case {case}: {a:?} vs {b:?}, motion {m:?}"
+            );
+        }
+        assert_eq!(
+            fast.motion_is_free(&m, &mut CallCounts::default()).unwrap(),
+            brute
+                .motion_is_free(&m, &mut CallCounts::default())
+                .unwrap(),
+            "case {case}: {a:?}"
+        );
+        for k in 0..=20 {
+            let q = m.at(span.lo + span.length() * k as f64 / 20.0);
+            assert_eq!(
+                fast.collides(&q, &mut CallCounts::default()),
+                brute.collides(&q, &mut CallCounts::default()),
+                "case {case}: static test at {q:?}"
+            );
+        }
+        colliding += usize::from(!a.is_empty());
+        fewer += usize::from(cf.pairs_tested * 10 < cb.pairs_tested);
+    }
+    assert!(
+        colliding >= cases / 4,
+        "only {colliding} of {cases} collide"
+    );
+    assert!(
+        fewer >= cases / 2,
+        "culling saved little: {fewer} of {cases}"
+    );
+}

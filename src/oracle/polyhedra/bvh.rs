@@ -123,6 +123,58 @@ impl Bvh {
         true
     }
 
+    /// Number of nodes (for per-call caches indexed by node).
+    pub(crate) fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Simultaneous descent of two trees (this one "a", `other` "b") with a window `W` that
+    /// narrows on the way down: `test(a_node, a_bounds, b_bounds, w)` returns the window in
+    /// which the two nodes' (swept) volumes may meet, or `None` to prune the pair. For each
+    /// pair of leaves that survives, `leaves(a_items, b_items, w)` is called; it returns
+    /// `false` to stop the whole traversal. Returns `false` if stopped.
+    ///
+    /// The larger node (by box diagonal) is split first, so that a big robot part is not
+    /// compared with tens of thousands of small obstacle leaves one by one.
+    pub(crate) fn visit_pairs<W: Copy>(
+        &self,
+        other: &Bvh,
+        init: W,
+        mut test: impl FnMut(u32, &Aabb, &Aabb, W) -> Option<W>,
+        mut leaves: impl FnMut(&[u32], &[u32], W) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return true;
+        }
+        let mut stack: Vec<(u32, u32, W)> = Vec::with_capacity(128);
+        stack.push((0, 0, init));
+        while let Some((a, b, w)) = stack.pop() {
+            let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
+            let Some(w) = test(a, &na.bounds, &nb.bounds, w) else {
+                continue;
+            };
+            let (a_leaf, b_leaf) = (na.count > 0, nb.count > 0);
+            if a_leaf && b_leaf {
+                let ia = &self.items[na.first as usize..(na.first + na.count) as usize];
+                let ib = &other.items[nb.first as usize..(nb.first + nb.count) as usize];
+                if !leaves(ia, ib, w) {
+                    return false;
+                }
+            } else if b_leaf
+                || (!a_leaf
+                    && (na.bounds.hi - na.bounds.lo).norm_squared()
+                        >= (nb.bounds.hi - nb.bounds.lo).norm_squared())
+            {
+                stack.push((na.first, b, w));
+                stack.push((na.first + 1, b, w));
+            } else {
+                stack.push((a, nb.first, w));
+                stack.push((a, nb.first + 1, w));
+            }
+        }
+        true
+    }
+
     /// Items whose leaf boxes overlap `query` (a superset of the items whose own boxes do).
     pub(crate) fn visit_overlapping(&self, query: &Aabb, visit: impl FnMut(u32) -> bool) -> bool {
         self.visit(|b| b.overlaps(query), visit)

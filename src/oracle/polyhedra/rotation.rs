@@ -19,7 +19,7 @@
 //! conjunctions are evaluated on small interval lists ([`Spans`]).
 
 use super::body::Face;
-use super::envelope::{Aabb, AngleRange, CylBox, CylFrame};
+use super::envelope::{sector_window, Aabb, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
 use super::spans::Spans;
 use super::trig::{arc_in_window, Arc, Trig};
@@ -27,6 +27,7 @@ use super::{containment, Polyhedra, Pose, Sink};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
+use std::f64::consts::PI;
 
 type V3 = Vector3<f64>;
 
@@ -53,16 +54,60 @@ pub(crate) fn turn(x: &V3, axis: &V3, phi: f64) -> V3 {
     axis * ((1.0 - c) * axis.dot(x)) + x * c + axis.cross(x) * s
 }
 
-fn at_least(f: Trig, slack: f64, hull: Interval) -> Spans {
-    f.plus(slack).nonneg_in(hull)
+/// A window of angles summarised for cheap bounds: `a cos φ + b sin φ + c` over the window
+/// lies within `amp · chord` of its value at the middle (`|f(φ) − f(m)| ≤ amp · 2 sin(|φ − m|/2)`),
+/// which rules most atoms in or out without solving for their zeros.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Around {
+    hull: Interval,
+    cos: f64,
+    sin: f64,
+    chord: f64,
 }
 
-fn at_most(f: Trig, slack: f64, hull: Interval) -> Spans {
-    f.neg().plus(slack).nonneg_in(hull)
+impl Around {
+    /// The summary of `[lo, hi]` (at most one turn).
+    pub fn new(hull: Interval) -> Around {
+        let half = (0.5 * (hull.hi - hull.lo)).min(PI);
+        let (sin, cos) = (0.5 * (hull.lo + hull.hi)).sin_cos();
+        Around {
+            hull,
+            cos,
+            sin,
+            // a relative 1e-9 and an absolute 1e-12 on top for the rounding of the sines
+            chord: 2.0 * (0.5 * half).sin() * (1.0 + 1e-9) + 1e-12,
+        }
+    }
+
+    /// Bounds of `f` over the window (conservative, with a relative 1e-12 for rounding).
+    pub fn bounds(&self, f: &Trig) -> (f64, f64) {
+        let mid = f.alpha * self.cos + f.beta * self.sin + f.gamma;
+        let amp = (f.alpha * f.alpha + f.beta * f.beta).sqrt();
+        let spread = amp * self.chord + 1e-12 * (f.alpha.abs() + f.beta.abs() + f.gamma.abs());
+        (mid - spread, mid + spread)
+    }
+
+    /// `{φ ∈ hull : f(φ) + slack ≥ 0}`, solved only when the bounds cannot tell.
+    fn at_least(&self, f: Trig, slack: f64) -> Spans {
+        let (lo, hi) = self.bounds(&f);
+        if lo + slack >= 0.0 {
+            Spans::single(self.hull)
+        } else if hi + slack < 0.0 {
+            Spans::EMPTY
+        } else {
+            f.plus(slack).nonneg_in(self.hull)
+        }
+    }
+
+    /// `{φ ∈ hull : f(φ) ≤ slack}`.
+    fn at_most(&self, f: Trig, slack: f64) -> Spans {
+        self.at_least(f.neg(), slack)
+    }
 }
 
 /// `{φ ∈ window : S(l_{p_φ, q_φ}, f)}` for an edge turning by φ about the unit `axis` (through
 /// the origin) against a fixed face. `window` lies within one turn.
+#[cfg(test)]
 pub(crate) fn edge_face(
     p: &V3,
     q: &V3,
@@ -74,10 +119,28 @@ pub(crate) fn edge_face(
     let (Some(first), Some(last)) = (window.as_slice().first(), window.as_slice().last()) else {
         return Spans::EMPTY;
     };
-    let hull = Interval {
+    let around = Around::new(Interval {
         lo: first.lo,
         hi: last.hi,
-    };
+    });
+    edge_face_around(p, q, f, axis, window, &around, tol)
+}
+
+/// [`edge_face`] with the window's hull summarised by the caller (shared by the six edge–face
+/// pairs of a pair of faces).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn edge_face_around(
+    p: &V3,
+    q: &V3,
+    f: &Face,
+    axis: &V3,
+    window: &Spans,
+    around: &Around,
+    tol: &Tolerance,
+) -> Spans {
+    if window.is_empty() {
+        return Spans::EMPTY;
+    }
     let d = q - p;
     let nn = f.n.norm();
     let dl = d.norm();
@@ -91,22 +154,22 @@ pub(crate) fn edge_face(
     let hp = lin(&f.n, p, axis).plus(-f.offset);
     let hq = lin(&f.n, q, axis).plus(-f.offset);
     // outward: g ≥ 0, hq ≥ 0, hp ≤ 0, D_i ≥ 0; inward: g ≤ 0, hp ≥ 0, hq ≤ 0, D_i ≤ 0
-    let mut out = window.intersect(&at_least(hq, th, hull));
+    let mut out = window.intersect(&around.at_least(hq, th));
     if !out.is_empty() {
-        out = out.intersect(&at_most(hp, th, hull));
+        out = out.intersect(&around.at_most(hp, th));
     }
-    let mut inw = window.intersect(&at_least(hp, th, hull));
+    let mut inw = window.intersect(&around.at_least(hp, th));
     if !inw.is_empty() {
-        inw = inw.intersect(&at_most(hq, th, hull));
+        inw = inw.intersect(&around.at_most(hq, th));
     }
     if out.is_empty() && inw.is_empty() {
         return Spans::EMPTY;
     }
     if !out.is_empty() {
-        out = out.intersect(&at_least(g, kg, hull));
+        out = out.intersect(&around.at_least(g, kg));
     }
     if !inw.is_empty() {
-        inw = inw.intersect(&at_most(g, kg, hull));
+        inw = inw.intersect(&around.at_most(g, kg));
     }
     let m = p.cross(&d);
     let e = f.edges();
@@ -117,10 +180,10 @@ pub(crate) fn edge_face(
         let di = lin(ei, &m, axis).minus(lin(&ei.cross(vi), &d, axis));
         let slack = tol.dist * dl * ei.norm();
         if !out.is_empty() {
-            out = out.intersect(&at_least(di, slack, hull));
+            out = out.intersect(&around.at_least(di, slack));
         }
         if !inw.is_empty() {
-            inw = inw.intersect(&at_most(di, slack, hull));
+            inw = inw.intersect(&around.at_most(di, slack));
         }
     }
     let both = out.union(&inw);
@@ -167,77 +230,179 @@ pub(crate) fn sweep(
     }
 
     let cyl = CylFrame::new(&axis);
-    let back = AngleRange::new(-phis.hi, -phis.lo);
     let whole = Spans::single(phis);
     let mut robot_boxes: Vec<Option<CylBox>> = vec![None; robot.faces.len()];
-    let mut per_obstacle = |o: u32, sink: &mut Sink, counts: &mut CallCounts| -> bool {
-        let ids = obst.faces[o as usize];
-        let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
-        let obox = cyl.box_of(&of.v, margin);
-        let per_pair = |r: u32| -> bool {
-            let rc = robot.corners(r);
-            let pair_window = if ph.enveloping {
-                let rbox = robot_boxes[r as usize].get_or_insert_with(|| cyl.box_of(&rc, margin));
-                if !rbox.fixed_overlap(&obox) {
-                    return true;
-                }
-                match rbox.turn_window(&obox) {
-                    Some((start, length)) => arc_in_window(Arc::Part { start, length }, phis),
-                    None => whole,
-                }
-            } else {
-                whole
-            };
-            if pair_window.is_empty() {
+    // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
+    // cylindrical box) for φ in `w`; returns whether to go on
+    let mut pair = |r: u32,
+                    o: u32,
+                    of: &Face,
+                    obox: &CylBox,
+                    w: Interval,
+                    sink: &mut Sink,
+                    counts: &mut CallCounts|
+     -> bool {
+        let rc = robot.corners(r);
+        let pair_window = if ph.enveloping {
+            let rbox = robot_boxes[r as usize].get_or_insert_with(|| cyl.box_of(&rc, margin));
+            if !rbox.fixed_overlap(obox) {
                 return true;
             }
+            match rbox.turn_window(obox) {
+                Some((start, length)) => arc_in_window(Arc::Part { start, length }, w),
+                None => Spans::single(w),
+            }
+        } else {
+            whole
+        };
+        let (Some(first), Some(last)) = (
+            pair_window.as_slice().first(),
+            pair_window.as_slice().last(),
+        ) else {
+            return true;
+        };
+        let around = Around::new(Interval {
+            lo: first.lo,
+            hi: last.hi,
+        });
+        // an edge meets a face only where its ends are not both strictly on one side of the
+        // face's plane (the predicate's first atoms, with their slack doubled): if all three
+        // corners of a face stay on one side for the whole window, its edges are skipped
+        let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
+            let th = 2.0 * tol.dist * face.n.norm();
+            let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
+            b.iter().all(|(lo, _)| *lo > th) || b.iter().all(|(_, hi)| *hi < -th)
+        };
+        let rf = Face::new(rc);
+        if !ph.enveloping || !one_side(&rc, of, &axis) {
             for &e in robot.owned_edges(r) {
                 let (p, q) = robot.edge(e);
                 counts.pairs_tested += 1;
-                for iv in edge_face(&p, &q, &of, &axis, &pair_window, &tol).as_slice() {
+                for iv in
+                    edge_face_around(&p, &q, of, &axis, &pair_window, &around, &tol).as_slice()
+                {
                     if !sink.add(*iv) {
                         return false;
                     }
                 }
             }
-            let rf = Face::new(rc);
-            for &e in obst.owned_edges(o) {
-                let [a, b] = obst.edges[e as usize];
-                let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
-                let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
-                counts.pairs_tested += 1;
-                for iv in edge_face(&p, &q, &rf, &-axis, &pair_window, &tol).as_slice() {
-                    if !sink.add(*iv) {
-                        return false;
-                    }
-                }
-            }
-            true
-        };
-        if ph.enveloping {
-            // the obstacle face as seen from the robot turns by −φ
-            let swept =
-                of.v.iter()
-                    .fold(Aabb::EMPTY, |b, y| b.merge(&back.arc_box(y, &axis)))
-                    .grown(margin);
-            robot.bvh.visit_overlapping(&swept, per_pair)
-        } else {
-            (0..robot.faces.len() as u32).all(per_pair)
         }
+        if ph.enveloping && one_side(&of.v, &rf, &-axis) {
+            return true;
+        }
+        let ids = obst.faces[o as usize];
+        for &e in obst.owned_edges(o) {
+            let [a, b] = obst.edges[e as usize];
+            let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
+            let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
+            counts.pairs_tested += 1;
+            for iv in edge_face_around(&p, &q, &rf, &-axis, &pair_window, &around, &tol).as_slice()
+            {
+                if !sink.add(*iv) {
+                    return false;
+                }
+            }
+        }
+        true
     };
     if ph.enveloping {
-        obst.bvh
-            .visit_overlapping(&swept_world, |o| per_obstacle(o, sink, counts));
+        // both trees at once, in cylindrical coordinates about the axis (CHS §2.3.2): height
+        // and radius of a node do not change while the robot turns, so nodes whose ranges miss
+        // are pruned for the whole turn; away from the axis both nodes have an angular sector,
+        // and the robot's, turned by φ, meets the obstacle's only for φ in a window that
+        // narrows on the way down. Robot nodes are bounded in the robot's frame, obstacle
+        // nodes in the world (the same cylinder, its frame turned by the pose).
+        // Besides, each robot node's ball (about its box's centre) swept along its arc gives
+        // a world box for the whole turn (computed once per node and call), and each robot
+        // face its swept world box (the arcs of its corners).
+        let world_cyl = cyl.rotated(&pose.rot);
+        type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
+        let mut robot_nodes: Vec<Option<NodeBounds>> = vec![None; robot.bvh.node_count()];
+        let mut robot_swept: Vec<Option<Aabb>> = vec![None; robot.faces.len()];
+        robot.bvh.visit_pairs(
+            &obst.bvh,
+            phis,
+            |a, rb, ob, w| {
+                let (rn, rsector, swept) = *robot_nodes[a as usize].get_or_insert_with(|| {
+                    let half = 0.5 * (rb.hi - rb.lo);
+                    let n = cyl.node_bounds(&rb.centre(), &half, margin);
+                    let c = pose.rot * rb.centre();
+                    let ball = half.norm() * (1.0 + 1e-12) + margin;
+                    let swept = turning.arc_box(&c, axis_w).grown(ball).shifted(&pose.pos);
+                    (n, n.sector(), swept)
+                });
+                if !swept.overlaps(ob) {
+                    return None;
+                }
+                let on = world_cyl.node_bounds(
+                    &(ob.centre() - pose.pos),
+                    &(0.5 * (ob.hi - ob.lo)),
+                    margin,
+                );
+                if !rn.fixed_overlap(&on) {
+                    return None;
+                }
+                match (rsector, on.sector()) {
+                    (Some(m), Some(f)) => sector_window(m, f, w),
+                    _ => Some(w),
+                }
+            },
+            |ri, oi, w| {
+                for &o in oi {
+                    let ow = obst.corners(o);
+                    let owbox = Aabb::of_points(ow.iter());
+                    if !ri.iter().any(|&r| {
+                        robot_swept[r as usize]
+                            .get_or_insert_with(|| {
+                                face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
+                            })
+                            .overlaps(&owbox)
+                    }) {
+                        continue;
+                    }
+                    let of = Face::new(ow.map(|x| pose.body_point(&x)));
+                    let obox = cyl.box_of(&of.v, margin);
+                    for &r in ri {
+                        let swept = robot_swept[r as usize].get_or_insert_with(|| {
+                            face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
+                        });
+                        if !swept.overlaps(&owbox) {
+                            continue;
+                        }
+                        if !pair(r, o, &of, &obox, w, sink, counts) {
+                            return false;
+                        }
+                    }
+                }
+                true
+            },
+        );
     } else {
-        for o in 0..obst.faces.len() as u32 {
-            if !per_obstacle(o, sink, counts) {
-                break;
+        'all: for o in 0..obst.faces.len() as u32 {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = cyl.box_of(&of.v, margin);
+            for r in 0..robot.faces.len() as u32 {
+                if !pair(r, o, &of, &obox, phis, sink, counts) {
+                    break 'all;
+                }
             }
         }
     }
     if !sink.done() {
         containment::rotation(ph, pose, axis_w, phis, sink, counts);
     }
+}
+
+/// The world box around everything a robot face (body-frame corners `c`) at `pose` sweeps while
+/// turning about the world `axis` through `pose`'s position: the arcs of its corners (the face
+/// is the hull of its corners, and a turned hull is the hull of the turned corners), grown by
+/// `margin` and by a relative 1e-12 against rounding.
+fn face_swept(pose: &Pose, c: &[V3; 3], axis: &V3, turning: &AngleRange, margin: f64) -> Aabb {
+    let b = c.iter().fold(Aabb::EMPTY, |b, x| {
+        b.merge(&turning.arc_box(&(pose.rot * x), axis))
+    });
+    let size = b.lo.abs().max().max(b.hi.abs().max());
+    b.grown(margin + 1e-12 * size).shifted(&pose.pos)
 }
 
 /// The world box around everything a body-frame box at `pose` sweeps while turning about the

@@ -70,6 +70,36 @@ pub(crate) fn edge_face(
     Some(Interval { lo, hi })
 }
 
+/// The λ of `window` at which the triangle `corners`, moved by `λ·dir`, reaches the plane of the
+/// fixed face `f`: an edge of it meets `f` only there (the first atoms of the predicate: one end
+/// on each side of the plane, within its slack). All corners move alike, so their signed
+/// distances share one slope and the condition `min ≤ slack`, `max ≥ −slack` is one interval.
+/// The slack is twice the predicate's, which keeps rounding on the safe side.
+fn straddle(
+    corners: &[V3; 3],
+    f: &Face,
+    dir: &V3,
+    tol: &Tolerance,
+    window: Interval,
+) -> Option<Interval> {
+    let th = 2.0 * tol.dist * f.n.norm();
+    let a = corners.map(|x| f.n.dot(&x) - f.offset);
+    let (lo, hi) = (a[0].min(a[1]).min(a[2]), a[0].max(a[1]).max(a[2]));
+    let k = f.n.dot(dir);
+    // lo + λk ≤ th and hi + λk ≥ −th
+    let (x, y) = ((th - lo) / k, (-th - hi) / k);
+    let iv = if k > 0.0 {
+        Interval { lo: y, hi: x }
+    } else if k < 0.0 {
+        Interval { lo: x, hi: y }
+    } else if lo <= th && hi >= -th {
+        window
+    } else {
+        return None;
+    };
+    iv.meet(&window)
+}
+
 /// Position of vertex `v` among the corners `ids` of a face.
 fn corner(ids: &[u32; 3], v: u32) -> usize {
     ids.iter().position(|&i| i == v).unwrap_or(0)
@@ -123,71 +153,130 @@ pub(crate) fn sweep(
 
     let frame = MotionFrame::new(&dir);
     let mut robot_boxes: Vec<Option<FrameBox>> = vec![None; robot.faces.len()];
-    let mut per_obstacle = |o: u32, sink: &mut Sink, counts: &mut CallCounts| -> bool {
-        let ids = obst.faces[o as usize];
-        let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
-        let obox = frame.box_of(&of.v);
-        let per_pair = |r: u32| -> bool {
-            let rc = robot.corners(r);
-            let pair_window = if ph.enveloping {
-                let rbox = robot_boxes[r as usize].get_or_insert_with(|| frame.box_of(&rc));
-                match rbox
-                    .sweep_window(&obox, speed, margin)
-                    .and_then(|w| w.meet(&window))
-                {
-                    Some(w) => w,
-                    None => return true,
-                }
-            } else {
-                window
-            };
-            // robot edges moving by +λ·dir against the obstacle face
+    // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its box in
+    // the motion frame) for λ in `w`; returns whether to go on
+    let mut pair = |r: u32,
+                    o: u32,
+                    of: &Face,
+                    obox: &FrameBox,
+                    w: Interval,
+                    sink: &mut Sink,
+                    counts: &mut CallCounts|
+     -> bool {
+        let rc = robot.corners(r);
+        let pair_window = if ph.enveloping {
+            let rbox = robot_boxes[r as usize].get_or_insert_with(|| frame.box_of(&rc));
+            match rbox
+                .sweep_window(obox, speed, margin)
+                .and_then(|x| x.meet(&w))
+            {
+                Some(x) => x,
+                None => return true,
+            }
+        } else {
+            w
+        };
+        // robot edges moving by +λ·dir against the obstacle face, only while the robot face
+        // reaches the obstacle face's plane
+        let rf = Face::new(rc);
+        let robot_window = if ph.enveloping {
+            straddle(&rc, of, &dir, &tol, pair_window)
+        } else {
+            Some(pair_window)
+        };
+        if let Some(w) = robot_window {
             for &e in robot.owned_edges(r) {
                 let (p, q) = robot.edge(e);
                 counts.pairs_tested += 1;
-                if let Some(iv) = edge_face(&p, &q, &of, &dir, pair_window, &tol) {
+                if let Some(iv) = edge_face(&p, &q, of, &dir, w, &tol) {
                     if !sink.add(iv) {
                         return false;
                     }
                 }
             }
-            // obstacle edges moving by −λ·dir against the robot face
-            let rf = Face::new(rc);
-            for &e in obst.owned_edges(o) {
-                let [a, b] = obst.edges[e as usize];
-                let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
-                counts.pairs_tested += 1;
-                if let Some(iv) = edge_face(&p, &q, &rf, &-dir, pair_window, &tol) {
-                    if !sink.add(iv) {
-                        return false;
-                    }
-                }
-            }
-            true
-        };
-        if ph.enveloping {
-            // the obstacle face as seen from the robot moves by −λ·dir
-            let b = Aabb::of_points(of.v.iter());
-            let swept = b
-                .shifted(&(-dir * window.lo))
-                .merge(&b.shifted(&(-dir * window.hi)))
-                .grown(margin);
-            robot.bvh.visit_overlapping(&swept, per_pair)
-        } else {
-            (0..robot.faces.len() as u32).all(per_pair)
         }
+        // obstacle edges moving by −λ·dir against the robot face, likewise
+        let obstacle_window = if ph.enveloping {
+            straddle(&of.v, &rf, &-dir, &tol, pair_window)
+        } else {
+            Some(pair_window)
+        };
+        let Some(w) = obstacle_window else {
+            return true;
+        };
+        let ids = obst.faces[o as usize];
+        for &e in obst.owned_edges(o) {
+            let [a, b] = obst.edges[e as usize];
+            let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
+            counts.pairs_tested += 1;
+            if let Some(iv) = edge_face(&p, &q, &rf, &-dir, w, &tol) {
+                if !sink.add(iv) {
+                    return false;
+                }
+            }
+        }
+        true
     };
-    if ph.enveloping {
+    if ph.enveloping && robot.faces.len() <= super::SMALL_ROBOT {
+        // a robot of a few leaves: the obstacle tree queried with the robot's swept box, the
+        // robot's tree with each obstacle face's box swept back along the motion
+        let robot_world = pose.world_box(&robot.aabb);
         let swept = robot_world
             .shifted(&(dir_w * window.lo))
             .merge(&robot_world.shifted(&(dir_w * window.hi)))
             .grown(margin);
-        obst.bvh
-            .visit_overlapping(&swept, |o| per_obstacle(o, sink, counts));
+        obst.bvh.visit_overlapping(&swept, |o| {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = frame.box_of(&of.v);
+            let b = Aabb::of_points(of.v.iter());
+            let back = b
+                .shifted(&(-dir * window.lo))
+                .merge(&b.shifted(&(-dir * window.hi)))
+                .grown(margin);
+            robot
+                .bvh
+                .visit_overlapping(&back, |r| pair(r, o, &of, &obox, window, sink, counts))
+        });
+    } else if ph.enveloping {
+        // both trees at once: a robot node's box, placed at the pose (world frame) and moved
+        // by λ·dir_w, against an obstacle node's box grown by the margin gives the λ for
+        // which the two may meet (exact for two boxes, so conservative for their contents);
+        // the window only narrows on the way down, and a pair of leaves passes it on to the
+        // per-face boxes of the motion frame
+        let dir_body = dir;
+        let mut placed: Vec<Option<Aabb>> = vec![None; robot.bvh.node_count()];
+        robot.bvh.visit_pairs(
+            &obst.bvh,
+            window,
+            |a, rb, ob, w| {
+                let placed = placed[a as usize].get_or_insert_with(|| pose.world_box(rb));
+                let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
+                // the same test in the robot's frame (the obstacle box turned into it), which
+                // is tight where the first one is loose
+                rb.sweep_range(&dir_body, &pose.body_box(ob).grown(margin))?
+                    .meet(&w)
+            },
+            |ri, oi, w| {
+                for &o in oi {
+                    let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+                    let obox = frame.box_of(&of.v);
+                    for &r in ri {
+                        if !pair(r, o, &of, &obox, w, sink, counts) {
+                            return false;
+                        }
+                    }
+                }
+                true
+            },
+        );
     } else {
-        for o in 0..obst.faces.len() as u32 {
-            if !per_obstacle(o, sink, counts) {
-                break;
+        'all: for o in 0..obst.faces.len() as u32 {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = frame.box_of(&of.v);
+            for r in 0..robot.faces.len() as u32 {
+                if !pair(r, o, &of, &obox, window, sink, counts) {
+                    break 'all;
+                }
             }
         }
     }
