@@ -298,3 +298,37 @@ fn extreme_parameters_are_harmless() {
         Err(LearnError::Params(_))
     ));
 }
+
+/// Cheap attempts beyond the nearest `d` neighbours: the roadmap stays valid under the
+/// independent check, and the deep searches are fewer, so fewer intersect calls are spent per
+/// attempt than with the full method towards every neighbour.
+#[test]
+fn deep_neighbours_keep_roadmaps_valid_and_cheaper() {
+    let scene = disc_scene(13, 60, 0.05);
+    let d = discs(&scene);
+    let spec = LocalSpec::roadmap_default();
+    let per_attempt = |deep: Option<usize>| {
+        let params = LearnParams {
+            deep_neighbours: deep,
+            ..LearnParams::default()
+        };
+        let learnt = learn(&scene, &spec, &params, 400, 5);
+        roadmap_valid(&learnt.roadmap, &d).unwrap_or_else(|e| panic!("deep={deep:?}: {e}"));
+        assert_eq!(
+            learnt.roadmap.component_labels(),
+            bfs_labels(&learnt.roadmap).as_slice()
+        );
+        let calls = learnt.roadmap.header().counts.intersect_calls();
+        calls as f64 / learnt.report.attempts as f64
+    };
+    let (all, cheap) = (per_attempt(None), per_attempt(Some(1)));
+    assert!(
+        cheap < all,
+        "{cheap} calls per attempt with d = 1, {all} with all"
+    );
+    let zero = LearnParams {
+        deep_neighbours: Some(0),
+        ..LearnParams::default()
+    };
+    assert!(zero.validate().is_err());
+}

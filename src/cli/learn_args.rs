@@ -23,6 +23,10 @@ pub struct LearnArgs {
     /// Nearest neighbours each new node tries (OMPL's PRM: 10).
     #[arg(long)]
     pub neighbours: Option<usize>,
+    /// Cheap attempts first: the full local method only towards the nearest N neighbours in
+    /// other components, the direct path towards the rest (default: the full method for all).
+    #[arg(long, value_name = "N")]
+    pub deep_neighbours: Option<usize>,
     /// Where construction draws new nodes: `uniform`, `obstacle`, `gaussian:sigma=0.1`,
     /// `bridge:sigma=0.1`, `gap:sigma=0.1` (the bridge test with exact intervals), or a mix
     /// such as `mix:uniform=1,bridge=1,gaussian=1` (sigma and margin are shares of the space's
@@ -38,6 +42,7 @@ impl LearnArgs {
             feedback: !self.no_feedback,
             ..LearnParams::default()
         };
+        params.deep_neighbours = self.deep_neighbours;
         if let Some(k) = self.neighbours {
             params.neighbours = k;
         }

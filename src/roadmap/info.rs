@@ -105,7 +105,7 @@ impl fmt::Display for RoadmapInfo {
             f,
             "parameters       neighbours={} radius={} expansion_share={:.3} bounce_steps={} \
              bounce_nodes={} round_size={} sample_attempts={} cycle_edges={} feedback={} \
-             stall_rounds={}",
+             stall_rounds={} deep_neighbours={}",
             p.neighbours,
             radius,
             p.expansion_share,
@@ -115,7 +115,9 @@ impl fmt::Display for RoadmapInfo {
             p.sample_attempts,
             p.cycle_edges,
             p.feedback,
-            p.stall_rounds
+            p.stall_rounds,
+            p.deep_neighbours
+                .map_or("all".to_string(), |d| d.to_string())
         )
     }
 }
