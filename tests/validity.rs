@@ -136,7 +136,7 @@ fn paths_from_a_file_scene_agree_with_the_scene_queries() {
     assert!(!q.is_empty());
     let c = Checker::for_scene(&s).unwrap();
     for query in q {
-        assert!(c.check_path(&[query.start.clone()]).is_ok());
-        assert!(c.check_path(&[query.goal.clone()]).is_ok());
+        assert!(c.check_path(std::slice::from_ref(&query.start)).is_ok());
+        assert!(c.check_path(std::slice::from_ref(&query.goal)).is_ok());
     }
 }

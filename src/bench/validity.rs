@@ -302,7 +302,7 @@ fn random_queries(
     cfg: &ValidityConfig,
 ) -> Result<Vec<(Config, Config)>, ValidityError> {
     const ATTEMPTS: usize = 10_000;
-    let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed ^ 0x5eed_0f_9e7a11d);
+    let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed ^ 0x0005_eed0_f9e7_a11d);
     let mut counts = CallCounts::default();
     let mut free = || {
         for _ in 0..ATTEMPTS {
