@@ -51,6 +51,26 @@ for ((i = 1; i <= ROUNDS; i++)); do
     fi
     "$BIN" info "$OUT" >/dev/null || { echo "round $i: the target does not load" >&2; exit 1; }
 done
+# targeted rounds: kill as soon as the temporary file appears, i.e. during the write itself
+# (uniform moments rarely land in the few milliseconds the write takes)
+targeted=0
+for ((i = 1; i <= ROUNDS / 4; i++)); do
+    cp "$DIR/old.bin" "$OUT"
+    "$BIN" build "$SCENE" -o "$OUT" --nodes "$NODES" --seed 2 >/dev/null 2>&1 &
+    pid=$!
+    while kill -0 "$pid" 2>/dev/null && ! compgen -G "$DIR/.r.bin.$pid-*.tmp" >/dev/null; do :; done
+    kill -KILL "$pid" 2>/dev/null || true
+    wait "$pid" 2>/dev/null || true
+    if compgen -G "$DIR/.r.bin.$pid-*.tmp" >/dev/null; then
+        targeted=$((targeted + 1))
+    fi
+    if ! cmp -s "$OUT" "$DIR/old.bin" && ! cmp -s "$OUT" "$DIR/new.bin"; then
+        echo "targeted round $i: the target is neither the old nor the new roadmap" >&2
+        exit 1
+    fi
+    "$BIN" info "$OUT" >/dev/null || { echo "targeted round $i: the target does not load" >&2; exit 1; }
+done
+echo "targeted: $((ROUNDS / 4)) kills as the temporary appeared, $targeted of them left it half-written; 0 lost roadmaps"
 # a stray temporary must not trip the next build up: it is cleaned
 "$BIN" build "$SCENE" -o "$OUT" --nodes 300 --seed 1 >/dev/null
 cmp -s "$OUT" "$DIR/old.bin" || { echo "the final build differs" >&2; exit 1; }

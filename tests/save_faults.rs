@@ -221,6 +221,51 @@ fn killed_builds_leave_a_whole_roadmap() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A build killed the moment its temporary file appears — during the write — leaves the old
+/// roadmap untouched and a half-written temporary, which the next build removes.
+#[test]
+fn build_killed_during_the_write() {
+    let dir = tempdir("kill-write");
+    let out = dir.join("r.bin");
+    run_ok(build(&out, 200, 1));
+    let old = std::fs::read(&out).unwrap();
+    let mut caught = 0;
+    for _ in 0..3 {
+        let mut child = build(&out, 60000, 2)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let prefix = format!(".r.bin.{}-", child.id());
+        loop {
+            let seen = std::fs::read_dir(&dir).unwrap().any(|e| {
+                e.unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .starts_with(&prefix)
+            });
+            if seen || child.try_wait().unwrap().is_some() {
+                break;
+            }
+            std::thread::sleep(Duration::from_micros(50));
+        }
+        let _ = child.kill();
+        let _ = child.wait();
+        let got = std::fs::read(&out).unwrap();
+        if !temporaries(&dir).is_empty() {
+            caught += 1;
+            assert_eq!(got, old, "killed during the write, the target changed");
+        }
+        assert!(loads(&out));
+        std::fs::write(&out, &old).unwrap();
+    }
+    assert!(caught > 0, "no kill landed during the write");
+    run_ok(build(&out, 200, 1));
+    assert_eq!(std::fs::read(&out).unwrap(), old);
+    assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A temporary left by a killed save (a dead process's id in its name) is removed by the next
 /// save; one of a live process (this test's own) is not.
 #[test]
