@@ -15,6 +15,10 @@ fn restore_default_sigpipe() {
     // SAFETY: setting a signal's disposition to the default, before any thread is started.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+        // a file size limit (`ulimit -f`) then fails the write with EFBIG, which a save
+        // reports in one line, keeping the previous roadmap, instead of killing the process
+        // with its temporary file left behind
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
     }
 }
 

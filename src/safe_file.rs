@@ -7,6 +7,19 @@
 //!   refused: renaming over it would replace the special file itself. A symbolic link is
 //!   followed: the link stays, the file it points to is replaced, its temporary file sits in
 //!   that file's directory.
+//! * Durability, in this order: the temporary file is `fsync`ed **before** the rename, and its
+//!   directory **after** it. Without the first, a file system with delayed allocation (ext4,
+//!   XFS) may commit the rename before the data, so that a power loss right after a save
+//!   leaves the target empty or half-written: the old roadmap lost and no new one (the
+//!   "zero-length file after crash" problem; SQLite's and PostgreSQL's write-ahead logs sync
+//!   the same way). Without the second, the rename itself lives only in the page cache and a
+//!   power loss can bring back the old name — never a torn file, but a save the user was told
+//!   had succeeded. Syncing the directory before the rename would make only the temporary's
+//!   name durable, which nothing needs. A failed directory sync is ignored: the new file is in
+//!   place by then, and some platforms cannot open a directory to sync it.
+//! * A write that fails (a full disk: ENOSPC; a file size limit: EFBIG) is an error naming the
+//!   temporary and the cause; the temporary is removed and the target keeps its content.
+//!   (`tests/save_faults.rs` fills a 512 KiB tmpfs and a `ulimit -f` to show it.)
 //! * Temporaries are named `.NAME.PID-N.tmp`; every save first removes those of its target
 //!   whose process no longer runs (a save killed with `kill -9` cannot clean up after itself).
 //! * [`open_regular`] and [`read_regular`] refuse non-regular files (`/dev/zero`, FIFOs) and
@@ -208,8 +221,9 @@ pub fn clean_stale_temporaries(target: &Path) -> Vec<PathBuf> {
 
 /// Writes a file the way a crash cannot half-do (module docs): refuses special targets,
 /// cleans stale temporaries, lets `write` fill a new temporary file in the target's directory,
-/// syncs it and renames it over the target (then syncs the directory where the platform
-/// allows). On any error the temporary file is removed and the target is untouched. Returns
+/// `fsync`s it *before* renaming it over the target (so no rename publishes unwritten data),
+/// then `fsync`s the directory *after* (so the rename survives a power loss) where the platform
+/// allows. On any error the temporary file is removed and the target is untouched. Returns
 /// the file written (the target, or where its symbolic link leads).
 pub fn write_atomically(
     target: &Path,
@@ -239,7 +253,8 @@ pub fn write_atomically(
         let _ = std::fs::remove_file(&tmp);
         return Err(e);
     }
-    // Make the rename itself durable; failing here leaves the new file in place, which is fine.
+    // Make the rename itself durable (module docs: the data was synced before it, the directory
+    // entry is synced after it); failing here leaves the new file in place, which is fine.
     if let Some(dir) = target.parent() {
         let dir = if dir.as_os_str().is_empty() {
             Path::new(".")

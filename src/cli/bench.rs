@@ -29,6 +29,11 @@ pub enum BenchCommand {
     /// stdout, CSV, JSON, an SQLite database in OMPL's benchmark schema (Planner Arena) and SVG
     /// box plots in --out.
     Local(BenchLocalArgs),
+    /// Random queries on roadmaps of the given scenes, every path (raw and shortened)
+    /// re-checked by independent checkers (segment–ball distances, parry with conservative
+    /// advancement); prints queries, solved, invalid (must be 0) and times. Exits with an
+    /// error if any path is invalid.
+    Validity(ValidityArgs),
     /// One run of `bench local` (internal): reads the job as JSON on stdin and prints the
     /// record as JSON on stdout.
     #[command(hide = true)]
@@ -153,7 +158,92 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
         BenchCommand::Discs(a) => discs(a),
         BenchCommand::Local(a) => local(a),
         BenchCommand::LocalRun => local_run(),
+        BenchCommand::Validity(a) => validity(a),
     }
+}
+
+/// Arguments of `bench validity`.
+#[derive(Args)]
+pub struct ValidityArgs {
+    /// Scenes: files (TOML, OMPL.app `.cfg`) or `gen:discs:dim=D,n=N,r=R,seed=S`.
+    #[arg(required = true)]
+    pub scenes: Vec<String>,
+    /// Roadmap nodes per scene.
+    #[arg(long, default_value_t = 500)]
+    pub nodes: usize,
+    /// Random queries per scene.
+    #[arg(long, default_value_t = 1000)]
+    pub queries: usize,
+    /// Seed of the roadmaps and the queries.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Seconds one query may take.
+    #[arg(long, default_value_t = 10.0)]
+    pub query_time: f64,
+    /// Also write the reports as JSON to this file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+fn validity(a: ValidityArgs) -> anyhow::Result<()> {
+    use viaroad::bench::validity;
+    let nodes = super::limits::count_in_range(
+        "--nodes",
+        a.nodes,
+        viaroad::limits::MAX_NODES,
+        "a roadmap is held in memory",
+    )?;
+    let queries = super::limits::count_in_range(
+        "--queries",
+        a.queries,
+        viaroad::limits::MAX_QUERIES,
+        "the queries are held in memory",
+    )?;
+    if !(a.query_time.is_finite() && a.query_time > 0.0 && a.query_time <= 3600.0) {
+        anyhow::bail!(
+            "--query-time must lie in (0, 3600] seconds, got {}",
+            a.query_time
+        );
+    }
+    let cfg = validity::ValidityConfig {
+        nodes,
+        queries,
+        seed: a.seed,
+        query_time: std::time::Duration::from_secs_f64(a.query_time),
+    };
+    let scenes = a
+        .scenes
+        .iter()
+        .map(|s| validity::load_scene(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut reports = Vec::new();
+    for scene in &scenes {
+        let r = validity::run_scene(scene, &cfg)?;
+        eprintln!(
+            "{}: {} queries, {} solved, {} invalid, {} errors ({:.1} s learn, {:.1} s query, {:.1} s check)",
+            r.scene, r.queries, r.solved, r.invalid, r.errors, r.learn_secs, r.query_secs, r.check_secs
+        );
+        for f in &r.failures {
+            eprintln!("  {f}");
+        }
+        reports.push(r);
+    }
+    print!("{}", validity::table(&reports));
+    let total: usize = reports.iter().map(|r| r.queries).sum();
+    let solved: usize = reports.iter().map(|r| r.solved).sum();
+    let invalid: usize = reports.iter().map(|r| r.invalid).sum();
+    println!(
+        "total: {total} queries, {solved} solved, {invalid} invalid; {} threads, {}",
+        rayon::current_num_threads(),
+        machine::utc_now()
+    );
+    if let Some(p) = &a.json {
+        super::output::save(p, serde_json::to_string_pretty(&reports)?.as_bytes())?;
+    }
+    if invalid > 0 {
+        anyhow::bail!("{invalid} invalid paths");
+    }
+    Ok(())
 }
 
 fn discs(a: DiscsArgs) -> anyhow::Result<()> {
