@@ -9,8 +9,8 @@ use clap::Parser;
 /// head -1`): Rust ignores SIGPIPE, so every later `println!` would panic with "Broken pipe";
 /// with the default action the process ends at the first write to the closed pipe, wherever
 /// that write is (issue 16). `bench local`, which writes to its children's pipes, ignores it
-/// again for itself.
-fn restore_default_sigpipe() {
+/// again for itself. SIGXFSZ is ignored, so that a file size limit is a write error.
+fn set_signal_dispositions() {
     #[cfg(unix)]
     // SAFETY: setting a signal's disposition to the default, before any thread is started.
     unsafe {
@@ -23,7 +23,7 @@ fn restore_default_sigpipe() {
 }
 
 fn main() {
-    restore_default_sigpipe();
+    set_signal_dispositions();
     let args = cli::Cli::parse();
     if let Err(e) = cli::run(args) {
         // one line: the error and those of its causes that its message does not already say
