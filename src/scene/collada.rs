@@ -58,6 +58,9 @@ pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
         path: path.to_path_buf(),
         message,
     };
+    let xml = std::str::from_utf8(&text)
+        .map_err(|e| fail(format!("not a Collada document: not UTF-8 text ({e})")))?;
+    check_array_counts(xml).map_err(fail)?;
     // dae-parser validates eagerly and reports errors, but it is third-party code reading
     // user input: a panic inside it must not escape as one.
     let parsed = std::panic::catch_unwind(|| Document::try_from(text.as_slice()))
@@ -71,6 +74,32 @@ pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
         vertices_imported: out.centre_count,
         assimp_centre: out.centre_sum.map(|c| c / n),
     })
+}
+
+/// Refuses an array (`<float_array count="…">` …) whose `count` exceeds the values it holds,
+/// before dae-parser sees it: dae-parser reserves `count` elements up front, so a huge count in
+/// a small file would otherwise allocate without bound (found by fuzzing, see
+/// `tests/fuzz_regressions.rs`). Malformed XML is left to dae-parser to report.
+fn check_array_counts(xml: &str) -> Result<(), String> {
+    let Ok(root) = xml.parse::<dae_parser::Element>() else {
+        return Ok(());
+    };
+    let mut stack = vec![&root];
+    while let Some(e) = stack.pop() {
+        if e.name().ends_with("_array") {
+            if let Some(count) = e.attr("count").and_then(|c| c.trim().parse::<u64>().ok()) {
+                let held: usize = e.texts().map(|t| t.split_ascii_whitespace().count()).sum();
+                if count > held as u64 {
+                    return Err(format!(
+                        "<{} count=\"{count}\"> holds only {held} values",
+                        e.name()
+                    ));
+                }
+            }
+        }
+        stack.extend(e.children());
+    }
+    Ok(())
 }
 
 /// Library look-ups by id.
