@@ -66,7 +66,7 @@ pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
     let parsed = std::panic::catch_unwind(|| Document::try_from(text.as_slice()))
         .map_err(|_| fail("not a readable Collada document (the parser gave up)".into()))?;
     let doc = parsed.map_err(|e| fail(format!("not a valid Collada 1.4.1 document: {e:?}")))?;
-    let out = read_document(&doc).map_err(fail)?;
+    let out = read_document(&doc, text.len()).map_err(fail)?;
     let n = out.centre_count as f32;
     Ok(ColladaMesh {
         mesh: out.faces.finish(path)?,
@@ -117,12 +117,27 @@ struct Collector {
     triangles_imported: usize,
     centre_sum: [f32; 3],
     centre_count: usize,
+    /// Node visits left: `<instance_node>` can instantiate a node twice, which instantiates
+    /// the next twice … (2⁶⁴ visits within [`MAX_DEPTH`] levels).
+    visits_left: usize,
+    /// Primitive indices that may still be read, counting every instantiation.
+    indices_left: usize,
 }
 
 /// Nesting deeper than this is taken for a cycle of `<instance_node>` references.
 const MAX_DEPTH: usize = 64;
 
-fn read_document(doc: &Document) -> Result<Collector, String> {
+/// Work allowed per byte of the file: without instancing a node takes more than ten bytes and
+/// an index at least two, so these bounds only stop exponential instancing (found by
+/// fuzzing; see `tests/fuzz_regressions.rs`) while memory and time stay proportional to the
+/// file's size.
+const VISITS_PER_BYTE: usize = 1;
+/// See [`VISITS_PER_BYTE`].
+const INDICES_PER_BYTE: usize = 2;
+/// Work always allowed, whatever the file's size.
+const MIN_WORK: usize = 1_000_000;
+
+fn read_document(doc: &Document, file_bytes: usize) -> Result<Collector, String> {
     let err = |e: dae_parser::Error| format!("{e:?}");
     let maps = Maps {
         geometry: doc.local_map().map_err(err)?,
@@ -165,7 +180,11 @@ fn read_document(doc: &Document) -> Result<Collector, String> {
         ),
     };
     let root = Matrix4::new_scaling(s) * up;
-    let mut out = Collector::default();
+    let mut out = Collector {
+        visits_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(VISITS_PER_BYTE)),
+        indices_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(INDICES_PER_BYTE)),
+        ..Collector::default()
+    };
     for node in &scene.nodes {
         visit(node, &root, &maps, &mut out, 0)?;
     }
@@ -187,6 +206,10 @@ fn visit(
             "nodes nest deeper than {MAX_DEPTH} levels (a cycle of <instance_node>?)"
         ));
     }
+    out.visits_left = out.visits_left.checked_sub(1).ok_or(
+        "<instance_node> instantiates far more nodes than the file holds (nodes instantiated \
+         over and over)",
+    )?;
     let mut m = *parent;
     for t in &node.transforms {
         m *= transform_matrix(t)?;
@@ -426,6 +449,10 @@ fn read_primitive(
     out: &mut Collector,
 ) -> Result<(), String> {
     let (inputs, data, shape) = indices(primitive)?;
+    out.indices_left = out.indices_left.checked_sub(data.len()).ok_or(
+        "the nodes instantiate far more geometry than the file holds (geometry instantiated \
+         over and over)",
+    )?;
     let stride = inputs.stride;
     if stride == 0 || data.is_empty() {
         return Ok(()); // no inputs or no primitives: assimp makes no mesh of it
