@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 use viaroad::scene::collada::load_collada;
 use viaroad::scene::mesh_io::load_mesh;
+use viaroad::scene::toml_format::{from_str, MAX_SHAPE_POINTS};
 use viaroad::scene::SceneError;
 
 /// A file with `text` in a fresh temporary directory (kept until the returned guard is dropped).
@@ -125,4 +126,70 @@ fn collada_exponential_instancing_is_refused_not_hung() {
     let f = TempFile::new("doubling4.dae", doubling_nodes(4, true).as_bytes());
     let dae = load_collada(&f.path).expect("16 instances load");
     assert_eq!(dae.triangles_imported, 17 * 12);
+}
+
+/// `n` points on a circle of radius 3 (with `z`, a third coordinate cycling through 7 levels).
+fn circle(n: usize, z: bool) -> String {
+    let points: Vec<String> = (0..n)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            if z {
+                format!(
+                    "[{}, {}, {}]",
+                    3.0 * t.cos(),
+                    3.0 * t.sin(),
+                    (k % 7) as f64 * 0.1
+                )
+            } else {
+                format!("[{}, {}]", 3.0 * t.cos(), 3.0 * t.sin())
+            }
+        })
+        .collect();
+    points.join(", ")
+}
+
+fn se2_polygon_scene(n: usize) -> String {
+    format!(
+        "[space]\nkind = \"se2\"\nlower = [-5, -5]\nupper = [5, 5]\n[robot]\n\
+         box = {{ half_extents = [0.1, 0.1] }}\n[[obstacle]]\npolygon = {{ vertices = [{}] }}\n",
+        circle(n, false)
+    )
+}
+
+/// Fuzzer findings (toml target): a polygon of 20 000 vertices hung loading (the simplicity
+/// test and the triangulation are quadratic) and the 3D hull of 10 000 convex points made
+/// parry ask for 377 MB. Shapes given point by point are now limited to
+/// [`MAX_SHAPE_POINTS`] points, refused with a message saying so.
+#[test]
+fn toml_shapes_with_too_many_points_are_refused() {
+    let path = std::path::Path::new("many_points.toml");
+    let n = MAX_SHAPE_POINTS + 1;
+    let polygon = se2_polygon_scene(n);
+    let hull = format!(
+        "[space]\nkind = \"se3\"\nlower = [-5, -5, -5]\nupper = [5, 5, 5]\n[robot]\n\
+         box = {{ half_extents = [0.1, 0.1, 0.1] }}\n[[obstacle]]\nconvex = {{ points = [{}] }}\n",
+        circle(n, true)
+    );
+    for text in [polygon, hull] {
+        match from_str(&text, path) {
+            Err(e) => {
+                let message = e.to_string();
+                assert!(
+                    message.contains(&format!("{n} "))
+                        && message.contains(&format!("at most {MAX_SHAPE_POINTS}")),
+                    "{message}"
+                );
+            }
+            Ok(_) => panic!("a shape of {n} points loaded"),
+        }
+    }
+    // the limit itself is accepted: the obstacle is the polygon as given
+    let scene = from_str(&se2_polygon_scene(MAX_SHAPE_POINTS), path).expect("the limit loads");
+    match &scene.obstacles[..] {
+        [viaroad::scene::Obstacle::Polygon(p)] => assert_eq!(p.vertices.len(), MAX_SHAPE_POINTS),
+        other => panic!(
+            "expected one polygon obstacle, got {} obstacles",
+            other.len()
+        ),
+    }
 }
