@@ -160,8 +160,14 @@ impl Target {
         &self.seeds
     }
 
-    /// Remembers an input that loaded (a bounded pool).
+    /// Remembers an input that loaded (a bounded pool of inputs no larger than twice the
+    /// largest seed: repeated lines would otherwise grow them generation after generation and
+    /// slow every execution down).
     pub fn keep(&mut self, input: Vec<u8>, m: &mut Mutator) {
+        let largest = self.seeds.iter().map(Vec::len).max().unwrap_or(0);
+        if input.len() > 2 * largest.max(2048) {
+            return;
+        }
         if self.pool.len() < 256 {
             self.pool.push(input);
         } else {
