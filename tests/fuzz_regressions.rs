@@ -193,3 +193,62 @@ fn toml_shapes_with_too_many_points_are_refused() {
         ),
     }
 }
+
+/// One triangle list over three positions whose `n` index tuples all have distinct normals.
+fn distinct_normals(n: usize) -> String {
+    let normals: Vec<String> = (0..n)
+        .map(|k| {
+            format!(
+                "{} {} 1",
+                (k % 1000) as f64 / 1000.0,
+                (k / 1000) as f64 / 100.0
+            )
+        })
+        .collect();
+    let p: Vec<String> = (0..n).map(|k| format!("{} {k}", k % 3)).collect();
+    format!(
+        r##"<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><created>2026-01-01T00:00:00Z</created><modified>2026-01-01T00:00:00Z</modified><up_axis>Y_UP</up_axis></asset>
+  <library_geometries>
+    <geometry id="c"><mesh>
+      <source id="c-p"><float_array id="c-p-a" count="9">0 0 0 1 0 0 0 1 0</float_array>
+        <technique_common><accessor source="#c-p-a" count="3" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+      <source id="c-n"><float_array id="c-n-a" count="{}">{}</float_array>
+        <technique_common><accessor source="#c-n-a" count="{n}" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+      <vertices id="c-v"><input semantic="POSITION" source="#c-p"/></vertices>
+      <triangles count="{}"><input offset="0" semantic="VERTEX" source="#c-v"/><input offset="1" semantic="NORMAL" source="#c-n"/><p>{}</p></triangles>
+    </mesh></geometry>
+  </library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node><instance_geometry url="#c"/></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"##,
+        3 * n,
+        normals.join(" "),
+        n / 3,
+        p.join(" ")
+    )
+}
+
+/// Found while fuzzing (dae, a hang): joining identical vertices compares each index tuple
+/// with every distinct one at its position, so a 1.3 MB file whose 60 000 tuples share three
+/// positions with distinct normals took 1.7 s per load and a 10 MB one minutes. The
+/// comparisons are now bounded by the file's size; a modest number of distinct normals per
+/// position still joins exactly (every tuple distinct: one imported vertex each).
+#[test]
+fn collada_quadratic_vertex_joining_is_refused() {
+    let f = TempFile::new("normals.dae", distinct_normals(15_000).as_bytes());
+    match load_collada(&f.path) {
+        Err(SceneError::Parse { message, .. }) => {
+            assert!(message.contains("distinct normals"), "{message}")
+        }
+        other => panic!(
+            "expected a parse error, got {:?}",
+            other.map(|m| m.vertices_imported)
+        ),
+    }
+    let f = TempFile::new("normals600.dae", distinct_normals(600).as_bytes());
+    let dae = load_collada(&f.path).expect("600 distinct normals load");
+    assert_eq!((dae.vertices_imported, dae.triangles_imported), (600, 200));
+}

@@ -122,6 +122,9 @@ struct Collector {
     visits_left: usize,
     /// Primitive indices that may still be read, counting every instantiation.
     indices_left: usize,
+    /// Attribute comparisons left for joining vertices: each index tuple is compared with the
+    /// distinct ones at its position, quadratic when one position has many distinct normals.
+    comparisons_left: usize,
 }
 
 /// Nesting deeper than this is taken for a cycle of `<instance_node>` references.
@@ -134,6 +137,8 @@ const MAX_DEPTH: usize = 64;
 const VISITS_PER_BYTE: usize = 1;
 /// See [`VISITS_PER_BYTE`].
 const INDICES_PER_BYTE: usize = 2;
+/// See [`VISITS_PER_BYTE`].
+const COMPARISONS_PER_BYTE: usize = 64;
 /// Work always allowed, whatever the file's size.
 const MIN_WORK: usize = 1_000_000;
 
@@ -183,6 +188,7 @@ fn read_document(doc: &Document, file_bytes: usize) -> Result<Collector, String>
     let mut out = Collector {
         visits_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(VISITS_PER_BYTE)),
         indices_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(INDICES_PER_BYTE)),
+        comparisons_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(COMPARISONS_PER_BYTE)),
         ..Collector::default()
     };
     for node in &scene.nodes {
@@ -569,7 +575,18 @@ fn read_primitive(
     for k in 0..n {
         let key = local[k].map(|c| (c + 0.0).to_bits());
         let candidates = unique.entry(key).or_default();
-        if !candidates.iter().any(|&u| same(&attrs[u], &attrs[k])) {
+        let mut joined = false;
+        for &u in candidates.iter() {
+            out.comparisons_left = out.comparisons_left.checked_sub(1).ok_or(
+                "too many vertices with distinct normals or colours at one position (joining \
+                 them would take time quadratic in the file's size)",
+            )?;
+            if same(&attrs[u], &attrs[k]) {
+                joined = true;
+                break;
+            }
+        }
+        if !joined {
             candidates.push(k);
             let p = m.transform_point(&Point3::from(local[k]));
             for (s, c) in out.centre_sum.iter_mut().zip(p.coords.iter()) {
