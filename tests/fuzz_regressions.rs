@@ -252,3 +252,36 @@ fn collada_quadratic_vertex_joining_is_refused() {
     let dae = load_collada(&f.path).expect("600 distinct normals load");
     assert_eq!((dae.vertices_imported, dae.triangles_imported), (600, 200));
 }
+
+/// The cube inside `levels` nested `<node>` elements.
+fn nested_nodes(levels: usize) -> String {
+    let cube = cube_with_count("24");
+    let head = &cube[..cube.find("<library_visual_scenes>").unwrap()];
+    format!(
+        r##"{head}<library_visual_scenes><visual_scene id="s">{}<instance_geometry url="#c"/>{}</visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"##,
+        "<node>".repeat(levels),
+        "</node>".repeat(levels)
+    )
+}
+
+/// Found while fuzzing (dae, a crash): a thousand nested `<node>` elements overflowed the
+/// stack (the XML tree is built, parsed and dropped recursively), which aborts the process.
+/// Nesting is now measured on the text first; moderate nesting still loads.
+#[test]
+fn collada_deep_nesting_is_refused_not_a_stack_overflow() {
+    for levels in [1_000, 100_000] {
+        let f = TempFile::new("deep.dae", nested_nodes(levels).as_bytes());
+        match load_mesh(&f.path) {
+            Err(SceneError::Parse { message, .. }) => {
+                assert!(message.contains("nest deeper"), "{levels}: {message}")
+            }
+            other => panic!("{levels} levels: expected a parse error, got {other:?}"),
+        }
+    }
+    let f = TempFile::new("nested20.dae", nested_nodes(20).as_bytes());
+    let mesh = load_mesh(&f.path).expect("20 nested nodes load");
+    assert_eq!((mesh.vertices.len(), mesh.triangles.len()), (8, 12));
+}

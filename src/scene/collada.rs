@@ -60,7 +60,7 @@ pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
     };
     let xml = std::str::from_utf8(&text)
         .map_err(|e| fail(format!("not a Collada document: not UTF-8 text ({e})")))?;
-    check_array_counts(xml).map_err(fail)?;
+    check_before_parsing(xml).map_err(fail)?;
     // dae-parser validates eagerly and reports errors, but it is third-party code reading
     // user input: a panic inside it must not escape as one.
     let parsed = std::panic::catch_unwind(|| Document::try_from(text.as_slice()))
@@ -76,11 +76,25 @@ pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
     })
 }
 
-/// Refuses an array (`<float_array count="…">` …) whose `count` exceeds the values it holds,
-/// before dae-parser sees it: dae-parser reserves `count` elements up front, so a huge count in
-/// a small file would otherwise allocate without bound (found by fuzzing, see
-/// `tests/fuzz_regressions.rs`). Malformed XML is left to dae-parser to report.
-fn check_array_counts(xml: &str) -> Result<(), String> {
+/// The deepest element nesting accepted: [`MAX_DEPTH`] nodes and room for what sits around and
+/// inside them.
+const MAX_XML_DEPTH: usize = MAX_DEPTH + 32;
+
+/// What dae-parser cannot be trusted with, refused before it sees the document (both found by
+/// fuzzing, see `tests/fuzz_regressions.rs`):
+/// - an array (`<float_array count="…">` …) whose `count` exceeds the values it holds:
+///   dae-parser reserves `count` elements up front, so a huge count in a small file would
+///   allocate without bound;
+/// - elements nested deeper than [`MAX_XML_DEPTH`]: the XML tree is built and dropped
+///   recursively and dae-parser recurses once per `<node>` level, so a thousand nested nodes
+///   overflowed the stack (an abort, not an error). The depth is measured on the text
+///   ([`xml_depth_exceeds`]) before any tree is built.
+///
+/// Malformed XML is left to dae-parser to report.
+fn check_before_parsing(xml: &str) -> Result<(), String> {
+    if xml_depth_exceeds(xml.as_bytes(), MAX_XML_DEPTH) {
+        return Err(format!("elements nest deeper than {MAX_XML_DEPTH} levels"));
+    }
     let Ok(root) = xml.parse::<dae_parser::Element>() else {
         return Ok(());
     };
@@ -100,6 +114,57 @@ fn check_array_counts(xml: &str) -> Result<(), String> {
         stack.extend(e.children());
     }
     Ok(())
+}
+
+/// Whether the elements of `xml` nest deeper than `limit`, from the text alone: comments,
+/// CDATA, processing instructions and declarations are skipped, quotes inside tags respected
+/// and self-closing tags do not nest. Text cannot hold a raw `<`, so well-formed XML is
+/// measured exactly; for malformed XML the answer does not matter (the parser refuses it).
+fn xml_depth_exceeds(xml: &[u8], limit: usize) -> bool {
+    let find = |from: usize, pat: &[u8]| {
+        xml.get(from..)
+            .and_then(|rest| rest.windows(pat.len()).position(|w| w == pat))
+            .map(|k| from + k + pat.len())
+    };
+    let (mut i, mut depth) = (0, 0usize);
+    while let Some(k) = xml[i..].iter().position(|&b| b == b'<') {
+        i += k + 1;
+        let rest = &xml[i..];
+        let skip_to = if rest.starts_with(b"!--") {
+            find(i, b"-->")
+        } else if rest.starts_with(b"![CDATA[") {
+            find(i, b"]]>")
+        } else if rest.starts_with(b"?") || rest.starts_with(b"!") {
+            find(i, b">")
+        } else if rest.starts_with(b"/") {
+            depth = depth.saturating_sub(1);
+            find(i, b">")
+        } else {
+            let mut quote = None;
+            let mut j = i;
+            while j < xml.len() {
+                match (quote, xml[j]) {
+                    (Some(q), c) if c == q => quote = None,
+                    (None, c @ (b'"' | b'\'')) => quote = Some(c),
+                    (None, b'>') => break,
+                    _ => {}
+                }
+                j += 1;
+            }
+            if j > i && xml.get(j - 1) != Some(&b'/') {
+                depth += 1;
+                if depth > limit {
+                    return true;
+                }
+            }
+            Some(j + 1)
+        };
+        match skip_to {
+            Some(next) if next <= xml.len() => i = next,
+            _ => return false,
+        }
+    }
+    false
 }
 
 /// Library look-ups by id.
