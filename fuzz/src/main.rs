@@ -162,6 +162,7 @@ fn fuzz(name: &str, opts: &Options, root: &Path, artifacts: &Path) -> Result<Sta
             );
             // the stuck thread cannot be stopped: report and end the process
             println!("{tname:8} HANG after {now} execs");
+            let _ = std::fs::remove_dir_all(&dir);
             std::process::exit(1);
         }
     }
