@@ -58,12 +58,15 @@ pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
         path: path.to_path_buf(),
         message,
     };
+    let xml = std::str::from_utf8(&text)
+        .map_err(|e| fail(format!("not a Collada document: not UTF-8 text ({e})")))?;
+    check_before_parsing(xml).map_err(fail)?;
     // dae-parser validates eagerly and reports errors, but it is third-party code reading
     // user input: a panic inside it must not escape as one.
     let parsed = std::panic::catch_unwind(|| Document::try_from(text.as_slice()))
         .map_err(|_| fail("not a readable Collada document (the parser gave up)".into()))?;
     let doc = parsed.map_err(|e| fail(format!("not a valid Collada 1.4.1 document: {e:?}")))?;
-    let out = read_document(&doc).map_err(fail)?;
+    let out = read_document(&doc, text.len()).map_err(fail)?;
     let n = out.centre_count as f32;
     Ok(ColladaMesh {
         mesh: out.faces.finish(path)?,
@@ -71,6 +74,97 @@ pub fn load_collada(path: &Path) -> Result<ColladaMesh, SceneError> {
         vertices_imported: out.centre_count,
         assimp_centre: out.centre_sum.map(|c| c / n),
     })
+}
+
+/// The deepest element nesting accepted: [`MAX_DEPTH`] nodes and room for what sits around and
+/// inside them.
+const MAX_XML_DEPTH: usize = MAX_DEPTH + 32;
+
+/// What dae-parser cannot be trusted with, refused before it sees the document (both found by
+/// fuzzing, see `tests/fuzz_regressions.rs`):
+/// - an array (`<float_array count="…">` …) whose `count` exceeds the values it holds:
+///   dae-parser reserves `count` elements up front, so a huge count in a small file would
+///   allocate without bound;
+/// - elements nested deeper than [`MAX_XML_DEPTH`]: the XML tree is built and dropped
+///   recursively and dae-parser recurses once per `<node>` level, so a thousand nested nodes
+///   overflowed the stack (an abort, not an error). The depth is measured on the text
+///   ([`xml_depth_exceeds`]) before any tree is built.
+///
+/// Malformed XML is left to dae-parser to report.
+fn check_before_parsing(xml: &str) -> Result<(), String> {
+    if xml_depth_exceeds(xml.as_bytes(), MAX_XML_DEPTH) {
+        return Err(format!("elements nest deeper than {MAX_XML_DEPTH} levels"));
+    }
+    let Ok(root) = xml.parse::<dae_parser::Element>() else {
+        return Ok(());
+    };
+    let mut stack = vec![&root];
+    while let Some(e) = stack.pop() {
+        if e.name().ends_with("_array") {
+            if let Some(count) = e.attr("count").and_then(|c| c.trim().parse::<u64>().ok()) {
+                let held: usize = e.texts().map(|t| t.split_ascii_whitespace().count()).sum();
+                if count > held as u64 {
+                    return Err(format!(
+                        "<{} count=\"{count}\"> holds only {held} values",
+                        e.name()
+                    ));
+                }
+            }
+        }
+        stack.extend(e.children());
+    }
+    Ok(())
+}
+
+/// Whether the elements of `xml` nest deeper than `limit`, from the text alone: comments,
+/// CDATA, processing instructions and declarations are skipped, quotes inside tags respected
+/// and self-closing tags do not nest. Text cannot hold a raw `<`, so well-formed XML is
+/// measured exactly; for malformed XML the answer does not matter (the parser refuses it).
+fn xml_depth_exceeds(xml: &[u8], limit: usize) -> bool {
+    let find = |from: usize, pat: &[u8]| {
+        xml.get(from..)
+            .and_then(|rest| rest.windows(pat.len()).position(|w| w == pat))
+            .map(|k| from + k + pat.len())
+    };
+    let (mut i, mut depth) = (0, 0usize);
+    while let Some(k) = xml[i..].iter().position(|&b| b == b'<') {
+        i += k + 1;
+        let rest = &xml[i..];
+        let skip_to = if rest.starts_with(b"!--") {
+            find(i, b"-->")
+        } else if rest.starts_with(b"![CDATA[") {
+            find(i, b"]]>")
+        } else if rest.starts_with(b"?") || rest.starts_with(b"!") {
+            find(i, b">")
+        } else if rest.starts_with(b"/") {
+            depth = depth.saturating_sub(1);
+            find(i, b">")
+        } else {
+            let mut quote = None;
+            let mut j = i;
+            while j < xml.len() {
+                match (quote, xml[j]) {
+                    (Some(q), c) if c == q => quote = None,
+                    (None, c @ (b'"' | b'\'')) => quote = Some(c),
+                    (None, b'>') => break,
+                    _ => {}
+                }
+                j += 1;
+            }
+            if j > i && xml.get(j - 1) != Some(&b'/') {
+                depth += 1;
+                if depth > limit {
+                    return true;
+                }
+            }
+            Some(j + 1)
+        };
+        match skip_to {
+            Some(next) if next <= xml.len() => i = next,
+            _ => return false,
+        }
+    }
+    false
 }
 
 /// Library look-ups by id.
@@ -88,12 +182,32 @@ struct Collector {
     triangles_imported: usize,
     centre_sum: [f32; 3],
     centre_count: usize,
+    /// Node visits left: `<instance_node>` can instantiate a node twice, which instantiates
+    /// the next twice … (2⁶⁴ visits within [`MAX_DEPTH`] levels).
+    visits_left: usize,
+    /// Primitive indices that may still be read, counting every instantiation.
+    indices_left: usize,
+    /// Attribute comparisons left for joining vertices: each index tuple is compared with the
+    /// distinct ones at its position, quadratic when one position has many distinct normals.
+    comparisons_left: usize,
 }
 
 /// Nesting deeper than this is taken for a cycle of `<instance_node>` references.
 const MAX_DEPTH: usize = 64;
 
-fn read_document(doc: &Document) -> Result<Collector, String> {
+/// Work allowed per byte of the file: without instancing a node takes more than ten bytes and
+/// an index at least two, so these bounds only stop exponential instancing (found by
+/// fuzzing; see `tests/fuzz_regressions.rs`) while memory and time stay proportional to the
+/// file's size.
+const VISITS_PER_BYTE: usize = 1;
+/// See [`VISITS_PER_BYTE`].
+const INDICES_PER_BYTE: usize = 2;
+/// See [`VISITS_PER_BYTE`].
+const COMPARISONS_PER_BYTE: usize = 64;
+/// Work always allowed, whatever the file's size.
+const MIN_WORK: usize = 1_000_000;
+
+fn read_document(doc: &Document, file_bytes: usize) -> Result<Collector, String> {
     let err = |e: dae_parser::Error| format!("{e:?}");
     let maps = Maps {
         geometry: doc.local_map().map_err(err)?,
@@ -136,7 +250,12 @@ fn read_document(doc: &Document) -> Result<Collector, String> {
         ),
     };
     let root = Matrix4::new_scaling(s) * up;
-    let mut out = Collector::default();
+    let mut out = Collector {
+        visits_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(VISITS_PER_BYTE)),
+        indices_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(INDICES_PER_BYTE)),
+        comparisons_left: MIN_WORK.saturating_add(file_bytes.saturating_mul(COMPARISONS_PER_BYTE)),
+        ..Collector::default()
+    };
     for node in &scene.nodes {
         visit(node, &root, &maps, &mut out, 0)?;
     }
@@ -158,6 +277,10 @@ fn visit(
             "nodes nest deeper than {MAX_DEPTH} levels (a cycle of <instance_node>?)"
         ));
     }
+    out.visits_left = out.visits_left.checked_sub(1).ok_or(
+        "<instance_node> instantiates far more nodes than the file holds (nodes instantiated \
+         over and over)",
+    )?;
     let mut m = *parent;
     for t in &node.transforms {
         m *= transform_matrix(t)?;
@@ -397,6 +520,10 @@ fn read_primitive(
     out: &mut Collector,
 ) -> Result<(), String> {
     let (inputs, data, shape) = indices(primitive)?;
+    out.indices_left = out.indices_left.checked_sub(data.len()).ok_or(
+        "the nodes instantiate far more geometry than the file holds (geometry instantiated \
+         over and over)",
+    )?;
     let stride = inputs.stride;
     if stride == 0 || data.is_empty() {
         return Ok(()); // no inputs or no primitives: assimp makes no mesh of it
@@ -513,7 +640,18 @@ fn read_primitive(
     for k in 0..n {
         let key = local[k].map(|c| (c + 0.0).to_bits());
         let candidates = unique.entry(key).or_default();
-        if !candidates.iter().any(|&u| same(&attrs[u], &attrs[k])) {
+        let mut joined = false;
+        for &u in candidates.iter() {
+            out.comparisons_left = out.comparisons_left.checked_sub(1).ok_or(
+                "too many vertices with distinct normals or colours at one position (joining \
+                 them would take time quadratic in the file's size)",
+            )?;
+            if same(&attrs[u], &attrs[k]) {
+                joined = true;
+                break;
+            }
+        }
+        if !joined {
             candidates.push(k);
             let p = m.transform_point(&Point3::from(local[k]));
             for (s, c) in out.centre_sum.iter_mut().zip(p.coords.iter()) {

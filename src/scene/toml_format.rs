@@ -145,6 +145,12 @@ struct QuerySpec {
     goal: Vec<f64>,
 }
 
+/// The most vertices of one polygon, or points of one convex hull, a scene may give. The
+/// simplicity test and the triangulation of a polygon take time quadratic in its vertices and
+/// parry's 3D hull of 10 000 points asked for 377 MB (found by fuzzing, see
+/// `tests/fuzz_regressions.rs`); shapes this detailed belong in mesh files.
+pub const MAX_SHAPE_POINTS: usize = 2_000;
+
 /// Reads and validates a TOML scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let text = super::read_input_text(path)?;
@@ -672,6 +678,13 @@ impl Reader<'_> {
         key: &str,
         v: &[Vec<f64>],
     ) -> Result<Vec<[f64; N]>, SceneError> {
+        if v.len() > MAX_SHAPE_POINTS {
+            return Err(self.invalid(format!(
+                "{what}: {} {key}s; at most {MAX_SHAPE_POINTS} are accepted (use a mesh for \
+                 more detailed shapes)",
+                v.len()
+            )));
+        }
         v.iter()
             .enumerate()
             .map(|(k, p)| {
