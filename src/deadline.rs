@@ -90,7 +90,7 @@ impl Deadline {
             .map(|at| at.saturating_duration_since(Instant::now()))
     }
 
-    /// Whether a time limit is set.
+    /// Whether anything can end it: a time limit or a cancel flag.
     pub fn is_limited(&self) -> bool {
         self.at.is_some() || self.cancel.is_some()
     }

@@ -430,7 +430,9 @@ impl<'a> QueryPlanner<'a> {
             }
         }
         // where the roadmap cannot join them, grow it around them for the rest of the time
-        if meeting.is_none() && self.options.grow && deadline.is_limited() && !deadline.expired() {
+        // (only with a time limit: a cancel flag alone would let it grow until cancelled)
+        let timed = deadline.remaining().is_some();
+        if meeting.is_none() && self.options.grow && timed && !deadline.expired() {
             return self.grow(result, &deadline);
         }
         if meeting.is_none() && self.options.escalation_candidates > 0 {
