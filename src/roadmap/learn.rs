@@ -30,6 +30,16 @@
 //! made by the candidates before it in the same round, so it may try two nodes that those
 //! connections have just joined (its result is then kept only if feedback is on or cycle
 //! edges are wanted). Construction and expansion are split by rounds, not by time.
+//!
+//! **Budgets** ([`Learner::learn_within`]): a time budget and the caller's
+//! [`Deadline`] are checked before every oracle call of the local method, between sampling
+//! attempts and between the steps of a walk, so learning stops within about one call of them;
+//! the round is then applied as far as it got (interrupted attempts keep their certified free
+//! segments and do not count as failures).
+//!
+//! **Joining a pair** ([`Learner::connect_pair`], OMPL's PRM `solve`): start and goal become
+//! the first candidates, learning stops when they share a component, and expansion walks leave
+//! only their two components, half from each.
 
 use super::bounce::random_bounce;
 use super::graph::{Edge, Roadmap};
@@ -415,8 +425,8 @@ impl<'a> Learner<'a> {
         self
     }
 
-    /// The attempt cap [`LearnParams`]-free callers use under a time budget `time`:
-    /// [`ATTEMPT_SHARE`] of it, at least [`MIN_ATTEMPT`].
+    /// The attempt cap for a time budget `time`: 1/[`ATTEMPT_SHARE`] of it, at least
+    /// [`MIN_ATTEMPT`] (what `viaroad build --time`, `solve --roadmap` and growing queries use).
     pub fn attempt_cap_for(time: Duration) -> Duration {
         (time / ATTEMPT_SHARE).max(MIN_ATTEMPT)
     }

@@ -133,8 +133,10 @@ pub struct Budget {
     /// roadmap ends with at least this many, a few more when the last one brought several).
     /// Deterministic.
     pub nodes: Option<usize>,
-    /// Stop at the end of the first round that finishes after this much wall-clock time.
-    /// **Not deterministic**: how many rounds fit depends on the machine and its load.
+    /// Stop once this much wall-clock time has passed: checked before every oracle call of the
+    /// local method and between samples, so learning ends within about one call of it, with the
+    /// roadmap learnt so far. **Not deterministic**: how much fits depends on the machine and
+    /// its load.
     pub time: Option<Duration>,
 }
 
