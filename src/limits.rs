@@ -62,7 +62,7 @@ pub fn check_local_spec(spec: &crate::local::LocalSpec) -> Result<(), String> {
                 "sampled:res={resolution:?} is below the smallest resolution \
                  {MIN_SAMPLED_RESOLUTION:e}: a motion would be checked at more than \
                  {:e} states",
-                1.0 / MIN_SAMPLED_RESOLUTION
+                (1.0 / MIN_SAMPLED_RESOLUTION).round()
             ))
         }
         _ => Ok(()),
