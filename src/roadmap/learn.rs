@@ -152,6 +152,19 @@ pub struct Learnt {
     pub report: LearnReport,
 }
 
+/// Valid parameters and at least one thing that ends learning: nodes, time or a deadline.
+fn check_budget(
+    params: &LearnParams,
+    budget: &Budget,
+    deadline: &Deadline,
+) -> Result<(), LearnError> {
+    params.validate().map_err(LearnError::Params)?;
+    if budget.nodes.is_none() && budget.time.is_none() && !deadline.is_limited() {
+        return Err(LearnError::NoBudget);
+    }
+    Ok(())
+}
+
 /// A roadmap grown to join two configurations ([`Learner::connect_pair`]).
 #[derive(Clone, Debug)]
 pub struct PairLearnt {
@@ -465,10 +478,7 @@ impl<'a> Learner<'a> {
         deadline: &Deadline,
         progress: &mut dyn FnMut(&Progress),
     ) -> Result<Learnt, LearnError> {
-        params.validate().map_err(LearnError::Params)?;
-        if budget.nodes.is_none() && budget.time.is_none() && !deadline.is_limited() {
-            return Err(LearnError::NoBudget);
-        }
+        check_budget(params, budget, deadline)?;
         let (learnt, _) = self.grow(
             params,
             Seeds::default(),
@@ -503,10 +513,7 @@ impl<'a> Learner<'a> {
         deadline: &Deadline,
         progress: &mut dyn FnMut(&Progress),
     ) -> Result<PairLearnt, LearnError> {
-        params.validate().map_err(LearnError::Params)?;
-        if budget.nodes.is_none() && budget.time.is_none() && !deadline.is_limited() {
-            return Err(LearnError::NoBudget);
-        }
+        check_budget(params, budget, deadline)?;
         let seeds = Seeds {
             base,
             pair: Some((start, goal)),
