@@ -1,0 +1,153 @@
+//! The hot-path guard (issue 11): the same seed learns the same graph and answers the same
+//! queries with the same oracle work as before the hot path was rewritten. The digests below
+//! were recorded on 2026-12-01 from commit d7ab2ce, before any of that work; a change that is
+//! only "less overhead" must leave every one of them as it is. A change of the algorithm
+//! (sampling, neighbour choice, the via-point search) changes them on purpose: record the new
+//! values in the same commit and say why in its message.
+//!
+//! What is hashed: every node's coordinates (bit patterns), every edge (ends, length, corners),
+//! the learner's attempt and connection counts, and for each query its outcome, path, length
+//! and intersect calls. The file bytes are not hashed: the header may change format.
+
+use std::path::PathBuf;
+use viaroad::local::LocalSpec;
+use viaroad::roadmap::{Budget, LearnParams, Learner, QueryPlanner};
+use viaroad::scene::Scene;
+
+/// FNV-1a, 64 bits: small, stable across platforms and Rust versions (std's hasher is not).
+struct Fnv(u64);
+
+impl Fnv {
+    fn new() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+    fn u64(&mut self, x: u64) {
+        for b in x.to_le_bytes() {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    fn f64(&mut self, x: f64) {
+        self.u64(x.to_bits());
+    }
+    fn str(&mut self, s: &str) {
+        for b in s.bytes() {
+            self.u64(u64::from(b));
+        }
+    }
+}
+
+/// (graph digest, answers digest, nodes, edges, intersect calls of the answers)
+fn digests(file: &str, nodes: usize, seed: u64) -> (u64, u64, usize, usize, u64) {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let scene = Scene::load(&root.join(file)).unwrap();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let learnt = pool.install(|| {
+        Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+            .learn(
+                &LearnParams::default(),
+                &Budget::nodes(nodes),
+                seed,
+                &mut |_| {},
+            )
+            .unwrap()
+    });
+    let map = &learnt.roadmap;
+    let mut g = Fnv::new();
+    for q in map.nodes() {
+        for &x in q {
+            g.f64(x);
+        }
+    }
+    for e in map.edges() {
+        g.u64(u64::from(e.a));
+        g.u64(u64::from(e.b));
+        g.f64(e.length);
+        for &x in &e.corners {
+            g.f64(x);
+        }
+    }
+    g.u64(learnt.report.attempts);
+    g.u64(learnt.report.connected);
+
+    // the scene's queries and their crossings, answered from the learnt roadmap
+    let q = scene.checked_queries().unwrap();
+    let mut pairs: Vec<_> = q
+        .iter()
+        .map(|q| (q.start.clone(), q.goal.clone()))
+        .collect();
+    for a in &q {
+        for b in &q {
+            pairs.push((a.goal.clone(), b.start.clone()));
+        }
+    }
+    let planner = QueryPlanner::new(map, oracle.as_ref()).unwrap();
+    let mut a = Fnv::new();
+    let mut calls = 0;
+    for answer in planner.query_batch(&pairs) {
+        let r = answer.result.unwrap();
+        a.str(&format!("{:?}", r.outcome));
+        for c in &r.path {
+            for &x in c {
+                a.f64(x);
+            }
+        }
+        a.f64(r.length);
+        a.u64(r.counts.intersect_calls());
+        calls += r.counts.intersect_calls();
+    }
+    (g.0, a.0, map.node_count(), map.edge_count(), calls)
+}
+
+fn expect(file: &str, nodes: usize, seed: u64, want: (u64, u64, usize, usize, u64)) {
+    let got = digests(file, nodes, seed);
+    assert_eq!(
+        got, want,
+        "{file}: graph/answers digest changed (got, want) — see this file's doc comment"
+    );
+}
+
+#[test]
+fn discs_cluttered() {
+    expect(
+        "scenes/discs-cluttered.toml",
+        600,
+        1,
+        (13081411733634355448, 1001270600015653363, 600, 828, 2410),
+    );
+}
+
+#[test]
+fn se2_corridor() {
+    expect(
+        "scenes/se2-corridor.toml",
+        300,
+        2,
+        (16958927050931777291, 18301310688450646121, 302, 332, 1108),
+    );
+}
+
+#[test]
+fn se3_easy() {
+    expect(
+        "scenes/ompl/3D/Easy.cfg",
+        150,
+        3,
+        (12560445499908280558, 1610793941078763613, 150, 154, 24),
+    );
+}
+
+#[test]
+fn se3_cube_into_box() {
+    expect(
+        "scenes/cube-into-box.toml",
+        200,
+        4,
+        (906231702287666841, 2653183632698691105, 203, 268, 21814),
+    );
+}
