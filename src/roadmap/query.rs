@@ -25,18 +25,15 @@ use super::graph::Roadmap;
 use super::landmarks::Landmarks;
 use super::learn::{LearnError, Learner};
 use super::params::Budget;
+use super::persist::check_local_spec;
 use super::persist::RoadmapError;
 use crate::deadline::Deadline;
-use crate::local::viapoint::{Depth, ViaPoint, ViaPointOptions};
-use crate::local::{
-    drop_corners, path_length, shorten, Connection, LocalMethod, LocalSpec, Outcome,
-};
+use crate::local::{drop_corners, path_length, shorten, Connection, LocalMethod, Outcome};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
 use petgraph::graph::NodeIndex;
 use rayon::prelude::*;
 use serde::Serialize;
-use std::str::FromStr;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
@@ -70,7 +67,7 @@ pub struct QueryOptions {
     /// When the roadmap's own local method can neither connect start and goal directly nor
     /// attach both, try the direct connection and then this many nearest nodes per end again
     /// with the via-point planner searching deeper (at least the depth and
-    /// call budget of [`ViaPointOptions::default`]). A roadmap is learnt with a shallow, cheap
+    /// call budget of the defaults, [`crate::local::LocalSpec::deeper`]). A roadmap is learnt with a shallow, cheap
     /// local method; a query calls it only twice, so it can afford the deep search where the
     /// roadmap did not reach ("the local method can be tuned … to be quite effective in path
     /// planning for the cost of increased running time", CHS §1.6). Only for via-point
@@ -280,10 +277,13 @@ pub struct QueryPlanner<'a> {
     roadmap: &'a Roadmap,
     oracle: &'a dyn CollisionOracle,
     local: Box<dyn LocalMethod>,
-    /// The deeper search for ends the roadmap's method cannot attach (via-point roadmaps).
+    /// The deeper search for ends the roadmap's method cannot attach
+    /// ([`crate::local::LocalSpec::deeper`]).
     escalation: Option<Box<dyn LocalMethod>>,
-    /// The roadmap's via-point options, for the budgeted quick try.
-    via: Option<ViaPointOptions>,
+    /// The quick try from start to goal ([`QueryOptions::direct_calls`],
+    /// [`crate::local::LocalSpec::budgeted`]); `None` where the roadmap's method is such a
+    /// check already.
+    quick: Option<Box<dyn LocalMethod>>,
     groups: Vec<Group>,
     options: QueryOptions,
     landmarks: OnceLock<Landmarks>,
@@ -330,49 +330,26 @@ impl<'a> QueryPlanner<'a> {
         oracle: &'a dyn CollisionOracle,
     ) -> Result<QueryPlanner<'a>, RoadmapError> {
         let spec = &roadmap.header().local_spec;
-        let parsed = LocalSpec::from_str(spec).map_err(|e| RoadmapError::UnknownLocalMethod {
-            spec: spec.clone(),
-            reason: e.reason,
-        })?;
-        let escalation = match &parsed {
-            LocalSpec::ViaPoint(o) => {
-                let full = ViaPointOptions::default();
-                let deeper = ViaPointOptions {
-                    depth: if o.depth.max() >= full.depth.max() {
-                        o.depth
-                    } else {
-                        full.depth
-                    },
-                    max_calls: match (o.max_calls, full.max_calls) {
-                        (Some(a), Some(b)) => Some(a.max(b)),
-                        _ => None,
-                    },
-                    ..o.clone()
-                };
-                (deeper != *o).then(|| LocalSpec::ViaPoint(deeper).build())
-            }
-            _ => None,
-        };
-        let via = match &parsed {
-            LocalSpec::ViaPoint(o) => Some(o.clone()),
-            _ => None,
-        };
-        let local = parsed.build();
+        check_local_spec(spec)?;
+        let local = spec.build();
         let groups = local.groups(roadmap.space());
+        let options = QueryOptions::default();
         Ok(QueryPlanner {
             roadmap,
             oracle,
             local,
-            escalation,
-            via,
+            escalation: spec.deeper().map(|s| s.build()),
+            quick: spec.budgeted(options.direct_calls).map(|s| s.build()),
             groups,
-            options: QueryOptions::default(),
+            options,
             landmarks: OnceLock::new(),
         })
     }
 
     /// The same planner with other options.
     pub fn with_options(mut self, options: QueryOptions) -> Self {
+        let spec = &self.roadmap.header().local_spec;
+        self.quick = spec.budgeted(options.direct_calls).map(|s| s.build());
         self.options = options;
         self.landmarks = OnceLock::new();
         self
@@ -443,7 +420,7 @@ impl<'a> QueryPlanner<'a> {
             }
             // the roadmap's method again would fail the same way: it was the quick try, or the
             // quick search ran out of alternatives before any budget or depth limit
-            retry_direct = self.via.is_some() && outcome != Outcome::Blocked;
+            retry_direct = self.quick.is_some() && outcome != Outcome::Blocked;
         }
         // attach both ends, alternating, one node per component and side
         let mut ends = (Vec::new(), Vec::new());
@@ -595,11 +572,9 @@ impl<'a> QueryPlanner<'a> {
         let inner = QueryPlanner {
             roadmap,
             oracle: self.oracle,
-            local: LocalSpec::from_str(&header.local_spec)
-                .map(|s| s.build())
-                .map_err(|e| QueryError::Oracle(OracleError::Unsupported(e.reason)))?,
+            local: header.local_spec.build(),
             escalation: None,
-            via: None,
+            quick: None,
             groups: self.groups.clone(),
             options: QueryOptions {
                 landmarks: 0,
@@ -627,25 +602,8 @@ impl<'a> QueryPlanner<'a> {
         goal: &[f64],
         deadline: &Deadline,
     ) -> Result<Connection, QueryError> {
-        let space = self.roadmap.space();
-        let Some(o) = &self.via else {
-            return Ok(self
-                .local
-                .connect_within(space, self.oracle, start, goal, deadline)?);
-        };
-        let budget = self.options.direct_calls;
-        let quick = if budget > 0 {
-            ViaPointOptions {
-                max_calls: Some(o.max_calls.map_or(budget, |m| m.min(budget))),
-                ..o.clone()
-            }
-        } else {
-            ViaPointOptions {
-                depth: Depth::Fixed(0),
-                ..o.clone()
-            }
-        };
-        Ok(ViaPoint::new(quick).connect_within(space, self.oracle, start, goal, deadline)?)
+        let method = self.quick.as_deref().unwrap_or(self.local.as_ref());
+        Ok(method.connect_within(self.space(), self.oracle, start, goal, deadline)?)
     }
 
     /// Attaches start and goal to their `k` nearest nodes with `method`, alternating sides, one
