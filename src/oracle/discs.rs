@@ -4,7 +4,7 @@
 //! solution set of one quadratic inequality in `t`, hence at most one interval per ball; the
 //! answer is the union over all balls.
 
-use super::{CallCounts, CollisionOracle, OracleError};
+use super::{CallCounts, CollisionOracle, OracleError, Workspace};
 use crate::interval::{Interval, IntervalList};
 use crate::space::{Change, Motion};
 
@@ -136,24 +136,37 @@ impl CollisionOracle for Discs {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
+        let mut out = IntervalList::new();
+        self.intervals_into(motion, &mut out, &mut Workspace::new(), counts)?;
+        Ok(out)
+    }
+
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
         let d = self.linear_delta(motion)?;
         counts.pairs_tested += self.radii.len() as u64;
+        out.clear();
         if d.iter().all(|x| *x == 0.0) {
-            let inside = self.contains_point(&motion.origin);
-            return Ok(if inside {
-                IntervalList::single(motion.range)
-            } else {
-                IntervalList::new()
-            });
+            if self.contains_point(&motion.origin) {
+                out.push(motion.range);
+            }
+            return Ok(());
         }
-        let mut hits = Vec::new();
+        let hits = &mut ws.hits;
+        hits.clear();
         self.for_each_hit(&motion.origin, d, |lo, hi| {
             if let Some(iv) = (Interval { lo, hi }).meet(&motion.range) {
                 hits.push(iv);
             }
             true
         });
-        Ok(IntervalList::from_unsorted(hits))
+        out.set_from_unsorted(hits);
+        Ok(())
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
