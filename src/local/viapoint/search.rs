@@ -19,7 +19,7 @@ use super::borderline::{
     base_parameter, borderlines_into, candidates_into, free_sections_into, via_point, Candidate,
     Crossing, Lines,
 };
-use super::options::{ViaLimit, ViaPointOptions};
+use super::options::{BasePoint, Directions, ViaLimit, ViaPointOptions};
 use crate::deadline::Deadline;
 use crate::interval::{Interval, IntervalList};
 use crate::local::{Borderline, Discoveries};
@@ -195,16 +195,36 @@ pub(super) struct Search<'a> {
 /// A node's random stream, seeded only when a random choice is actually made: the default
 /// settings never draw, and seeding ChaCha per node cost more than the oracle (issue 11).
 /// The numbers drawn are the same as from `ChaCha8Rng::seed_from_u64(seed)`.
+/// Where the settings make no random choice at all, not even the seed is hashed (`seed` is
+/// `None`); [`draws_base`] and [`draws_directions`] decide that.
 struct NodeRng {
-    seed: u64,
+    seed: Option<u64>,
     rng: Option<ChaCha8Rng>,
 }
 
 impl NodeRng {
     fn get(&mut self) -> &mut ChaCha8Rng {
+        debug_assert!(
+            self.seed.is_some(),
+            "a node drew from a stream it said it would not"
+        );
+        let seed = self.seed.unwrap_or(0);
         self.rng
-            .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(self.seed))
+            .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
     }
+}
+
+/// Whether [`base_parameter`] draws a random number for this strategy.
+pub(super) fn draws_base(strategy: BasePoint) -> bool {
+    matches!(
+        strategy,
+        BasePoint::RandomInFirst | BasePoint::CentreOfRandom | BasePoint::RandomInMotion
+    )
+}
+
+/// Whether erecting borderlines draws random numbers with these directions.
+fn draws_directions(directions: Directions) -> bool {
+    matches!(directions, Directions::Random { .. })
 }
 
 impl RngCore for NodeRng {
@@ -378,7 +398,7 @@ impl<'a> Search<'a> {
             )?;
             space.with_group_of_into(&cur, &goal, g, &mut next);
             if !collisions.is_empty() {
-                let mut rng = self.node_rng(id, 0);
+                let mut rng = self.node_rng(id, 0, draws_base(self.options.base_point));
                 let t = base_parameter(self.options.base_point, &collisions, &mut rng);
                 let mut base = std::mem::take(&mut self.b.buf);
                 self.b.group_motions[gi].write_at(t, &mut base);
@@ -430,7 +450,13 @@ impl<'a> Search<'a> {
 
     /// A random stream of its own for each node and round, so that random choices do not depend
     /// on the order in which the search meets the node (seeded lazily, see [`NodeRng`]).
-    fn node_rng(&self, id: NodeId, round: u32) -> NodeRng {
+    fn node_rng(&self, id: NodeId, round: u32, draws: bool) -> NodeRng {
+        if !draws {
+            return NodeRng {
+                seed: None,
+                rng: None,
+            };
+        }
         let n = &self.b.nodes[id];
         let mut h = 0xcbf2_9ce4_8422_2325u64 ^ self.options.seed;
         let words = self.pt(n.a).iter().chain(self.pt(n.z)).map(|x| x.to_bits());
@@ -438,7 +464,10 @@ impl<'a> Search<'a> {
             h = (h ^ v).wrapping_mul(0x0000_0100_0000_01b3);
             h ^= h >> 29;
         }
-        NodeRng { seed: h, rng: None }
+        NodeRng {
+            seed: Some(h),
+            rng: None,
+        }
     }
 
     /// Computes the via points of the next round of borderlines. `false` when there are no more
@@ -472,7 +501,7 @@ impl<'a> Search<'a> {
             &groups[group],
             &mut blocked_motion,
         );
-        let mut rng = self.node_rng(id, round + 1);
+        let mut rng = self.node_rng(id, round + 1, draws_directions(options.directions));
         let crossing = Crossing {
             motion: &blocked_motion,
             group,
@@ -902,4 +931,47 @@ impl<'a> Search<'a> {
 
 fn key(q: &[f64]) -> Vec<u64> {
     q.iter().map(|x| x.to_bits()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::local::viapoint::borderline::base_parameter;
+
+    /// A random source that fails the test when drawn from.
+    struct Untouchable;
+    impl RngCore for Untouchable {
+        fn next_u32(&mut self) -> u32 {
+            panic!("drew a random number")
+        }
+        fn next_u64(&mut self) -> u64 {
+            panic!("drew a random number")
+        }
+        fn fill_bytes(&mut self, _: &mut [u8]) {
+            panic!("drew a random number")
+        }
+    }
+
+    #[test]
+    fn strategies_said_not_to_draw_do_not_draw() {
+        // the lazily seeded node streams skip hashing for these (issue 11): if one of them drew,
+        // the search would use a stream of the wrong seed
+        let hits = IntervalList::from_unsorted(vec![
+            Interval { lo: 0.1, hi: 0.2 },
+            Interval { lo: 0.4, hi: 0.6 },
+            Interval { lo: 0.8, hi: 0.9 },
+        ]);
+        let mut drawing = 0;
+        for b in BasePoint::ALL {
+            if draws_base(b) {
+                drawing += 1;
+                // and those said to draw really do
+                let r = std::panic::catch_unwind(|| base_parameter(b, &hits, &mut Untouchable));
+                assert!(r.is_err(), "{b:?} said to draw but did not");
+            } else {
+                base_parameter(b, &hits, &mut Untouchable);
+            }
+        }
+        assert_eq!(drawing, 3);
+    }
 }
