@@ -209,6 +209,12 @@ impl CollisionOracle for Discs {
         self.contains_point(q)
     }
 
+    /// Analytic: a whole line costs what a segment does, so [`super::Bounded`] need not copy
+    /// the motion to clip it (the answer is the same set either way, issue 11).
+    fn prefers_unclipped(&self) -> bool {
+        true
+    }
+
     fn motion_is_free(
         &self,
         motion: &Motion,
