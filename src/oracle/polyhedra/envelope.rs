@@ -181,64 +181,59 @@ pub(crate) fn sphere_sweep(c: &V3, dir: &V3, r: f64, centre: &V3, radius: f64) -
     })
 }
 
-/// The extremes of `a cos φ + b sin φ + c` over `φ ∈ [p0, p1]` (`p1 - p0` may exceed 2π).
-fn trig_range(
-    a: f64,
-    b: f64,
-    c: f64,
-    p0: f64,
-    p1: f64,
-    cs0: (f64, f64),
-    cs1: (f64, f64),
-) -> (f64, f64) {
+/// The extremes of `a cos φ + b sin φ + c` over the angles of `r` (which may exceed 2π).
+///
+/// The maximum `c + √(a² + b²)` is reached at the angle θ of `(a, b)`, the minimum at θ + π;
+/// θ lies in the range iff `cos(θ − mid) ≥ cos(half)` (mid and half-width of the range), i.e.
+/// `a cos mid + b sin mid ≥ √(a² + b²) · cos(half)` — no arctangent, no reduction modulo 2π.
+/// The test is loosened by a relative 1e-12 and the half-width by [`ATAN_ERR`], so an extreme
+/// on the edge of the range counts as inside (a box a little larger, never smaller).
+fn trig_range(a: f64, b: f64, c: f64, r: &AngleRange) -> (f64, f64) {
     let amp = norm2(a, b);
-    if p1 - p0 >= TAU {
+    if r.full {
         return (c - amp, c + amp);
     }
-    let f0 = a * cs0.0 + b * cs0.1 + c;
-    let f1 = a * cs1.0 + b * cs1.1 + c;
+    let f0 = a * r.cs0.0 + b * r.cs0.1 + c;
+    let f1 = a * r.cs1.0 + b * r.cs1.1 + c;
     let (mut lo, mut hi) = (f0.min(f1), f0.max(f1));
     if amp > 0.0 {
-        // maximum at θ = atan2(b, a), minimum at θ + π (mod 2π); θ from the fast arctangent,
-        // so an extreme within its error of the range counts as inside (a box a little larger,
-        // never smaller)
-        let theta = fast_atan2(b, a);
-        let (q0, q1) = (p0 - ATAN_ERR, p1 + ATAN_ERR);
-        if angle_in(theta, q0, q1) {
+        let d = a * r.cs_mid.0 + b * r.cs_mid.1;
+        let reach = amp * (r.cos_half - 1e-12);
+        if d >= reach {
             hi = c + amp;
         }
-        if angle_in(theta + PI, q0, q1) {
+        if -d >= reach {
             lo = c - amp;
         }
     }
     (lo, hi)
 }
 
-/// Whether some `θ + 2πk` lies in `[p0, p1]`.
-pub(crate) fn angle_in(theta: f64, p0: f64, p1: f64) -> bool {
-    let k = ((p0 - theta) / TAU).ceil();
-    theta + k * TAU <= p1
-}
-
-/// Precomputed cosines and sines of the ends of an angle range, shared by many arcs.
+/// Precomputed cosines and sines of the ends and the middle of an angle range, shared by many
+/// arcs ([`AngleRange::arc_box`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct AngleRange {
-    /// Start angle.
-    pub p0: f64,
-    /// End angle (`>= p0`).
-    pub p1: f64,
     cs0: (f64, f64),
     cs1: (f64, f64),
+    /// Cosine and sine of the middle angle.
+    cs_mid: (f64, f64),
+    /// Cosine of the half-width widened by [`ATAN_ERR`] (−1 once that reaches π).
+    cos_half: f64,
+    /// Whether the range covers a whole turn.
+    full: bool,
 }
 
 impl AngleRange {
     /// `[p0, p1]`.
     pub fn new(p0: f64, p1: f64) -> AngleRange {
+        let half = 0.5 * (p1 - p0) + ATAN_ERR;
+        let mid = 0.5 * (p0 + p1);
         AngleRange {
-            p0,
-            p1,
             cs0: (p0.cos(), p0.sin()),
             cs1: (p1.cos(), p1.sin()),
+            cs_mid: (mid.cos(), mid.sin()),
+            cos_half: if half >= PI { -1.0 } else { half.cos() },
+            full: p1 - p0 >= TAU,
         }
     }
 
@@ -252,7 +247,7 @@ impl AngleRange {
         let b = axis.cross(x);
         let mut out = Aabb::EMPTY;
         for k in 0..3 {
-            let (lo, hi) = trig_range(a[k], b[k], c[k], self.p0, self.p1, self.cs0, self.cs1);
+            let (lo, hi) = trig_range(a[k], b[k], c[k], self);
             out.lo[k] = lo;
             out.hi[k] = hi;
         }
@@ -693,7 +688,5 @@ mod tests {
         assert!((wrap_pi(PI) - PI).abs() < 1e-15);
         assert!((wrap_pi(-PI) - PI).abs() < 1e-15);
         assert!((wrap_pi(3.0 * PI + 0.1) - (-PI + 0.1)).abs() < 1e-12);
-        assert!(angle_in(0.1 + 4.0 * PI, 0.0, 0.2));
-        assert!(!angle_in(0.3, 0.0, 0.2));
     }
 }

@@ -180,6 +180,10 @@ impl Pose {
 
 /// Where the pieces of the answer go; stops the sweep at the first one when only a yes/no is
 /// wanted ([`CollisionOracle::motion_is_free`]).
+///
+/// The pieces are kept merged (sorted, disjoint; touching closed intervals join), so that a
+/// pair whose whole window is already known to collide can be skipped ([`Sink::covers`]): its
+/// pieces could not change the union. Deep in collision that is most pairs.
 pub(crate) struct Sink {
     hits: Vec<Interval>,
     first_only: bool,
@@ -195,12 +199,31 @@ impl Sink {
 
     /// Adds a collision interval; returns whether to go on.
     fn add(&mut self, iv: Interval) -> bool {
-        if iv.lo <= iv.hi {
-            self.hits.push(iv);
-            !self.first_only
-        } else {
-            true
+        if iv.lo > iv.hi || iv.lo.is_nan() || iv.hi.is_nan() {
+            return true;
         }
+        // pieces [i, j) meet `iv`
+        let i = self.hits.partition_point(|p| p.hi < iv.lo);
+        let j = i + self.hits[i..].partition_point(|p| p.lo <= iv.hi);
+        if i == j {
+            self.hits.insert(i, iv);
+        } else {
+            let merged = Interval {
+                lo: self.hits[i].lo.min(iv.lo),
+                hi: self.hits[j - 1].hi.max(iv.hi),
+            };
+            self.hits[i] = merged;
+            self.hits.drain(i + 1..j);
+        }
+        !self.first_only
+    }
+
+    /// Whether every parameter of `w` is already known to collide.
+    fn covers(&self, w: Interval) -> bool {
+        let i = self.hits.partition_point(|p| p.hi < w.lo);
+        self.hits
+            .get(i)
+            .is_some_and(|p| p.lo <= w.lo && w.hi <= p.hi)
     }
 
     /// Whether the sweep should stop.

@@ -261,10 +261,14 @@ pub(crate) fn sweep(
         ) else {
             return true;
         };
-        let around = Around::new(Interval {
+        let hull = Interval {
             lo: first.lo,
             hi: last.hi,
-        });
+        };
+        if sink.covers(hull) {
+            return true;
+        }
+        let around = Around::new(hull);
         // an edge meets a face only where its ends are not both strictly on one side of the
         // face's plane (the predicate's first atoms, with their slack doubled): if all three
         // corners of a face stay on one side for the whole window, its edges are skipped
@@ -348,6 +352,9 @@ pub(crate) fn sweep(
                 }
             },
             |ri, oi, w| {
+                if sink.covers(w) {
+                    return true;
+                }
                 for &o in oi {
                     let ow = obst.corners(o);
                     let owbox = Aabb::of_points(ow.iter());

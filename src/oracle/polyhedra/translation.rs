@@ -176,6 +176,9 @@ pub(crate) fn sweep(
         } else {
             w
         };
+        if sink.covers(pair_window) {
+            return true;
+        }
         // robot edges moving by +λ·dir against the obstacle face, only while the robot face
         // reaches the obstacle face's plane
         let rf = Face::new(rc);
@@ -257,6 +260,9 @@ pub(crate) fn sweep(
                     .meet(&w)
             },
             |ri, oi, w| {
+                if sink.covers(w) {
+                    return true;
+                }
                 for &o in oi {
                     let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
                     let obox = frame.box_of(&of.v);
