@@ -4,7 +4,7 @@
 //! The hierarchy, coarse to fine:
 //! 1. the robot's bounding sphere / box swept over the whole motion against the obstacles'
 //!    bounding box — a motion far from everything costs nothing;
-//! 2. the robot's tree against the obstacles' tree ([`super::bvh`], `Bvh::visit_pairs`), each
+//! 2. the robot's tree against the obstacles' tree (the kernel's `Bvh::visit_pairs`), each
 //!    pair of nodes with a window of the motion parameter in which they may meet: along a
 //!    translation, the λ for which a robot node's box (placed in the world, and the obstacle
 //!    node's box turned into the robot's frame) moved by λ overlaps the other box; for a turn,
@@ -24,137 +24,12 @@
 //! return. Angles come from a polynomial arctangent ([`fast_atan2`]) whose error bound
 //! ([`ATAN_ERR`]) widens every angular bound, so bounds stay conservative.
 
+use super::Aabb;
 use crate::interval::Interval;
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 type V3 = Vector3<f64>;
-
-/// An axis-aligned box `[lo, hi]`; empty when `lo > hi` in some coordinate.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Aabb {
-    /// Lower corner.
-    pub lo: V3,
-    /// Upper corner.
-    pub hi: V3,
-}
-
-impl Aabb {
-    /// The empty box (neutral element of [`merge`](Self::merge)).
-    pub const EMPTY: Aabb = Aabb {
-        lo: V3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
-        hi: V3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
-    };
-
-    /// The box around `points`.
-    pub fn of_points<'a>(points: impl IntoIterator<Item = &'a V3>) -> Aabb {
-        let mut b = Aabb::EMPTY;
-        for p in points {
-            b.add_point(p);
-        }
-        b
-    }
-
-    /// Grows the box to contain `p`.
-    pub fn add_point(&mut self, p: &V3) {
-        self.lo = self.lo.inf(p);
-        self.hi = self.hi.sup(p);
-    }
-
-    /// The box around both.
-    pub fn merge(&self, o: &Aabb) -> Aabb {
-        Aabb {
-            lo: self.lo.inf(&o.lo),
-            hi: self.hi.sup(&o.hi),
-        }
-    }
-
-    /// The common part (possibly empty).
-    pub fn meet(&self, o: &Aabb) -> Aabb {
-        Aabb {
-            lo: self.lo.sup(&o.lo),
-            hi: self.hi.inf(&o.hi),
-        }
-    }
-
-    /// No point inside.
-    pub fn is_empty(&self) -> bool {
-        // written with `all` so that NaN ends count as empty
-        !(0..3).all(|k| self.lo[k] <= self.hi[k])
-    }
-
-    /// Centre.
-    pub fn centre(&self) -> V3 {
-        0.5 * (self.lo + self.hi)
-    }
-
-    /// Length of the diagonal (0 for an empty box).
-    pub fn diagonal(&self) -> f64 {
-        if self.is_empty() {
-            0.0
-        } else {
-            (self.hi - self.lo).norm()
-        }
-    }
-
-    /// Grown by `m` on every side.
-    pub fn grown(&self, m: f64) -> Aabb {
-        Aabb {
-            lo: self.lo.add_scalar(-m),
-            hi: self.hi.add_scalar(m),
-        }
-    }
-
-    /// Whether the closed boxes share a point.
-    pub fn overlaps(&self, o: &Aabb) -> bool {
-        (0..3).all(|k| self.lo[k] <= o.hi[k] && o.lo[k] <= self.hi[k])
-    }
-
-    /// The box moved by `d`.
-    pub fn shifted(&self, d: &V3) -> Aabb {
-        Aabb {
-            lo: self.lo + d,
-            hi: self.hi + d,
-        }
-    }
-
-    /// The parameters `s` for which `origin + s·dir` lies in the box (slab test), if any.
-    pub fn line_range(&self, origin: &V3, dir: &V3) -> Option<Interval> {
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-        for k in 0..3 {
-            if dir[k] == 0.0 {
-                if origin[k] < self.lo[k] || origin[k] > self.hi[k] {
-                    return None;
-                }
-            } else {
-                let a = (self.lo[k] - origin[k]) / dir[k];
-                let b = (self.hi[k] - origin[k]) / dir[k];
-                lo = lo.max(a.min(b));
-                hi = hi.min(a.max(b));
-            }
-        }
-        Interval::new(lo, hi)
-    }
-
-    /// The parameters `λ` for which this box moved by `λ·dir` overlaps `other`.
-    pub fn sweep_range(&self, dir: &V3, other: &Aabb) -> Option<Interval> {
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-        for k in 0..3 {
-            // other.lo - self.hi <= λ dir <= other.hi - self.lo
-            let (a, b) = (other.lo[k] - self.hi[k], other.hi[k] - self.lo[k]);
-            if dir[k] == 0.0 {
-                if a > 0.0 || b < 0.0 {
-                    return None;
-                }
-            } else {
-                let (x, y) = (a / dir[k], b / dir[k]);
-                lo = lo.max(x.min(y));
-                hi = hi.min(x.max(y));
-            }
-        }
-        Interval::new(lo, hi)
-    }
-}
 
 /// The λ for which the ball of radius `r` about `c + λ·dir` meets the ball of radius `radius`
 /// about `centre`: one quadratic inequality (CHS §2.2, "a simple quadratic inequality can tell
@@ -502,8 +377,8 @@ pub(crate) fn sector_window(m: (f64, f64), f: (f64, f64), window: Interval) -> O
         return Some(window);
     }
     let start = wrap_pi(f.0 - m.0 - half);
-    let spans = super::trig::arc_in_window(
-        super::trig::Arc::Part {
+    let spans: super::Spans = crate::geometry::kernel::trig::arc_in_window(
+        crate::geometry::kernel::trig::Arc {
             start,
             length: 2.0 * half,
         },

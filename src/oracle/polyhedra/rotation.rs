@@ -19,11 +19,11 @@
 //! conjunctions are evaluated on small interval lists ([`Spans`]).
 
 use super::body::Face;
-use super::envelope::{sector_window, Aabb, AngleRange, CylBounds, CylBox, CylFrame};
+use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
-use super::spans::Spans;
-use super::trig::{arc_in_window, Arc, Trig};
-use super::{containment, Polyhedra, Pose, Sink};
+use super::{containment, Hits, Polyhedra, Pose};
+use super::{Aabb, Spans};
+use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -207,7 +207,7 @@ pub(crate) fn sweep(
     pose: &Pose,
     axis_w: &V3,
     phis: Interval,
-    sink: &mut Sink,
+    sink: &mut Hits,
     counts: &mut CallCounts,
 ) {
     let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
@@ -239,7 +239,7 @@ pub(crate) fn sweep(
                     of: &Face,
                     obox: &CylBox,
                     w: Interval,
-                    sink: &mut Sink,
+                    sink: &mut Hits,
                     counts: &mut CallCounts|
      -> bool {
         let rc = robot.corners(r);
@@ -249,7 +249,7 @@ pub(crate) fn sweep(
                 return true;
             }
             match rbox.turn_window(obox) {
-                Some((start, length)) => arc_in_window(Arc::Part { start, length }, w),
+                Some((start, length)) => arc_in_window(Arc { start, length }, w),
                 None => Spans::single(w),
             }
         } else {
@@ -285,7 +285,7 @@ pub(crate) fn sweep(
                 for iv in
                     edge_face_around(&p, &q, of, &axis, &pair_window, &around, &tol).as_slice()
                 {
-                    if !sink.add(*iv) {
+                    if sink.add(*iv).is_break() {
                         return false;
                     }
                 }
@@ -302,7 +302,7 @@ pub(crate) fn sweep(
             counts.pairs_tested += 1;
             for iv in edge_face_around(&p, &q, &rf, &-axis, &pair_window, &around, &tol).as_slice()
             {
-                if !sink.add(*iv) {
+                if sink.add(*iv).is_break() {
                     return false;
                 }
             }
