@@ -43,8 +43,8 @@ impl ViaPoint {
 }
 
 impl LocalMethod for ViaPoint {
-    fn spec(&self) -> String {
-        super::LocalSpec::ViaPoint(self.options.clone()).to_string()
+    fn spec(&self) -> super::LocalSpec {
+        super::LocalSpec::ViaPoint(self.options.clone())
     }
 
     fn connect_within(
