@@ -49,6 +49,18 @@ pub struct Collision {
     pub a: String,
     /// A link name or an obstacle id.
     pub b: String,
+    /// How they meet.
+    pub contact: Contact,
+}
+
+/// How two shapes meet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Contact {
+    /// Their surfaces (or solid primitives) intersect: what FCL's mesh tests see too.
+    Surface,
+    /// Their surfaces are apart but one solid holds the other (e.g. the Panda's finger
+    /// folded wholly inside link 5): surface-only checkers such as FCL's BVH meshes miss it.
+    Containment,
 }
 
 /// The result of checking a path.
@@ -137,16 +149,20 @@ fn primitive_part(owner: usize, origin: Isometry3<f64>, p: &Primitive) -> Part {
 }
 
 /// Whether two placed parts meet: surfaces (or solids) intersect, or one solid holds the other.
-fn meet(a: &Part, pa: &Isometry3<f64>, b: &Part, pb: &Isometry3<f64>) -> bool {
+fn meet(a: &Part, pa: &Isometry3<f64>, b: &Part, pb: &Isometry3<f64>) -> Option<Contact> {
     let d = (pa.translation.vector - pb.translation.vector).norm();
     if d > a.radius + b.radius {
-        return false;
+        return None;
     }
     let hit = parry3d_f64::query::intersection_test(pa, &*a.shape, pb, &*b.shape)
         // unsupported pairs cannot be judged: count them as collisions (conservative)
         .unwrap_or(true);
-    hit || (a.solid && a.shape.contains_point(pa, &(pb * b.inner_point)))
-        || (b.solid && b.shape.contains_point(pb, &(pa * a.inner_point)))
+    if hit {
+        return Some(Contact::Surface);
+    }
+    let held = (a.solid && a.shape.contains_point(pa, &(pb * b.inner_point)))
+        || (b.solid && b.shape.contains_point(pb, &(pa * a.inner_point)));
+    held.then_some(Contact::Containment)
 }
 
 impl ArmChecker {
@@ -200,18 +216,20 @@ impl ArmChecker {
             .collect();
         let name = |l: usize| self.arm.model.urdf.links[l].name.clone();
         let mut out: Vec<Collision> = Vec::new();
-        let mut push = |c: Collision| {
-            if !out.contains(&c) {
-                out.push(c);
-            }
+        // one entry per pair; a surface contact of any part outranks a containment
+        let mut push = |c: Collision| match out.iter_mut().find(|o| o.a == c.a && o.b == c.b) {
+            Some(o) if c.contact == Contact::Surface => o.contact = Contact::Surface,
+            Some(_) => {}
+            None => out.push(c),
         };
         for &(la, lb) in &self.arm.self_pairs {
             for (i, a) in self.links.iter().enumerate().filter(|(_, p)| p.owner == la) {
                 for (j, b) in self.links.iter().enumerate().filter(|(_, p)| p.owner == lb) {
-                    if meet(a, &placed[i], b, &placed[j]) {
+                    if let Some(contact) = meet(a, &placed[i], b, &placed[j]) {
                         push(Collision {
                             a: name(la),
                             b: name(lb),
+                            contact,
                         });
                     }
                 }
@@ -219,10 +237,11 @@ impl ArmChecker {
         }
         for (i, a) in self.links.iter().enumerate() {
             for b in &self.obstacles {
-                if meet(a, &placed[i], b, &b.origin) {
+                if let Some(contact) = meet(a, &placed[i], b, &b.origin) {
                     push(Collision {
                         a: name(a.owner),
                         b: self.obstacle_names[b.owner].clone(),
+                        contact,
                     });
                 }
             }

@@ -24,7 +24,7 @@ pub mod srdf;
 pub mod urdf;
 
 pub use arm::{Arm, ArmOptions};
-pub use checker::{ArmChecker, Collision, PathReport};
+pub use checker::{ArmChecker, Collision, Contact, PathReport};
 pub use kinematics::{Group, Model};
 pub use shapes::Primitive;
 
