@@ -14,11 +14,13 @@
 //! | [`shapes`] | primitives (box, cylinder, sphere, cone) and the polytopes that contain them |
 //! | [`kinematics`] | the kinematic tree, forward kinematics, planning groups and their bounds |
 //! | [`arm`] | a loaded arm: model + link geometry + self-collision pairs + a planning group |
+//! | [`oracle`] | exact collision intervals of a single-joint move (the polyhedra oracle's rotations) |
 //! | [`checker`] | the independent checker: parry `intersection_test` of every pair, sampled paths |
 
 pub mod arm;
 pub mod checker;
 pub mod kinematics;
+pub mod oracle;
 pub mod shapes;
 pub mod srdf;
 pub mod urdf;
@@ -26,6 +28,7 @@ pub mod urdf;
 pub use arm::{Arm, ArmOptions};
 pub use checker::{ArmChecker, Collision, Contact, PathReport};
 pub use kinematics::{Group, Model};
+pub use oracle::ArmOracle;
 pub use shapes::Primitive;
 
 use crate::scene::SceneError;
