@@ -88,6 +88,7 @@ fn single_joint_moves_contain_every_collision_the_checker_finds() {
         }
     }
     // the test means something: moves that hit, colliding samples among them
+    assert_eq!(total, 3 * 16 * (SAMPLES + 1));
     assert!(moves_hit >= 5, "{moves_hit}");
     assert!(colliding >= 100, "{colliding}");
     // circumscribed cylinders (2 % of the radius) and touching margins: rare
