@@ -24,6 +24,7 @@ use crate::deadline::Deadline;
 use crate::interval::{Interval, IntervalList};
 use crate::local::{Borderline, Discoveries};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError, Workspace};
+use crate::space::extend_small;
 use crate::space::{Config, Group, Motion, Space};
 use rand::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -288,7 +289,7 @@ impl<'a> Search<'a> {
     }
 
     fn push_pt(&mut self, q: &[f64]) -> Pt {
-        self.b.pts.extend_from_slice(q);
+        extend_small(&mut self.b.pts, q);
         (self.b.pts.len() / self.dim - 1) as Pt
     }
 
@@ -374,9 +375,9 @@ impl<'a> Search<'a> {
         let mut next = std::mem::take(&mut self.b.next);
         let mut collisions = std::mem::take(&mut self.b.hits);
         goal.clear();
-        goal.extend_from_slice(self.pt(z));
+        extend_small(&mut goal, self.pt(z));
         cur.clear();
-        cur.extend_from_slice(self.pt(a));
+        extend_small(&mut cur, self.pt(a));
         let mut cur_idx = a;
         let first_corner = self.pt_count() as Pt;
         let mut length = 0.0;
@@ -493,7 +494,7 @@ impl<'a> Search<'a> {
         let (space, groups, options) = (self.space, self.groups, self.options);
         let mut base = std::mem::take(&mut self.b.base);
         base.clear();
-        base.extend_from_slice(self.pt(base_pt));
+        extend_small(&mut base, self.pt(base_pt));
         let mut blocked_motion = std::mem::take(&mut self.b.blocked_motion);
         space.group_motion_into(
             self.pt(cur_pt),
