@@ -21,7 +21,7 @@
 use super::body::Face;
 use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
-use super::{containment, Hits, Polyhedra, Pose};
+use super::{containment, Caches, Hits, Polyhedra, Pose};
 use super::{Aabb, Spans};
 use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
 use crate::interval::Interval;
@@ -30,6 +30,10 @@ use nalgebra::Vector3;
 use std::f64::consts::PI;
 
 type V3 = Vector3<f64>;
+
+/// A robot node's bounds for a turn: cylindrical bounds, their angular sector, and the world box
+/// its ball sweeps.
+pub(crate) type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
 
 /// A piece of a pair's answer shorter than this (radians) …
 const DEGENERATE_SPAN: f64 = 1e-7;
@@ -208,6 +212,7 @@ pub(crate) fn sweep(
     axis_w: &V3,
     phis: Interval,
     sink: &mut Hits,
+    caches: &mut Caches,
     counts: &mut CallCounts,
 ) {
     let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
@@ -231,7 +236,14 @@ pub(crate) fn sweep(
 
     let cyl = CylFrame::new(&axis);
     let whole = Spans::single(phis);
-    let mut robot_boxes: Vec<Option<CylBox>> = vec![None; robot.faces.len()];
+    let Caches {
+        cyl_boxes: robot_boxes,
+        nodes: robot_nodes,
+        swept: robot_swept,
+        pieces,
+        ..
+    } = caches;
+    robot_boxes.reset(robot.faces.len());
     // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
     // cylindrical box) for φ in `w`; returns whether to go on
     let mut pair = |r: u32,
@@ -244,7 +256,7 @@ pub(crate) fn sweep(
      -> bool {
         let rc = robot.corners(r);
         let pair_window = if ph.enveloping {
-            let rbox = robot_boxes[r as usize].get_or_insert_with(|| cyl.box_of(&rc, margin));
+            let rbox = robot_boxes.get_or_insert_with(r as usize, || cyl.box_of(&rc, margin));
             if !rbox.fixed_overlap(obox) {
                 return true;
             }
@@ -320,14 +332,13 @@ pub(crate) fn sweep(
         // a world box for the whole turn (computed once per node and call), and each robot
         // face its swept world box (the arcs of its corners).
         let world_cyl = cyl.rotated(&pose.rot);
-        type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
-        let mut robot_nodes: Vec<Option<NodeBounds>> = vec![None; robot.bvh.node_count()];
-        let mut robot_swept: Vec<Option<Aabb>> = vec![None; robot.faces.len()];
+        robot_nodes.reset(robot.bvh.node_count());
+        robot_swept.reset(robot.faces.len());
         robot.bvh.visit_pairs(
             &obst.bvh,
             phis,
             |a, rb, ob, w| {
-                let (rn, rsector, swept) = *robot_nodes[a as usize].get_or_insert_with(|| {
+                let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
                     let half = 0.5 * (rb.hi - rb.lo);
                     let n = cyl.node_bounds(&rb.centre(), &half, margin);
                     let c = pose.rot * rb.centre();
@@ -359,8 +370,8 @@ pub(crate) fn sweep(
                     let ow = obst.corners(o);
                     let owbox = Aabb::of_points(ow.iter());
                     if !ri.iter().any(|&r| {
-                        robot_swept[r as usize]
-                            .get_or_insert_with(|| {
+                        robot_swept
+                            .get_or_insert_with(r as usize, || {
                                 face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
                             })
                             .overlaps(&owbox)
@@ -370,7 +381,7 @@ pub(crate) fn sweep(
                     let of = Face::new(ow.map(|x| pose.body_point(&x)));
                     let obox = cyl.box_of(&of.v, margin);
                     for &r in ri {
-                        let swept = robot_swept[r as usize].get_or_insert_with(|| {
+                        let swept = robot_swept.get_or_insert_with(r as usize, || {
                             face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
                         });
                         if !swept.overlaps(&owbox) {
@@ -396,7 +407,7 @@ pub(crate) fn sweep(
         }
     }
     if !sink.done() {
-        containment::rotation(ph, pose, axis_w, phis, sink, counts);
+        containment::rotation(ph, pose, axis_w, phis, sink, pieces, counts);
     }
 }
 

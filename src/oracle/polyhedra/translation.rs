@@ -16,7 +16,7 @@ use super::body::Face;
 use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
 use super::Aabb;
-use super::{containment, Hits, Polyhedra, Pose};
+use super::{containment, Caches, Hits, Polyhedra, Pose};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -113,6 +113,7 @@ pub(crate) fn sweep(
     dir_w: &V3,
     range: Interval,
     sink: &mut Hits,
+    caches: &mut Caches,
     counts: &mut CallCounts,
 ) {
     let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
@@ -153,7 +154,13 @@ pub(crate) fn sweep(
     }
 
     let frame = MotionFrame::new(&dir);
-    let mut robot_boxes: Vec<Option<FrameBox>> = vec![None; robot.faces.len()];
+    let Caches {
+        frame_boxes: robot_boxes,
+        placed,
+        pieces,
+        ..
+    } = caches;
+    robot_boxes.reset(robot.faces.len());
     // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its box in
     // the motion frame) for λ in `w`; returns whether to go on
     let mut pair = |r: u32,
@@ -166,7 +173,7 @@ pub(crate) fn sweep(
      -> bool {
         let rc = robot.corners(r);
         let pair_window = if ph.enveloping {
-            let rbox = robot_boxes[r as usize].get_or_insert_with(|| frame.box_of(&rc));
+            let rbox = robot_boxes.get_or_insert_with(r as usize, || frame.box_of(&rc));
             match rbox
                 .sweep_window(obox, speed, margin)
                 .and_then(|x| x.meet(&w))
@@ -248,12 +255,12 @@ pub(crate) fn sweep(
         // the window only narrows on the way down, and a pair of leaves passes it on to the
         // per-face boxes of the motion frame
         let dir_body = dir;
-        let mut placed: Vec<Option<Aabb>> = vec![None; robot.bvh.node_count()];
+        placed.reset(robot.bvh.node_count());
         robot.bvh.visit_pairs(
             &obst.bvh,
             window,
             |a, rb, ob, w| {
-                let placed = placed[a as usize].get_or_insert_with(|| pose.world_box(rb));
+                let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
                 let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
                 // the same test in the robot's frame (the obstacle box turned into it), which
                 // is tight where the first one is loose
@@ -288,7 +295,7 @@ pub(crate) fn sweep(
         }
     }
     if !sink.done() {
-        containment::translation(ph, pose, dir_w, window, sink, counts);
+        containment::translation(ph, pose, dir_w, window, sink, pieces, counts);
     }
 }
 
