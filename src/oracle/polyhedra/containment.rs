@@ -79,7 +79,7 @@ fn classify(d: [f64; 3], margin: f64) -> Cross {
 
 /// The line `x0 + s·u` against a face.
 fn line_face(x0: &V3, u: &V3, f: &Face, margin: f64, parallel: f64) -> Cross {
-    let nn = f.n.norm();
+    let nn = f.n_norm;
     let denom = f.n.dot(u);
     if denom.abs() <= parallel * nn * u.norm() {
         return if (f.n.dot(x0) - f.offset).abs() <= margin * nn {
@@ -146,7 +146,7 @@ fn pick_point(view: View, comp: &Component, k: u64, along: Option<&V3>) -> Optio
     }
     let f = view.face(comp.faces[(mix(k * 7 + 3) % n) as usize]);
     if let Some(dir) = along {
-        if k < ATTEMPTS / 2 && f.n.dot(dir).abs() < 0.2 * f.n.norm() * dir.norm() {
+        if k < ATTEMPTS / 2 && f.n.dot(dir).abs() < 0.2 * f.n_norm * dir.norm() {
             return None;
         }
     }
@@ -264,7 +264,7 @@ fn inside_along_circle(
         view.part.parity_bvh.visit_overlapping(&arc, |i| {
             counts.pairs_tested += 1;
             let f = view.face(i);
-            let nn = f.n.norm();
+            let nn = f.n_norm;
             let h = lin(&f.n, &rel, axis).plus(f.n.dot(centre) - f.offset);
             let zeros = match h.zeros() {
                 Zeros::None => return true,

@@ -460,7 +460,7 @@ impl Polyhedra {
                     let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
                     let obox = Aabb::of_points(of.v.iter()).grown(m);
                     robot.bvh.visit_overlapping(&obox, |r| {
-                        let rf = Face::new(robot.corners(r));
+                        let rf = robot.face(r);
                         hit =
                             Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(&rf, &of, counts);
                         !hit
@@ -483,7 +483,7 @@ impl Polyhedra {
                         let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
                         let obox = Aabb::of_points(of.v.iter()).grown(m);
                         for &r in ri {
-                            let rf = Face::new(robot.corners(r));
+                            let rf = robot.face(r);
                             if Aabb::of_points(rf.v.iter()).overlaps(&obox)
                                 && test(&rf, &of, counts)
                             {
@@ -499,7 +499,7 @@ impl Polyhedra {
             'all: for o in 0..obst.faces.len() as u32 {
                 let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
                 for r in 0..robot.faces.len() as u32 {
-                    if test(&Face::new(robot.corners(r)), &of, counts) {
+                    if test(robot.face(r), &of, counts) {
                         hit = true;
                         break 'all;
                     }

@@ -146,7 +146,7 @@ pub(crate) fn edge_face_around(
         return Spans::EMPTY;
     }
     let d = q - p;
-    let nn = f.n.norm();
+    let nn = f.n_norm;
     let dl = d.norm();
     let g = lin(&f.n, &d, axis);
     let kg = tol.parallel * nn * dl;
@@ -177,12 +177,12 @@ pub(crate) fn edge_face_around(
     }
     let m = p.cross(&d);
     let e = f.edges();
-    for (ei, vi) in e.iter().zip(&f.v) {
+    for ((ei, vi), el) in e.iter().zip(&f.v).zip(&f.e_len) {
         if out.is_empty() && inw.is_empty() {
             return Spans::EMPTY;
         }
         let di = lin(ei, &m, axis).minus(lin(&ei.cross(vi), &d, axis));
-        let slack = tol.dist * dl * ei.norm();
+        let slack = tol.dist * dl * el;
         if !out.is_empty() {
             out = out.intersect(&around.at_least(di, slack));
         }
@@ -285,11 +285,11 @@ pub(crate) fn sweep(
         // face's plane (the predicate's first atoms, with their slack doubled): if all three
         // corners of a face stay on one side for the whole window, its edges are skipped
         let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
-            let th = 2.0 * tol.dist * face.n.norm();
+            let th = 2.0 * tol.dist * face.n_norm;
             let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
             b.iter().all(|(lo, _)| *lo > th) || b.iter().all(|(_, hi)| *hi < -th)
         };
-        let rf = Face::new(rc);
+        let rf = robot.face(r);
         if !ph.enveloping || !one_side(&rc, of, &axis) {
             for &e in robot.owned_edges(r) {
                 let (p, q) = robot.edge(e);
@@ -496,7 +496,7 @@ mod tests {
             a in prop::array::uniform3(-1.0f64..1.0),
         ) {
             let f = Face::new([v([c[0], c[1], c[2]]), v([c[3], c[4], c[5]]), v([c[6], c[7], c[8]])]);
-            prop_assume!(f.n.norm() > 1e-3);
+            prop_assume!(f.n_norm > 1e-3);
             let axis = v(a);
             prop_assume!(axis.norm() > 1e-2);
             let axis = axis.normalize();

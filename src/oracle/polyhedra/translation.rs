@@ -34,7 +34,7 @@ pub(crate) fn edge_face(
     tol: &Tolerance,
 ) -> Option<Interval> {
     let d = q - p;
-    let nn = f.n.norm();
+    let nn = f.n_norm;
     let dl = d.norm();
     let g = f.n.dot(&d);
     if g.abs() <= tol.parallel * nn * dl {
@@ -62,9 +62,9 @@ pub(crate) fn edge_face(
         return None;
     }
     let e = f.edges();
-    for (ei, vi) in e.iter().zip(&f.v) {
+    for ((ei, vi), el) in e.iter().zip(&f.v).zip(&f.e_len) {
         let w = d.cross(ei);
-        if !atom(w.dot(dir), w.dot(&(p - vi)), tol.dist * dl * ei.norm()) {
+        if !atom(w.dot(dir), w.dot(&(p - vi)), tol.dist * dl * el) {
             return None;
         }
     }
@@ -83,7 +83,7 @@ fn straddle(
     tol: &Tolerance,
     window: Interval,
 ) -> Option<Interval> {
-    let th = 2.0 * tol.dist * f.n.norm();
+    let th = 2.0 * tol.dist * f.n_norm;
     let a = corners.map(|x| f.n.dot(&x) - f.offset);
     let (lo, hi) = (a[0].min(a[1]).min(a[2]), a[0].max(a[1]).max(a[2]));
     let k = f.n.dot(dir);
@@ -189,7 +189,7 @@ pub(crate) fn sweep(
         }
         // robot edges moving by +λ·dir against the obstacle face, only while the robot face
         // reaches the obstacle face's plane
-        let rf = Face::new(rc);
+        let rf = robot.face(r);
         let robot_window = if ph.enveloping {
             straddle(&rc, of, &dir, &tol, pair_window)
         } else {
@@ -338,7 +338,7 @@ mod tests {
             r in prop::array::uniform3(-1.0f64..1.0),
         ) {
             let f = Face::new([v([c[0], c[1], c[2]]), v([c[3], c[4], c[5]]), v([c[6], c[7], c[8]])]);
-            prop_assume!(f.n.norm() > 1e-3);
+            prop_assume!(f.n_norm > 1e-3);
             let (p, q, dir) = (v([e[0], e[1], e[2]]), v([e[3], e[4], e[5]]), v(r));
             let tol = Tolerance::for_scale(1.0);
             let iv = edge_face(&p, &q, &f, &dir, Interval { lo: -3.0, hi: 3.0 }, &tol);
