@@ -461,8 +461,7 @@ impl Polyhedra {
                     let obox = Aabb::of_points(of.v.iter()).grown(m);
                     robot.bvh.visit_overlapping(&obox, |r| {
                         let rf = robot.face(r);
-                        hit =
-                            Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(&rf, &of, counts);
+                        hit = Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(rf, &of, counts);
                         !hit
                     })
                 });
@@ -484,8 +483,7 @@ impl Polyhedra {
                         let obox = Aabb::of_points(of.v.iter()).grown(m);
                         for &r in ri {
                             let rf = robot.face(r);
-                            if Aabb::of_points(rf.v.iter()).overlaps(&obox)
-                                && test(&rf, &of, counts)
+                            if Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(rf, &of, counts)
                             {
                                 hit = true;
                                 return false;

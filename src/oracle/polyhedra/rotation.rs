@@ -303,7 +303,7 @@ pub(crate) fn sweep(
                 }
             }
         }
-        if ph.enveloping && one_side(&of.v, &rf, &-axis) {
+        if ph.enveloping && one_side(&of.v, rf, &-axis) {
             return true;
         }
         let ids = obst.faces[o as usize];
@@ -312,8 +312,7 @@ pub(crate) fn sweep(
             let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
             let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
             counts.pairs_tested += 1;
-            for iv in edge_face_around(&p, &q, &rf, &-axis, &pair_window, &around, &tol).as_slice()
-            {
+            for iv in edge_face_around(&p, &q, rf, &-axis, &pair_window, &around, &tol).as_slice() {
                 if sink.add(*iv).is_break() {
                     return false;
                 }

@@ -208,7 +208,7 @@ pub(crate) fn sweep(
         }
         // obstacle edges moving by −λ·dir against the robot face, likewise
         let obstacle_window = if ph.enveloping {
-            straddle(&of.v, &rf, &-dir, &tol, pair_window)
+            straddle(&of.v, rf, &-dir, &tol, pair_window)
         } else {
             Some(pair_window)
         };
@@ -220,7 +220,7 @@ pub(crate) fn sweep(
             let [a, b] = obst.edges[e as usize];
             let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
             counts.pairs_tested += 1;
-            if let Some(iv) = edge_face(&p, &q, &rf, &-dir, w, &tol) {
+            if let Some(iv) = edge_face(&p, &q, rf, &-dir, w, &tol) {
                 if sink.add(iv).is_break() {
                     return false;
                 }
