@@ -22,8 +22,18 @@ fn sweep(scene: &Scene, nodes: usize, queries: usize, seed: u64) {
         queries,
         seed,
         query_time: Duration::from_secs(30),
+        sample: 3,
     };
     let r = run_scene(scene, &cfg).unwrap();
+    // the paths kept for an external check are solved ones, distinct queries, ends attached
+    assert_eq!(r.sample.len(), r.solved.min(3), "{}", r.scene);
+    for s in &r.sample {
+        assert!(s.query < queries);
+        assert!(s.raw.len() >= 2 && s.shortened.len() >= 2);
+        assert_eq!(s.raw.first(), s.shortened.first());
+        assert_eq!(s.raw.last(), s.shortened.last());
+    }
+    assert!(r.sample.windows(2).all(|w| w[0].query < w[1].query));
     assert_eq!(r.queries, queries);
     assert_eq!(r.invalid, 0, "{}: {:?}", r.scene, r.failures);
     assert_eq!(r.errors, 0, "{}: {:?}", r.scene, r.failures);

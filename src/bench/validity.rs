@@ -142,6 +142,20 @@ pub struct ValidityConfig {
     pub seed: u64,
     /// Time limit of one query (no growing: the roadmap answers or the query fails).
     pub query_time: Duration,
+    /// Solved queries whose paths are kept in [`ValidityReport::sample`] (spread evenly over
+    /// the solved ones), for a second, external check such as the OMPL peer's `check`.
+    pub sample: usize,
+}
+
+/// A solved query's paths, kept for an external check.
+#[derive(Clone, Debug)]
+pub struct SampledPath {
+    /// Index of the query in the scene's random queries.
+    pub query: usize,
+    /// The path before shortening.
+    pub raw: Vec<Config>,
+    /// The shortened path.
+    pub shortened: Vec<Config>,
 }
 
 /// What one scene gave.
@@ -169,6 +183,9 @@ pub struct ValidityReport {
     pub query_secs: f64,
     /// Seconds spent checking.
     pub check_secs: f64,
+    /// Paths kept for an external check ([`ValidityConfig::sample`]).
+    #[serde(skip)]
+    pub sample: Vec<SampledPath>,
 }
 
 /// A random disc scene in `[0, 1]^dim`: `count` closed balls of `radius` at uniform centres
@@ -264,7 +281,25 @@ pub fn run_scene(scene: &Scene, cfg: &ValidityConfig) -> Result<ValidityReport, 
         learn_secs,
         query_secs,
         check_secs,
+        sample: Vec::new(),
     };
+    let solved: Vec<usize> = answers
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| a.result.as_ref().is_ok_and(|r| r.is_solved()))
+        .map(|(i, _)| i)
+        .collect();
+    let keep = cfg.sample.min(solved.len());
+    for k in 0..keep {
+        let i = solved[k * solved.len() / keep];
+        if let Ok(r) = &answers[i].result {
+            report.sample.push(SampledPath {
+                query: i,
+                raw: r.raw_path.clone(),
+                shortened: r.path.clone(),
+            });
+        }
+    }
     for (i, v) in verdicts.into_iter().enumerate() {
         match v {
             Verdict::Valid => report.solved += 1,

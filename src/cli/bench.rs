@@ -183,6 +183,39 @@ pub struct ValidityArgs {
     /// Also write the reports as JSON to this file.
     #[arg(long)]
     pub json: Option<PathBuf>,
+    /// Write the raw and shortened paths of this many solved queries per OMPL.app scene as
+    /// OMPL state files into `--paths-out`, for the peer's independent `check`
+    /// (`benches/peer_check.sh` runs the sweep and the checks).
+    #[arg(long, default_value_t = 0, requires = "paths_out")]
+    pub sample: usize,
+    /// Directory for the sampled paths (`SCENE-qQUERY-raw.path`, `-short.path`) and an index
+    /// `paths.tsv` (cfg file, path file) of what was written.
+    #[arg(long)]
+    pub paths_out: Option<PathBuf>,
+}
+
+/// Writes a report's sampled paths for an OMPL.app scene; returns the index lines written.
+fn write_sampled_paths(
+    scene: &viaroad::scene::Scene,
+    report: &viaroad::bench::validity::ValidityReport,
+    dir: &std::path::Path,
+) -> anyhow::Result<Vec<String>> {
+    let Some(cfg) = scene
+        .source
+        .as_ref()
+        .filter(|p| p.extension().is_some_and(|e| e == "cfg"))
+    else {
+        return Ok(Vec::new()); // the peer reads OMPL.app problems only
+    };
+    let mut lines = Vec::new();
+    for s in &report.sample {
+        for (what, path) in [("raw", &s.raw), ("short", &s.shortened)] {
+            let file = dir.join(format!("{}-q{}-{what}.path", report.scene, s.query));
+            viaroad::scene::ompl_cfg::write_states(&file, path)?;
+            lines.push(format!("{}\t{}", cfg.display(), file.display()));
+        }
+    }
+    Ok(lines)
 }
 
 fn validity(a: ValidityArgs) -> anyhow::Result<()> {
@@ -210,7 +243,13 @@ fn validity(a: ValidityArgs) -> anyhow::Result<()> {
         queries,
         seed: a.seed,
         query_time: std::time::Duration::from_secs_f64(a.query_time),
+        sample: a.sample,
     };
+    if let Some(dir) = &a.paths_out {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", dir.display()))?;
+    }
+    let mut index = Vec::new();
     let scenes = a
         .scenes
         .iter()
@@ -226,6 +265,9 @@ fn validity(a: ValidityArgs) -> anyhow::Result<()> {
         for f in &r.failures {
             eprintln!("  {f}");
         }
+        if let Some(dir) = &a.paths_out {
+            index.extend(write_sampled_paths(scene, &r, dir)?);
+        }
         reports.push(r);
     }
     print!("{}", validity::table(&reports));
@@ -239,6 +281,11 @@ fn validity(a: ValidityArgs) -> anyhow::Result<()> {
     );
     if let Some(p) = &a.json {
         super::output::save(p, serde_json::to_string_pretty(&reports)?.as_bytes())?;
+    }
+    if let Some(dir) = &a.paths_out {
+        let mut text = index.join("\n");
+        text.push('\n');
+        super::output::save(&dir.join("paths.tsv"), text.as_bytes())?;
     }
     if invalid > 0 {
         anyhow::bail!("{invalid} invalid paths");
