@@ -1,7 +1,10 @@
 //! The Panda and the shipped MotionBenchMaker problems (scenes/arms/): MoveIt YAML loading,
 //! and the independent arm checker against the OMPL peer's verdicts (OMPL 1.5.2 + FCL 0.7,
 //! recorded by tests/data/arms/peer_verdicts.py): start/goal validity of all 21 problems and
-//! 280 seeded uniform configurations, with their colliding pairs.
+//! 280 seeded uniform configurations, with their colliding pairs; and the peer's RRTConnect
+//! paths in tests/data/arms/paths/, from `ompl_peer arm URDF SRDF SCENE REQUEST --planner
+//! rrtconnect --time 10 --seed 1 --save-path P` (run 0), checked by the peer with
+//! `ompl_peer armcheck … --resolution 0.001 --request REQUEST`.
 
 use serde::Deserialize;
 use std::collections::{BTreeSet, HashMap};
@@ -305,4 +308,60 @@ fn paths_are_checked_segment_by_segment() {
     // bad input is an error
     assert!(checker.check_path(&[vec![0.0; 6]], 0.01).is_err());
     assert!(checker.check_path(&path, 0.0).is_err());
+}
+
+/// RRTConnect paths of the OMPL peer (`ompl_peer arm --planner rrtconnect --seed 1`, saved
+/// with 17 digits) re-checked along every segment. At OMPL's default resolution (1 % of the
+/// extent) all pass, as they did for the peer; at 1/10 of it the cage 3 path fails on segment
+/// 8 near t = 0.478 (the right finger through `side_frontA`), exactly where the peer's
+/// `armcheck --resolution 0.001` puts it: the check the issue asks every returned path to pass.
+#[test]
+fn peer_paths_pass_at_ompl_resolution_and_one_fails_at_a_tenth() {
+    let read = |name: &str| -> Vec<Vec<f64>> {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/arms/paths")
+            .join(name);
+        std::fs::read_to_string(p)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.trim().is_empty())
+            .map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
+    for (name, scene, fine_valid) in [
+        (
+            "table_pick_0001_rrtconnect.path",
+            "mbm/table_pick/scene0001.yaml",
+            true,
+        ),
+        (
+            "bookshelf_thin_0002_rrtconnect.path",
+            "mbm/bookshelf_thin/scene0002.yaml",
+            true,
+        ),
+        ("box_0001_rrtconnect.path", "mbm/box/scene0001.yaml", true),
+        (
+            "cage_0003_rrtconnect.path",
+            "mbm/cage/scene0003.yaml",
+            false,
+        ),
+    ] {
+        let (_, arm, checker) = in_scene(scene);
+        let path = read(name);
+        let extent = arm.group.max_extent();
+        let coarse = checker.check_path(&path, 0.01 * extent).unwrap();
+        assert!(coarse.valid, "{name}: {:?}", coarse.first_invalid);
+        let fine = checker.check_path(&path, 0.001 * extent).unwrap();
+        assert_eq!(fine.valid, fine_valid, "{name}: {:?}", fine.first_invalid);
+        assert!(fine.samples > 5 * coarse.samples, "{name}");
+        if !fine_valid {
+            let (seg, t, pairs) = fine.first_invalid.unwrap();
+            assert_eq!(seg, 8);
+            assert!((t - 0.478).abs() < 0.01, "{t}");
+            assert_eq!(
+                pair_set(pairs.iter().map(|c| (c.a.as_str(), c.b.as_str()))),
+                peer_set(&["panda_rightfinger~side_frontA".to_string()])
+            );
+        }
+    }
 }
