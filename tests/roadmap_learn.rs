@@ -49,7 +49,7 @@ fn roadmaps_are_valid_with_and_without_feedback() {
                 assert!(corners > 0, "{spec}");
             }
             assert_eq!(learnt.report.stop, StopReason::NodeBudget);
-            assert_eq!(r.header().local_spec, spec.to_string());
+            assert_eq!(r.header().local_spec, spec);
             if spec == LocalSpec::Straight {
                 // a construction round adds at most one node per candidate here
                 assert!(learnt.report.expansion_rounds > 0);

@@ -147,24 +147,97 @@ fn resealed_garbage_never_panics() {
     let _ = scene;
 }
 
-/// A length prefix edited to a huge value is refused by the decoder's byte limit instead of
-/// allocating it.
+/// A length prefix edited to a huge value is refused instead of allocating it: the decoder's
+/// byte limit stops it, or (for a sequence of numbers, which serde pre-allocates only
+/// cautiously) the payload's end does.
 #[test]
 fn a_huge_length_prefix_is_refused() {
     let (_, roadmap) = sample(true, 50);
     let bytes = roadmap.to_bytes().unwrap();
-    let spec = roadmap.header().local_spec.as_bytes();
+    let coords = roadmap.coords();
+    let first = coords[0].to_le_bytes();
     let at = bytes
-        .windows(spec.len())
-        .position(|w| w == spec)
-        .expect("the spec string is stored verbatim");
+        .windows(8)
+        .position(|w| w == first)
+        .expect("the node coordinates are stored verbatim");
+    // bincode 2's varint length in front of them: one byte below 251, else the marker 251 and
+    // a u16 (a few hundred coordinates)
+    let prefix = if coords.len() < 251 { at - 1 } else { at - 3 };
+    let stored = match bytes[prefix] {
+        251 => u64::from(u16::from_le_bytes([bytes[at - 2], bytes[at - 1]])),
+        n => u64::from(n),
+    };
+    assert_eq!(
+        stored,
+        coords.len() as u64,
+        "found the nodes' length prefix"
+    );
     let mut bad = bytes.clone();
-    // the spec's length prefix becomes "a u64 follows": the next eight bytes, ~7e18
-    bad[at - 1] = 253;
+    // the length prefix becomes "a u64 follows": the next eight bytes, a huge number
+    bad[prefix] = 253;
     reseal(&mut bad);
     match Roadmap::from_bytes_any_scene(&bad) {
-        Err(RoadmapError::Corrupted(why)) => assert!(why.contains("LimitExceeded"), "{why}"),
+        Err(RoadmapError::Corrupted(why)) => assert!(
+            why.contains("LimitExceeded") || why.contains("UnexpectedEnd"),
+            "{why}"
+        ),
         other => panic!("{other:?}"),
+    }
+}
+
+/// A roadmap saved by the build before the typed local method (format version 2, the spec
+/// stored as a string) gets the clear "other format version" error, not a decoding error.
+#[test]
+fn a_version_2_file_is_refused_with_a_clear_error() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let scene = Scene::load(&root.join("scenes/discs-example.toml")).unwrap();
+    let path = root.join("tests/data/roadmaps/discs-example-v2.bin");
+    let bytes = std::fs::read(&path).unwrap();
+    assert_eq!(bytes[..8], MAGIC);
+    assert_eq!(bytes[8..12], 2u32.to_le_bytes(), "a genuine version-2 file");
+    match Roadmap::load(&path, scene.fingerprint()) {
+        Err(
+            e @ RoadmapError::WrongVersion {
+                found: 2,
+                supported,
+            },
+        ) => {
+            assert_eq!(supported, FORMAT_VERSION);
+            const { assert!(FORMAT_VERSION > 2) };
+            let msg = e.to_string();
+            assert!(
+                msg.contains("version 2") && msg.contains(&format!("version {FORMAT_VERSION}")),
+                "{msg}"
+            );
+        }
+        other => panic!("expected WrongVersion, got {other:?}"),
+    }
+}
+
+/// A header whose local method is out of range (as only an edited file can hold) is refused
+/// on load with [`RoadmapError::UnknownLocalMethod`], as the spec-string parser would refuse it.
+#[test]
+fn an_out_of_range_local_method_is_refused() {
+    let scene = disc_scene(31, 30, 0.06);
+    let resolution = 0.012_345_678_9f64;
+    let spec = LocalSpec::Sampled { resolution };
+    let roadmap = learn(&scene, &spec, &LearnParams::default(), 30, 1).roadmap;
+    assert_eq!(roadmap.header().local_spec, spec);
+    let bytes = roadmap.to_bytes().unwrap();
+    let at = bytes
+        .windows(8)
+        .position(|w| w == resolution.to_le_bytes())
+        .expect("the resolution is stored verbatim");
+    for (bad_resolution, why) in [(-1.0f64, "positive"), (1e-300, "smallest resolution")] {
+        let mut bad = bytes.clone();
+        bad[at..at + 8].copy_from_slice(&bad_resolution.to_le_bytes());
+        reseal(&mut bad);
+        match Roadmap::from_bytes(&bad, scene.fingerprint()) {
+            Err(e @ RoadmapError::UnknownLocalMethod { .. }) => {
+                assert!(e.to_string().contains(why), "{e}");
+            }
+            other => panic!("{other:?}"),
+        }
     }
 }
 

@@ -1,6 +1,6 @@
 //! The samplers of construction: every sample is free under an independent check, the
 //! narrow-passage samplers put their samples nearer the obstacles than uniform sampling does,
-//! specs round-trip, and the sampler is recorded in the roadmap file (version 2).
+//! specs round-trip, and the sampler is recorded in the roadmap file (since version 2).
 
 mod common;
 mod roadmap_support;
@@ -202,7 +202,7 @@ fn the_sampler_is_recorded_in_the_roadmap_file() {
 
 #[test]
 fn a_version_1_file_is_refused_with_a_clear_error() {
-    assert_eq!(FORMAT_VERSION, 2);
+    assert_eq!(FORMAT_VERSION, 3);
     let scene = disc_scene(31, 30, 0.06);
     let roadmap = learn(
         &scene,
@@ -220,12 +220,12 @@ fn a_version_1_file_is_refused_with_a_clear_error() {
         Err(
             e @ RoadmapError::WrongVersion {
                 found: 1,
-                supported: 2,
+                supported: 3,
             },
         ) => {
             let msg = e.to_string();
             assert!(
-                msg.contains("version 1") && msg.contains("version 2"),
+                msg.contains("version 1") && msg.contains("version 3"),
                 "{msg}"
             );
         }

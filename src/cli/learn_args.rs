@@ -33,6 +33,10 @@ pub struct LearnArgs {
     /// extent). Default: the learner's.
     #[arg(long, value_name = "SPEC")]
     pub sampler: Option<Sampler>,
+    /// Share of the expansion walks that are directed, RRT-Connect style, when a query grows
+    /// the roadmap to join its ends (0: random bounces only). Default: the learner's.
+    #[arg(long, value_name = "SHARE")]
+    pub directed_share: Option<f64>,
 }
 
 impl LearnArgs {
@@ -45,6 +49,9 @@ impl LearnArgs {
         params.deep_neighbours = self.deep_neighbours;
         if let Some(k) = self.neighbours {
             params.neighbours = k;
+        }
+        if let Some(share) = self.directed_share {
+            params.directed_share = share;
         }
         if let Some(s) = &self.sampler {
             params.sampler = s.clone();

@@ -35,9 +35,17 @@ pub struct SolveArgs {
     /// then answer through it. Without it the local method alone connects start and goal.
     #[arg(long)]
     pub roadmap: bool,
+    /// Most nodes of the grown roadmap (`--roadmap`): a budget that gives the same answer on
+    /// any machine. With `--nodes` and no `--time` there is no time limit.
+    #[arg(long, requires = "roadmap")]
+    pub nodes: Option<usize>,
     /// Seed of the grown roadmap (`--roadmap`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
+    /// (`--roadmap`; 0: random bounces only). Default: the learner's.
+    #[arg(long, value_name = "SHARE")]
+    pub directed_share: Option<f64>,
 }
 
 /// One solved query, as printed.
@@ -157,10 +165,18 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
 fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
-    let time = Some(super::limits::parse_seconds(
-        "--time",
-        a.time.unwrap_or(60.0),
-    )?);
+    let time = match (a.time, a.nodes) {
+        (None, Some(_)) => None,
+        (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
+    };
+    if let Some(n) = a.nodes {
+        super::limits::count_in_range(
+            "--nodes",
+            n,
+            viaroad::limits::MAX_NODES,
+            "a roadmap that large does not fit in memory",
+        )?;
+    }
     let queries = scene.checked_queries()?;
     if queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());
@@ -177,15 +193,23 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
         .with_attempt_cap(time.map(Learner::attempt_cap_for));
     let groups = method.groups(&scene.space);
+    let mut params = LearnParams::default();
+    if let Some(share) = a.directed_share {
+        params.directed_share = share;
+    }
+    params.validate().map_err(anyhow::Error::msg)?;
     for (i, q) in queries.iter().enumerate() {
         let began = Instant::now();
         let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
         let grown = learner
             .connect_pair(
-                &LearnParams::default(),
+                &params,
                 None,
                 (&q.start, &q.goal),
-                &Budget::default(),
+                &Budget {
+                    nodes: a.nodes,
+                    time: None,
+                },
                 a.seed,
                 &deadline,
                 &mut |_| {},

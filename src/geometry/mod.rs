@@ -1,9 +1,15 @@
 //! Geometric models shared by scene loading and the exact oracles: triangle meshes in 3D and
-//! polygons in the plane. Data only; the collision verbs live in [`crate::oracle`].
+//! polygons in the plane, the footprint of a prism mesh and the triangulation of a polygon,
+//! and (crate-internal) the geometric kernel of the rigid-body oracles. The collision verbs
+//! live in [`crate::oracle`].
 
+pub mod footprint;
+pub(crate) mod kernel;
 pub mod mesh;
 pub mod polygon;
+pub(crate) mod triangulate;
 
+pub use footprint::footprint_polygons;
 pub use mesh::TriMesh;
 pub use polygon::Polygon;
 

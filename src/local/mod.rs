@@ -174,9 +174,10 @@ impl Connection {
 /// - Every oracle question is counted in [`Connection::counts`].
 /// - Must be thread safe.
 pub trait LocalMethod: Send + Sync {
-    /// The method and its parameters as a spec string (see [`LocalSpec`]); recorded with
-    /// roadmaps and benchmarks.
-    fn spec(&self) -> String;
+    /// The method and its parameters ([`LocalSpec`]; its `Display` is the spec string):
+    /// recorded in a roadmap's header, from which queries rebuild the method, and by
+    /// benchmarks.
+    fn spec(&self) -> LocalSpec;
 
     /// Tries to connect `a` to `z`.
     fn connect(

@@ -64,6 +64,80 @@ impl LocalSpec {
         })
     }
 
+    /// The same method searching at least as deep and as long as the via-point planner's
+    /// defaults ([`ViaPointOptions::default`]), or `None` when that changes nothing or the
+    /// method does not search. A roadmap is learnt with a shallow, cheap method; a query can
+    /// afford the deep search where the roadmap did not reach: "by varying the limit on
+    /// recursion depth, our strategy can be tuned … to be quite effective in path planning for
+    /// the cost of increased running time" (CHS §1.6).
+    pub fn deeper(&self) -> Option<LocalSpec> {
+        let LocalSpec::ViaPoint(o) = self else {
+            return None;
+        };
+        let full = ViaPointOptions::default();
+        let deeper = ViaPointOptions {
+            depth: if o.depth.max() >= full.depth.max() {
+                o.depth
+            } else {
+                full.depth
+            },
+            max_calls: match (o.max_calls, full.max_calls) {
+                (Some(a), Some(b)) => Some(a.max(b)),
+                _ => None,
+            },
+            ..o.clone()
+        };
+        (deeper != *o).then_some(LocalSpec::ViaPoint(deeper))
+    }
+
+    /// The same method limited to `calls` intersect calls per connection (CHS §1.3: a budget
+    /// keeps it from "excessively long computations"), or with `calls == 0` to the direct
+    /// path alone (recursion depth 0: one exact call per DOF group). `None` for a method that
+    /// does not search: it is such a check already.
+    pub fn budgeted(&self, calls: u64) -> Option<LocalSpec> {
+        let LocalSpec::ViaPoint(o) = self else {
+            return None;
+        };
+        Some(LocalSpec::ViaPoint(if calls > 0 {
+            ViaPointOptions {
+                max_calls: Some(o.max_calls.map_or(calls, |m| m.min(calls))),
+                ..o.clone()
+            }
+        } else {
+            ViaPointOptions {
+                depth: Depth::Fixed(0),
+                ..o.clone()
+            }
+        }))
+    }
+
+    /// Checks what the spec-string parser guarantees, for a spec that did not come from it
+    /// (a roadmap file's header): a sampled resolution that is a positive number the limits
+    /// allow ([`crate::limits::check_local_spec`]), a finite β ≥ 0, at least one via point
+    /// and one random direction.
+    pub fn validate(&self) -> Result<(), String> {
+        match self {
+            LocalSpec::Straight => {}
+            LocalSpec::Sampled { resolution } => {
+                if !(resolution.is_finite() && *resolution > 0.0) {
+                    return Err(format!("res={resolution} is not a positive number"));
+                }
+            }
+            LocalSpec::ViaPoint(o) => {
+                if !(o.beta.is_finite() && o.beta >= 0.0) {
+                    return Err(format!("beta={} is not a number ≥ 0", o.beta));
+                }
+                if o.via == ViaLimit::Best(0) {
+                    return Err("via must be ≥ 1 or all".into());
+                }
+                if o.directions == (Directions::Random { count: 0 }) {
+                    return Err("dirs=random:0 has no direction".into());
+                }
+            }
+        }
+        crate::limits::check_local_spec(self)
+    }
+
     /// Builds the method.
     pub fn build(&self) -> Box<dyn LocalMethod> {
         match self {
@@ -363,6 +437,67 @@ mod tests {
         let all = LocalSpec::parse_grid("viapoint:beta=0,0.5,1,via=2,all").unwrap();
         assert_eq!(all.len(), 6);
         assert!("viapoint:beta=0,1".parse::<LocalSpec>().is_err());
+    }
+
+    #[test]
+    fn deeper_and_budgeted_variants() {
+        let shallow = LocalSpec::roadmap_default();
+        let Some(LocalSpec::ViaPoint(deep)) = shallow.deeper() else {
+            panic!("the roadmap default searches less deep than the defaults");
+        };
+        assert_eq!(deep.depth, Depth::DeepenReuse { max: 6 });
+        assert_eq!(deep.max_calls, Some(5000));
+        assert_eq!(LocalSpec::default().deeper(), None, "already as deep");
+        assert_eq!(LocalSpec::Straight.deeper(), None);
+        let Some(LocalSpec::ViaPoint(quick)) = shallow.budgeted(32) else {
+            panic!("a via-point spec has a budgeted variant");
+        };
+        assert_eq!(
+            (quick.depth, quick.max_calls),
+            (Depth::DeepenReuse { max: 3 }, Some(32))
+        );
+        let Some(LocalSpec::ViaPoint(bigger)) = shallow.budgeted(1 << 20) else {
+            panic!("a via-point spec has a budgeted variant");
+        };
+        assert_eq!(
+            bigger.max_calls,
+            Some(1000),
+            "a budget never raises the method's own"
+        );
+        let Some(LocalSpec::ViaPoint(direct)) = shallow.budgeted(0) else {
+            panic!("a via-point spec has a budgeted variant");
+        };
+        assert_eq!(direct.depth, Depth::Fixed(0));
+        assert_eq!(LocalSpec::Sampled { resolution: 0.01 }.budgeted(5), None);
+    }
+
+    #[test]
+    fn validate_refuses_what_the_parser_refuses() {
+        for s in [
+            "straight",
+            "sampled:res=0.02",
+            "viapoint:via=all,dirs=random:3",
+        ] {
+            assert_eq!(s.parse::<LocalSpec>().unwrap().validate(), Ok(()), "{s}");
+        }
+        let via = |f: fn(&mut ViaPointOptions)| {
+            let mut o = ViaPointOptions::default();
+            f(&mut o);
+            LocalSpec::ViaPoint(o)
+        };
+        for bad in [
+            LocalSpec::Sampled { resolution: -1.0 },
+            LocalSpec::Sampled {
+                resolution: f64::NAN,
+            },
+            LocalSpec::Sampled { resolution: 1e-300 },
+            via(|o| o.beta = -0.5),
+            via(|o| o.beta = f64::INFINITY),
+            via(|o| o.via = ViaLimit::Best(0)),
+            via(|o| o.directions = Directions::Random { count: 0 }),
+        ] {
+            assert!(bad.validate().is_err(), "{bad:?}");
+        }
     }
 
     #[test]

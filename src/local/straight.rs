@@ -1,6 +1,6 @@
 //! The straight-line local method: the direct path or nothing.
 
-use super::{check_direct, Connection, LocalMethod};
+use super::{check_direct, Connection, LocalMethod, LocalSpec};
 use crate::deadline::Deadline;
 use crate::oracle::sampled::Sampled;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
@@ -31,10 +31,10 @@ impl StraightLine {
 }
 
 impl LocalMethod for StraightLine {
-    fn spec(&self) -> String {
+    fn spec(&self) -> LocalSpec {
         match self.resolution {
-            None => "straight".into(),
-            Some(r) => format!("sampled:res={r}"),
+            None => LocalSpec::Straight,
+            Some(resolution) => LocalSpec::Sampled { resolution },
         }
     }
 

@@ -131,3 +131,72 @@ pub fn random_bounce<R: Rng + ?Sized>(
     }
     Ok(corners)
 }
+
+/// Walks from the free configuration `start` towards `target` one DOF group at a time, each step
+/// as far as it is free: RRT's *extend* (LaValle–Kuffner) with the exact oracle, which tells in
+/// one call how far the straight single-group motion towards the target's coordinates of that
+/// group is free (CHS §1.2). A step that reaches the target's coordinates ends there; one that
+/// hits an obstacle stops just short of it ([`SECTION_MARGIN`] of the free part). Up to `rounds`
+/// passes over `groups`; stops early when a pass moves nothing, when the target is reached or
+/// when `deadline` has passed. Returns the configurations reached (`start` excluded), joined to
+/// `start` and to each other by certified free single-group motions.
+#[allow(clippy::too_many_arguments)]
+pub fn directed_walk(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    start: &[f64],
+    target: &[f64],
+    rounds: usize,
+    counts: &mut CallCounts,
+    deadline: &Deadline,
+) -> Result<Vec<Config>, OracleError> {
+    let mut corners: Vec<Config> = Vec::new();
+    let mut current = start.to_vec();
+    for _ in 0..rounds {
+        let mut moved = false;
+        for g in groups {
+            if deadline.expired() {
+                return Ok(corners);
+            }
+            if space.same_in_group(&current, target, g) {
+                continue;
+            }
+            let goal = space.with_group_of(&current, target, g);
+            let motion = space.group_motion(&current, &goal, g);
+            let hits = oracle.intersect(&motion, counts)?;
+            let Some(section) = hits
+                .complement_within(motion.range)
+                .iter()
+                .find(|s| s.contains(0.0))
+                .copied()
+            else {
+                // the current configuration touches an obstacle in this group's direction
+                continue;
+            };
+            let next = if section.hi >= motion.range.hi {
+                goal
+            } else {
+                let t = section.hi - SECTION_MARGIN * section.length();
+                if t <= 0.0 {
+                    continue;
+                }
+                let mut q = motion.at(t);
+                if g.kind != GroupKind::Linear {
+                    space.normalize(&mut q);
+                }
+                q
+            };
+            if next == current {
+                continue;
+            }
+            corners.push(next.clone());
+            current = next;
+            moved = true;
+        }
+        if !moved || current.as_slice() == target {
+            break;
+        }
+    }
+    Ok(corners)
+}

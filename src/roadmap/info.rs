@@ -58,7 +58,7 @@ impl Roadmap {
             largest_component: self.largest_component(),
             counts: h.counts,
             params: h.params.clone(),
-            local_spec: h.local_spec.clone(),
+            local_spec: h.local_spec.to_string(),
             seed: h.seed,
             node_budget: h.node_budget,
             rounds: h.rounds,

@@ -54,6 +54,14 @@ pub struct LearnParams {
     /// off falls with the distance (CHS §1.6: a roadmap calls its local method thousands of
     /// times and covers the rest itself).
     pub deep_neighbours: Option<usize>,
+    /// Joining a pair (a query that grows the roadmap, `solve --roadmap`): the share of
+    /// expansion walks that are directed — RRT-Connect's extend (LaValle–Kuffner 2000) from the
+    /// node of one end's component nearest to a uniform sample towards it, each single-group
+    /// step as far as it is free, the end then tried against the other end's component too.
+    /// The rest are OS94's random-bounce walks. Random bounces explore around difficult nodes;
+    /// directed walks push a component's frontier out (Voronoi bias), which is what a start
+    /// boxed in by a narrow passage needs. 0: bounces only. Learning without a pair ignores it.
+    pub directed_share: f64,
 }
 
 impl Default for LearnParams {
@@ -71,6 +79,7 @@ impl Default for LearnParams {
             feedback: true,
             stall_rounds: 100,
             deep_neighbours: None,
+            directed_share: 0.5,
         }
     }
 }
@@ -111,6 +120,12 @@ impl LearnParams {
             .map_err(|e| format!("sampler `{}`: {e}", self.sampler))?;
         if self.stall_rounds == 0 {
             return Err("stall_rounds must be at least 1".into());
+        }
+        if !(0.0..=1.0).contains(&self.directed_share) {
+            return Err(format!(
+                "directed_share must lie in [0, 1], got {}",
+                self.directed_share
+            ));
         }
         if self.deep_neighbours == Some(0) {
             return Err("deep_neighbours must be at least 1 (or none: every neighbour)".into());

@@ -12,14 +12,16 @@
 //!
 //! Like OMPL's `PlannerDataStorage` the file is marked and signed: the magic says what it is,
 //! the version how to read it, and the header records the space, the scene's fingerprint
-//! ([`crate::scene::Scene::fingerprint`]), the learning parameters, the local method's spec,
-//! the seed and the oracle calls spent. No wall-clock time is stored, so the same seed gives
+//! ([`crate::scene::Scene::fingerprint`]), the learning parameters, the local method (a typed
+//! [`LocalSpec`], checked on load like a parsed spec string), the seed and the oracle calls
+//! spent. No wall-clock time is stored, so the same seed gives
 //! the same bytes.
 //!
 //! Loading checks, in order: magic ([`RoadmapError::NotARoadmap`]), version
 //! ([`RoadmapError::WrongVersion`]; every future version keeps magic and version in front),
 //! length ([`RoadmapError::Truncated`]), checksums and consistency
-//! ([`RoadmapError::Corrupted`]), and the scene ([`RoadmapError::ForeignScene`]). The checksums
+//! ([`RoadmapError::Corrupted`]), the local method ([`RoadmapError::UnknownLocalMethod`]), and
+//! the scene ([`RoadmapError::ForeignScene`]). The checksums
 //! are verified before anything is decoded, and the decoder runs with a byte limit derived from
 //! the payload's size, so a corrupted length can neither panic nor allocate without bound.
 
@@ -32,13 +34,13 @@ use crate::space::{Space, SpaceKind};
 use serde::{Deserialize, Serialize};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
 
 /// The first eight bytes of every roadmap file.
 pub const MAGIC: [u8; 8] = *b"VIAROADM";
 
-/// The version of the layout written by this build (and the only one it reads).
-pub const FORMAT_VERSION: u32 = 2;
+/// The version of the layout written by this build (and the only one it reads). Version 3
+/// stores the local method as a typed [`LocalSpec`] instead of its spec string (issue 11).
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Bytes before the payload.
 pub const FIXED_HEADER_LEN: usize = 36;
@@ -52,9 +54,9 @@ pub struct Header {
     pub fingerprint: u64,
     /// The learning parameters.
     pub params: LearnParams,
-    /// The local method's spec string ([`crate::local::LocalSpec`]); queries rebuild the method
-    /// from it.
-    pub local_spec: String,
+    /// The local method the roadmap was learnt with; queries rebuild it (and its budgeted and
+    /// deeper variants) from this, so that the groups of edges and attaching paths agree.
+    pub local_spec: LocalSpec,
     /// Seed of the random streams.
     pub seed: u64,
     /// The node budget learning ran with, if any (a time budget is not recorded: it is not
@@ -114,14 +116,15 @@ pub enum RoadmapError {
         /// The fingerprint recorded in the roadmap.
         found: u64,
     },
-    /// The recorded local method cannot be rebuilt by this build.
+    /// The recorded local method cannot be rebuilt by this build (its parameters are out of
+    /// range).
     #[error(
         "roadmap was learnt with local method `{spec}`, which this build cannot rebuild: {reason}"
     )]
     UnknownLocalMethod {
-        /// The recorded spec.
+        /// The recorded spec, as a spec string.
         spec: String,
-        /// Why it does not parse.
+        /// What is wrong with it.
         reason: String,
     },
     /// The file is not one that may be read or replaced (a device, FIFO, directory …).
@@ -321,20 +324,7 @@ impl Roadmap {
             .params
             .validate()
             .map_err(|e| RoadmapError::Corrupted(format!("learning parameters: {e}")))?;
-        match LocalSpec::from_str(&p.header.local_spec) {
-            Err(e) => {
-                return Err(RoadmapError::UnknownLocalMethod {
-                    spec: p.header.local_spec.clone(),
-                    reason: e.reason,
-                })
-            }
-            Ok(spec) => crate::limits::check_local_spec(&spec).map_err(|reason| {
-                RoadmapError::UnknownLocalMethod {
-                    spec: p.header.local_spec.clone(),
-                    reason,
-                }
-            })?,
-        }
+        check_local_spec(&p.header.local_spec)?;
         let labels = p.components;
         let roadmap =
             Roadmap::assemble(p.header, p.nodes, p.edges).map_err(RoadmapError::Corrupted)?;
@@ -403,6 +393,16 @@ fn read(path: &Path) -> Result<Vec<u8>, RoadmapError> {
     bytes.reserve((size.min(total) as usize).saturating_sub(FIXED_HEADER_LEN));
     file.take(payload_len).read_to_end(&mut bytes).map_err(io)?;
     Ok(bytes)
+}
+
+/// A local method read from a file must be one the spec-string parser would give
+/// ([`LocalSpec::validate`]).
+pub(super) fn check_local_spec(spec: &LocalSpec) -> Result<(), RoadmapError> {
+    spec.validate()
+        .map_err(|reason| RoadmapError::UnknownLocalMethod {
+            spec: spec.to_string(),
+            reason,
+        })
 }
 
 /// A space read from a file must be one its constructors accept.

@@ -25,18 +25,15 @@ use super::graph::Roadmap;
 use super::landmarks::Landmarks;
 use super::learn::{LearnError, Learner};
 use super::params::Budget;
+use super::persist::check_local_spec;
 use super::persist::RoadmapError;
 use crate::deadline::Deadline;
-use crate::local::viapoint::{Depth, ViaPoint, ViaPointOptions};
-use crate::local::{
-    drop_corners, path_length, shorten, Connection, LocalMethod, LocalSpec, Outcome,
-};
+use crate::local::{drop_corners, path_length, shorten, Connection, LocalMethod, Outcome};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
 use petgraph::graph::NodeIndex;
 use rayon::prelude::*;
 use serde::Serialize;
-use std::str::FromStr;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
@@ -70,7 +67,7 @@ pub struct QueryOptions {
     /// When the roadmap's own local method can neither connect start and goal directly nor
     /// attach both, try the direct connection and then this many nearest nodes per end again
     /// with the via-point planner searching deeper (at least the depth and
-    /// call budget of [`ViaPointOptions::default`]). A roadmap is learnt with a shallow, cheap
+    /// call budget of the defaults, [`crate::local::LocalSpec::deeper`]). A roadmap is learnt with a shallow, cheap
     /// local method; a query calls it only twice, so it can afford the deep search where the
     /// roadmap did not reach ("the local method can be tuned … to be quite effective in path
     /// planning for the cost of increased running time", CHS §1.6). Only for via-point
@@ -222,6 +219,39 @@ pub struct QueryResult {
 }
 
 impl QueryResult {
+    /// A query between `start` and `goal` not answered yet, with the oracle work `counts` of
+    /// checking its ends.
+    fn unanswered(start: Config, goal: Config, counts: CallCounts) -> Self {
+        QueryResult {
+            outcome: QueryOutcome::Disconnected,
+            start,
+            goal,
+            raw_path: Vec::new(),
+            path: Vec::new(),
+            raw_length: 0.0,
+            length: 0.0,
+            counts,
+            depth: 0,
+            attach_attempts: 0,
+            start_node: None,
+            goal_node: None,
+            roadmap_nodes: 0,
+            grown_nodes: 0,
+        }
+    }
+
+    /// Counts a connection from start to goal; if it connected, the answer is
+    /// [`QueryOutcome::Direct`] along the returned path.
+    fn take_direct(&mut self, c: Connection) -> Option<Vec<Config>> {
+        self.counts += c.counts;
+        if !c.is_connected() {
+            return None;
+        }
+        self.outcome = QueryOutcome::Direct;
+        self.depth = c.depth;
+        Some(c.path)
+    }
+
     /// Whether a path was found.
     pub fn is_solved(&self) -> bool {
         matches!(
@@ -247,13 +277,42 @@ pub struct QueryPlanner<'a> {
     roadmap: &'a Roadmap,
     oracle: &'a dyn CollisionOracle,
     local: Box<dyn LocalMethod>,
-    /// The deeper search for ends the roadmap's method cannot attach (via-point roadmaps).
+    /// The deeper search for ends the roadmap's method cannot attach
+    /// ([`crate::local::LocalSpec::deeper`]).
     escalation: Option<Box<dyn LocalMethod>>,
-    /// The roadmap's via-point options, for the budgeted quick try.
-    via: Option<ViaPointOptions>,
+    /// The quick try from start to goal ([`QueryOptions::direct_calls`],
+    /// [`crate::local::LocalSpec::budgeted`]); `None` where the roadmap's method is such a
+    /// check already.
+    quick: Option<Box<dyn LocalMethod>>,
     groups: Vec<Group>,
     options: QueryOptions,
     landmarks: OnceLock<Landmarks>,
+}
+
+/// What the deeper search of [`QueryPlanner::escalate`] found.
+enum Escalated {
+    /// A direct path from start to goal.
+    Direct(Vec<Config>),
+    /// The start and goal attachments that meet, if any.
+    Attached(Option<(usize, usize)>),
+}
+
+/// How a query the roadmap could not join ended: out of time, an end not attached, or the two
+/// ends attached only to different components.
+fn unjoined(
+    deadline: &Deadline,
+    (at_start, at_goal): &(Vec<Attached>, Vec<Attached>),
+) -> QueryOutcome {
+    if deadline.expired() {
+        QueryOutcome::TimedOut
+    } else if at_start.is_empty() || at_goal.is_empty() {
+        QueryOutcome::NotAttached {
+            start_attached: !at_start.is_empty(),
+            goal_attached: !at_goal.is_empty(),
+        }
+    } else {
+        QueryOutcome::Disconnected
+    }
 }
 
 /// An attachment of one end to a node.
@@ -271,49 +330,26 @@ impl<'a> QueryPlanner<'a> {
         oracle: &'a dyn CollisionOracle,
     ) -> Result<QueryPlanner<'a>, RoadmapError> {
         let spec = &roadmap.header().local_spec;
-        let parsed = LocalSpec::from_str(spec).map_err(|e| RoadmapError::UnknownLocalMethod {
-            spec: spec.clone(),
-            reason: e.reason,
-        })?;
-        let escalation = match &parsed {
-            LocalSpec::ViaPoint(o) => {
-                let full = ViaPointOptions::default();
-                let deeper = ViaPointOptions {
-                    depth: if o.depth.max() >= full.depth.max() {
-                        o.depth
-                    } else {
-                        full.depth
-                    },
-                    max_calls: match (o.max_calls, full.max_calls) {
-                        (Some(a), Some(b)) => Some(a.max(b)),
-                        _ => None,
-                    },
-                    ..o.clone()
-                };
-                (deeper != *o).then(|| LocalSpec::ViaPoint(deeper).build())
-            }
-            _ => None,
-        };
-        let via = match &parsed {
-            LocalSpec::ViaPoint(o) => Some(o.clone()),
-            _ => None,
-        };
-        let local = parsed.build();
+        check_local_spec(spec)?;
+        let local = spec.build();
         let groups = local.groups(roadmap.space());
+        let options = QueryOptions::default();
         Ok(QueryPlanner {
             roadmap,
             oracle,
             local,
-            escalation,
-            via,
+            escalation: spec.deeper().map(|s| s.build()),
+            quick: spec.budgeted(options.direct_calls).map(|s| s.build()),
             groups,
-            options: QueryOptions::default(),
+            options,
             landmarks: OnceLock::new(),
         })
     }
 
     /// The same planner with other options.
     pub fn with_options(mut self, options: QueryOptions) -> Self {
+        let spec = &self.roadmap.header().local_spec;
+        self.quick = spec.budgeted(options.direct_calls).map(|s| s.build());
         self.options = options;
         self.landmarks = OnceLock::new();
         self
@@ -370,63 +406,35 @@ impl<'a> QueryPlanner<'a> {
         outer: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let deadline = outer.within(self.options.time);
-        let space = self.roadmap.space();
         let mut counts = CallCounts::default();
         let start = self.check_endpoint(Endpoint::Start, start, &mut counts)?;
         let goal = self.check_endpoint(Endpoint::Goal, goal, &mut counts)?;
-        let mut result = QueryResult {
-            outcome: QueryOutcome::Disconnected,
-            start: start.clone(),
-            goal: goal.clone(),
-            raw_path: Vec::new(),
-            path: Vec::new(),
-            raw_length: 0.0,
-            length: 0.0,
-            counts,
-            depth: 0,
-            attach_attempts: 0,
-            start_node: None,
-            goal_node: None,
-            roadmap_nodes: 0,
-            grown_nodes: 0,
-        };
+        let mut result = QueryResult::unanswered(start.clone(), goal.clone(), counts);
         // a quick try first (the direct path, or a budgeted via-point search)
         let mut retry_direct = self.options.try_direct;
         if self.options.try_direct {
             let quick = self.quick_try(&start, &goal, &deadline)?;
-            result.counts += quick.counts;
-            if quick.is_connected() {
-                result.outcome = QueryOutcome::Direct;
-                result.depth = quick.depth;
-                return self.finish(result, quick.path, &deadline);
+            let outcome = quick.outcome;
+            if let Some(path) = result.take_direct(quick) {
+                return self.finish(result, path, &deadline);
             }
             // the roadmap's method again would fail the same way: it was the quick try, or the
             // quick search ran out of alternatives before any budget or depth limit
-            retry_direct = self.via.is_some() && quick.outcome != Outcome::Blocked;
+            retry_direct = self.quick.is_some() && outcome != Outcome::Blocked;
         }
         // attach both ends, alternating, one node per component and side
-        let mut at_start: Vec<Attached> = Vec::new();
-        let mut at_goal: Vec<Attached> = Vec::new();
-        let mut meeting = self.attach(
-            self.local.as_ref(),
-            self.options.attach_candidates,
-            (&start, &goal),
-            (&mut at_start, &mut at_goal),
-            &mut result,
-            &deadline,
-        )?;
+        let mut ends = (Vec::new(), Vec::new());
+        let ends_q = (&start[..], &goal[..]);
+        let k = self.options.attach_candidates;
+        let local = self.local.as_ref();
+        let mut meeting = self.attach(local, k, ends_q, &mut ends, &mut result, &deadline)?;
         // only where the roadmap cannot join the two ends, the local method from start to goal:
         // across a large scene it mostly fails, and tried first it cost most of a query's time
         // (Home, 32 803 nodes: 25–60 ms of a 30–60 ms answer)
         if meeting.is_none() && retry_direct {
-            let c = self
-                .local
-                .connect_within(space, self.oracle, &start, &goal, &deadline)?;
-            result.counts += c.counts;
-            if c.is_connected() {
-                result.outcome = QueryOutcome::Direct;
-                result.depth = c.depth;
-                return self.finish(result, c.path, &deadline);
+            let c = local.connect_within(self.space(), self.oracle, &start, &goal, &deadline)?;
+            if let Some(path) = result.take_direct(c) {
+                return self.finish(result, path, &deadline);
             }
         }
         // where the roadmap cannot join them, grow it around them for the rest of the time
@@ -435,43 +443,60 @@ impl<'a> QueryPlanner<'a> {
         if meeting.is_none() && self.options.grow && timed && !deadline.expired() {
             return self.grow(result, &deadline);
         }
-        if meeting.is_none() && self.options.escalation_candidates > 0 {
-            if let Some(deep) = &self.escalation {
-                // the deep search straight from start to goal first: one attempt, and the
-                // planner's own strength where the roadmap has not reached (a narrow goal)
-                if self.options.try_direct {
-                    let c = deep.connect_within(space, self.oracle, &start, &goal, &deadline)?;
-                    result.counts += c.counts;
-                    if c.is_connected() {
-                        result.outcome = QueryOutcome::Direct;
-                        result.depth = c.depth;
-                        return self.finish(result, c.path, &deadline);
-                    }
-                }
-                meeting = self.attach(
-                    deep.as_ref(),
-                    self.options.escalation_candidates,
-                    (&start, &goal),
-                    (&mut at_start, &mut at_goal),
-                    &mut result,
-                    &deadline,
-                )?;
+        if meeting.is_none() {
+            match self.escalate(ends_q, &mut ends, &mut result, &deadline)? {
+                Escalated::Direct(path) => return self.finish(result, path, &deadline),
+                Escalated::Attached(m) => meeting = m,
             }
         }
-        let Some((si, gi)) = meeting else {
-            result.outcome = if deadline.expired() {
-                QueryOutcome::TimedOut
-            } else if at_start.is_empty() || at_goal.is_empty() {
-                QueryOutcome::NotAttached {
-                    start_attached: !at_start.is_empty(),
-                    goal_attached: !at_goal.is_empty(),
-                }
-            } else {
-                QueryOutcome::Disconnected
-            };
-            return Ok(result);
+        match meeting {
+            Some((si, gi)) => self.through_roadmap(result, &ends.0[si], &ends.1[gi], &deadline),
+            None => {
+                result.outcome = unjoined(&deadline, &ends);
+                Ok(result)
+            }
+        }
+    }
+
+    /// The space of the roadmap's scene.
+    fn space(&self) -> &crate::space::Space {
+        self.roadmap.space()
+    }
+
+    /// Where the roadmap's own method could not join the ends: the deeper search
+    /// ([`QueryOptions::escalation_candidates`]) from start to goal, then attaching again.
+    fn escalate(
+        &self,
+        (start, goal): (&[f64], &[f64]),
+        ends: &mut (Vec<Attached>, Vec<Attached>),
+        result: &mut QueryResult,
+        deadline: &Deadline,
+    ) -> Result<Escalated, QueryError> {
+        let k = self.options.escalation_candidates;
+        let Some(deep) = self.escalation.as_deref().filter(|_| k > 0) else {
+            return Ok(Escalated::Attached(None));
         };
-        let (s, g) = (&at_start[si], &at_goal[gi]);
+        // the deep search straight from start to goal first: one attempt, and the planner's
+        // own strength where the roadmap has not reached (a narrow goal)
+        if self.options.try_direct {
+            let c = deep.connect_within(self.space(), self.oracle, start, goal, deadline)?;
+            if let Some(path) = result.take_direct(c) {
+                return Ok(Escalated::Direct(path));
+            }
+        }
+        let meeting = self.attach(deep, k, (start, goal), ends, result, deadline)?;
+        Ok(Escalated::Attached(meeting))
+    }
+
+    /// The answer through the roadmap from the start's attachment `s` to the goal's `g` (in
+    /// one component): A* between their nodes, then the path shortened.
+    fn through_roadmap(
+        &self,
+        mut result: QueryResult,
+        s: &Attached,
+        g: &Attached,
+        deadline: &Deadline,
+    ) -> Result<QueryResult, QueryError> {
         let Some(nodes) = self.astar(s.node, g.node) else {
             // attached to one component, so a path exists; kept as a typed outcome regardless
             result.outcome = QueryOutcome::Disconnected;
@@ -485,7 +510,7 @@ impl<'a> QueryPlanner<'a> {
         let mut raw = s.connection.path.clone();
         raw.extend(self.node_path(&nodes));
         raw.extend(g.connection.path.iter().skip(1).cloned());
-        self.finish(result, raw, &deadline)
+        self.finish(result, raw, deadline)
     }
 
     /// The corners along roadmap nodes `nodes` (adjacent pairs joined by their cheapest edge),
@@ -547,11 +572,9 @@ impl<'a> QueryPlanner<'a> {
         let inner = QueryPlanner {
             roadmap,
             oracle: self.oracle,
-            local: LocalSpec::from_str(&header.local_spec)
-                .map(|s| s.build())
-                .map_err(|e| QueryError::Oracle(OracleError::Unsupported(e.reason)))?,
+            local: header.local_spec.build(),
             escalation: None,
-            via: None,
+            quick: None,
             groups: self.groups.clone(),
             options: QueryOptions {
                 landmarks: 0,
@@ -579,25 +602,8 @@ impl<'a> QueryPlanner<'a> {
         goal: &[f64],
         deadline: &Deadline,
     ) -> Result<Connection, QueryError> {
-        let space = self.roadmap.space();
-        let Some(o) = &self.via else {
-            return Ok(self
-                .local
-                .connect_within(space, self.oracle, start, goal, deadline)?);
-        };
-        let budget = self.options.direct_calls;
-        let quick = if budget > 0 {
-            ViaPointOptions {
-                max_calls: Some(o.max_calls.map_or(budget, |m| m.min(budget))),
-                ..o.clone()
-            }
-        } else {
-            ViaPointOptions {
-                depth: Depth::Fixed(0),
-                ..o.clone()
-            }
-        };
-        Ok(ViaPoint::new(quick).connect_within(space, self.oracle, start, goal, deadline)?)
+        let method = self.quick.as_deref().unwrap_or(self.local.as_ref());
+        Ok(method.connect_within(self.space(), self.oracle, start, goal, deadline)?)
     }
 
     /// Attaches start and goal to their `k` nearest nodes with `method`, alternating sides, one
@@ -608,7 +614,7 @@ impl<'a> QueryPlanner<'a> {
         method: &dyn LocalMethod,
         k: usize,
         (start, goal): (&[f64], &[f64]),
-        (at_start, at_goal): (&mut Vec<Attached>, &mut Vec<Attached>),
+        (at_start, at_goal): &mut (Vec<Attached>, Vec<Attached>),
         result: &mut QueryResult,
         deadline: &Deadline,
     ) -> Result<Option<(usize, usize)>, QueryError> {

@@ -11,7 +11,8 @@
 //! primitive's box), exactly for convex regions: separating axes for the box, distances for
 //! the annulus.
 
-use super::index::Aabb;
+use super::Aabb;
+use nalgebra::Vector2;
 
 /// A closed box in the frame of a translation: `u` along the motion, `n` across it (unit
 /// vectors); the `u` range may be unbounded.
@@ -43,8 +44,8 @@ impl SweptBox {
         for axis in 0..2 {
             let a = scaled(u_range.0, u_range.1, u[axis]);
             let b = scaled(n_range.0, n_range.1, n[axis]);
-            world.min[axis] = a.0 + b.0;
-            world.max[axis] = a.1 + b.1;
+            world.lo[axis] = a.0 + b.0;
+            world.hi[axis] = a.1 + b.1;
         }
         SweptBox {
             u,
@@ -57,7 +58,7 @@ impl SweptBox {
 
     /// Whether the closed box `b` meets this one (separating-axis test on all four axes).
     pub fn overlaps(&self, b: &Aabb) -> bool {
-        if !self.world.intersects(b) {
+        if !self.world.overlaps(b) {
             return false;
         }
         let c = b.centre();
@@ -93,9 +94,10 @@ impl Annulus {
         if self.r_hi < 0.0 {
             return false;
         }
-        let near = b.distance_squared_to(self.centre);
+        let near = b.distance_squared_to(&Vector2::from(self.centre));
         near <= self.r_hi * self.r_hi
-            && (self.r_lo <= 0.0 || b.farthest_squared_from(self.centre) >= self.r_lo * self.r_lo)
+            && (self.r_lo <= 0.0
+                || b.farthest_squared_from(&Vector2::from(self.centre)) >= self.r_lo * self.r_lo)
     }
 }
 
@@ -108,10 +110,7 @@ mod tests {
         // the strip |y| ≤ 1 along a diagonal direction, u ∈ [0, 10]
         let s = std::f64::consts::FRAC_1_SQRT_2;
         let b = SweptBox::new([s, s], [-s, s], (0.0, 10.0), (-1.0, 1.0));
-        let unit = |x: f64, y: f64| Aabb {
-            min: [x, y],
-            max: [x + 0.1, y + 0.1],
-        };
+        let unit = |x: f64, y: f64| Aabb::of_plane_points(&[[x, y], [x + 0.1, y + 0.1]]);
         assert!(b.overlaps(&unit(3.0, 3.0)));
         assert!(!b.overlaps(&unit(3.0, 5.0))); // beside the strip: its world box would say yes
         assert!(!b.overlaps(&unit(-2.0, -2.0))); // behind the start
@@ -134,10 +133,7 @@ mod tests {
             r_lo: 2.0,
             r_hi: 3.0,
         };
-        let b = |x: f64, y: f64, w: f64| Aabb {
-            min: [x, y],
-            max: [x + w, y + w],
-        };
+        let b = |x: f64, y: f64, w: f64| Aabb::of_plane_points(&[[x, y], [x + w, y + w]]);
         assert!(a.overlaps(&b(2.5, 0.0, 0.1)));
         assert!(!a.overlaps(&b(0.5, 0.5, 0.5))); // inside the hole
         assert!(!a.overlaps(&b(3.0, 3.0, 1.0))); // outside

@@ -12,18 +12,19 @@
 //!
 //! For a straight motion each of these primitive tests turns into inequalities in the motion
 //! parameter — linear for a translation (`translation.rs`), `α cos φ + β sin φ + γ ≥ 0` for a
-//! rotation (`rotation.rs`, solved through `τ = tan(φ/2)` in `trig.rs`) — whose solution sets
+//! rotation (`rotation.rs`, solved through `τ = tan(φ/2)` by the kernel's trigonometric atom,
+//! `geometry/kernel/trig.rs`) — whose solution sets
 //! are combined as interval lists (∧ = intersection, ∨ = union), and the union over all pairs
 //! is the answer.
 //!
-//! Enveloping (`envelope.rs`, `index.rs`): an AABB tree over the obstacle edges, triangles and
+//! Enveloping (`envelope.rs`, the kernel's `Bvh`): an AABB tree over the obstacle edges, triangles and
 //! reference vertices is queried once per kind of primitive with the region the whole robot
 //! sweeps — a box in the frame of a translation, an annulus about the centre of a rotation —
 //! and every robot primitive is then tested only against the candidates its own swept region
 //! meets, so far-away obstacle parts cost nothing. `pairs_tested` counts the primitive pairs
 //! that survive.
 //!
-//! Containment is decided with triangulations (ear clipping, `triangulate.rs`) instead of the
+//! Containment is decided with triangulations (ear clipping, `geometry/triangulate.rs`) instead of the
 //! seed's random rays: "point in polygon" becomes "point in one of its triangles", three
 //! orientation tests that move with the motion like all the others.
 //!
@@ -34,21 +35,23 @@
 //! OMPL.app's 2D problems ship 3D prisms; [`footprint_polygons`] turns them into triangles.
 
 mod envelope;
-mod footprint;
-mod index;
 mod rotation;
-mod small_set;
 mod translation;
-mod triangulate;
-mod trig;
 
-pub use footprint::footprint_polygons;
+/// Moved to [`crate::geometry`] (scene loading needs it without an oracle); kept here for
+/// the callers that import it with the oracle.
+pub use crate::geometry::footprint_polygons;
 
 use super::{CallCounts, CollisionOracle, OracleError};
+use crate::geometry::kernel::bvh;
 use crate::geometry::Polygon;
 use crate::interval::{Interval, IntervalList};
 use crate::space::{Change, Motion};
-use index::{Aabb, Bvh};
+
+/// A box of the plane.
+type Aabb = crate::geometry::kernel::aabb::Aabb<2>;
+/// The obstacle trees.
+type Bvh = bvh::Bvh<2>;
 use std::collections::HashSet;
 use std::f64::consts::TAU;
 use std::ops::ControlFlow;
@@ -209,7 +212,7 @@ fn prepare(polys: &[Polygon]) -> Parts {
                 parts.edges.push([a, b]);
             }
         }
-        for t in triangulate::triangulate(&v) {
+        for t in crate::geometry::triangulate::triangulate(&v) {
             parts.tris.push([v[t[0]], v[t[1]], v[t[2]]]);
         }
     }
@@ -311,9 +314,14 @@ impl Polygons {
             .map(|p| p[0].abs().max(p[1].abs()))
             .fold(radius, f64::max);
         let world = World {
-            edge_tree: Bvh::new(o.edges.iter().map(|e| Aabb::of_points(e)).collect()),
-            tri_tree: Bvh::new(o.tris.iter().map(|t| Aabb::of_points(t)).collect()),
-            ref_tree: Bvh::new(o.refs.iter().map(|p| Aabb::of_points(&[*p])).collect()),
+            edge_tree: Bvh::build(o.edges.iter().map(|e| Aabb::of_plane_points(e)).collect()),
+            tri_tree: Bvh::build(o.tris.iter().map(|t| Aabb::of_plane_points(t)).collect()),
+            ref_tree: Bvh::build(
+                o.refs
+                    .iter()
+                    .map(|p| Aabb::of_plane_points(&[*p]))
+                    .collect(),
+            ),
             edge_len: edge_lengths(&o.edges),
             edges: o.edges,
             tri_len: triangle_lengths(&o.tris),

@@ -10,7 +10,7 @@
 //! - `(R(φ)u) · v = cos φ · (u · v) + sin φ · (u × v)`
 //!
 //! for a rotating `u` and a fixed `v`. Each such atom holds on one arc of the circle, at most
-//! two intervals of the window, found in the half-angle parameter `τ` ([`trig::HalfAngle`]);
+//! two intervals of the window, found in the half-angle parameter `τ` ([`HalfAngle`], the kernel's one solver);
 //! the pair's predicate is evaluated on those interval lists (`∧` = intersection, `∨` =
 //! union) and only the final ends are turned back into angles. Unlike under translation, the
 //! two ends of an edge move differently, so "0 between `s(a)` and `s(b)`" is kept as the
@@ -25,8 +25,11 @@
 //! and reference vertex against the candidates' distances from the centre.
 
 use super::envelope::Annulus;
-use super::small_set::SmallSet;
-use super::trig::HalfAngle;
+use crate::geometry::kernel::spans::Spans;
+use crate::geometry::kernel::trig::HalfAngle;
+
+/// The value of one pair's predicate: at most five pieces in a window of one turn.
+type SmallSet = Spans<6>;
 use super::{dot, perp_dot, Polygons, P};
 use crate::interval::Interval;
 use std::ops::ControlFlow;
@@ -45,10 +48,7 @@ fn both_signs(x: Atom, tol: f64, h: &HalfAngle) -> (SmallSet, SmallSet) {
 fn straddles(x: Atom, y: Atom, tol: f64, h: &HalfAngle) -> SmallSet {
     let (x_pos, x_neg) = both_signs(x, tol, h);
     let (y_pos, y_neg) = both_signs(y, tol, h);
-    SmallSet::union(
-        &SmallSet::intersection(&x_pos, &y_neg),
-        &SmallSet::intersection(&x_neg, &y_pos),
-    )
+    x_pos.intersect(&y_neg).union(&x_neg.intersect(&y_pos))
 }
 
 /// The angles (as `τ` of `h`) at which the closed robot edge `[R(φ)a, R(φ)b]` (of length
@@ -77,27 +77,25 @@ pub(super) fn edge_edge(
     // (2) r(y) = (R(φ)e) × (y − R(φ)a) = (R(φ)e) × y − e × a
     let te = tol * le;
     let r = |y: P| (perp_dot(e, y), -dot(e, y), -perp_dot(e, a));
-    set = SmallSet::intersection(&set, &straddles(r(c), r(d), te, h));
+    set = set.intersect(&straddles(r(c), r(d), te, h));
     if set.is_empty() {
         return set;
     }
     // (3) p(x) = (R(φ)x − c)·f reaches [0, |f|²]
     let p = |x: P| (dot(x, f), perp_dot(x, f), -dot(c, f));
     let (pa, pb) = (p(a), p(b));
-    let after_c = SmallSet::union(
-        &h.solve(pa.0, pa.1, pa.2 + tf),
-        &h.solve(pb.0, pb.1, pb.2 + tf),
-    );
-    set = SmallSet::intersection(&set, &after_c);
+    let after_c = h
+        .solve(pa.0, pa.1, pa.2 + tf)
+        .union(&h.solve(pb.0, pb.1, pb.2 + tf));
+    set = set.intersect(&after_c);
     if set.is_empty() {
         return set;
     }
     let ff = lf * lf;
-    let before_d = SmallSet::union(
-        &h.solve(-pa.0, -pa.1, ff - pa.2 + tf),
-        &h.solve(-pb.0, -pb.1, ff - pb.2 + tf),
-    );
-    SmallSet::intersection(&set, &before_d)
+    let before_d =
+        h.solve(-pa.0, -pa.1, ff - pa.2 + tf)
+            .union(&h.solve(-pb.0, -pb.1, ff - pb.2 + tf));
+    set.intersect(&before_d)
 }
 
 /// The angles (as `τ` of `h`) at which the rotating point `R(φ)v` lies in the fixed closed
@@ -115,7 +113,7 @@ pub(super) fn point_in_triangle(
         let g = [w[0] - u[0], w[1] - u[1]];
         // g × (R(φ)v − u)
         let gamma = -perp_dot(g, u) + tol * lens[i];
-        set = SmallSet::intersection(&set, &h.solve(-perp_dot(v, g), dot(v, g), gamma));
+        set = set.intersect(&h.solve(-perp_dot(v, g), dot(v, g), gamma));
         if set.is_empty() {
             break;
         }
@@ -138,7 +136,7 @@ pub(super) fn triangle_contains(
         let g = [v[0] - u[0], v[1] - u[1]];
         // (R(φ)g) × (w − R(φ)u) = (R(φ)g) × w − g × u
         let gamma = -perp_dot(g, u) + tol * lens[i];
-        set = SmallSet::intersection(&set, &h.solve(perp_dot(g, w), -dot(g, w), gamma));
+        set = set.intersect(&h.solve(perp_dot(g, w), -dot(g, w), gamma));
         if set.is_empty() {
             break;
         }

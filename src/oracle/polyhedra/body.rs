@@ -14,8 +14,7 @@
 //! number of times is kept once. A double-sided soup therefore has no parity faces at all, and
 //! containment is never reported for it — the surface-only behaviour of FCL on such meshes.
 
-use super::bvh::Bvh;
-use super::envelope::Aabb;
+use super::{Aabb, Bvh};
 use crate::geometry::TriMesh;
 use nalgebra::Vector3;
 use std::collections::HashMap;
@@ -244,7 +243,7 @@ impl Body {
             let components = components(&parity, &boxes);
             parts.push(Part {
                 solid,
-                parity_bvh: Bvh::build(&boxes),
+                parity_bvh: Bvh::build(boxes.clone()),
                 parity,
                 aabb,
                 sphere: (centre, radius),
@@ -282,7 +281,7 @@ impl Body {
             .map(|&i| vertices[i as usize].norm())
             .fold(0.0, f64::max);
         Body {
-            bvh: Bvh::build(&boxes),
+            bvh: Bvh::build(boxes.clone()),
             vertices,
             faces,
             edges,

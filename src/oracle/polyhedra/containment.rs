@@ -23,10 +23,11 @@
 //! in which the boxes meet is reported as collision: more collision, never less.
 
 use super::body::{Component, Face, Part};
-use super::envelope::{Aabb, AngleRange};
+use super::envelope::AngleRange;
 use super::rotation::{lin, swept_box, turn};
-use super::trig::Zeros;
-use super::{Polyhedra, Pose, Sink};
+use super::Aabb;
+use super::{Hits, Polyhedra, Pose};
+use crate::geometry::kernel::trig::Zeros;
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -386,7 +387,7 @@ pub(crate) fn translation(
     pose: &Pose,
     dir_w: &V3,
     window: Interval,
-    sink: &mut Sink,
+    sink: &mut Hits,
     counts: &mut CallCounts,
 ) {
     let Some(rpart) = both_solid(ph) else {
@@ -425,7 +426,7 @@ pub(crate) fn translation(
                 )
             });
             for iv in answer.unwrap_or_else(|| vec![w]) {
-                if !sink.add(iv) {
+                if sink.add(iv).is_break() {
                     return;
                 }
             }
@@ -453,7 +454,7 @@ pub(crate) fn translation(
                 )
             });
             for iv in answer.unwrap_or_else(|| vec![w]) {
-                if !sink.add(iv) {
+                if sink.add(iv).is_break() {
                     return;
                 }
             }
@@ -468,7 +469,7 @@ pub(crate) fn rotation(
     pose: &Pose,
     axis_w: &V3,
     phis: Interval,
-    sink: &mut Sink,
+    sink: &mut Hits,
     counts: &mut CallCounts,
 ) {
     let Some(rpart) = both_solid(ph) else {
@@ -505,7 +506,7 @@ pub(crate) fn rotation(
                 )
             });
             for iv in answer.unwrap_or_else(|| vec![phis]) {
-                if !sink.add(iv) {
+                if sink.add(iv).is_break() {
                     return;
                 }
             }
@@ -553,10 +554,13 @@ pub(crate) fn rotation(
             });
             for iv in answer.unwrap_or_else(|| vec![back]) {
                 // ψ = −φ
-                if !sink.add(Interval {
-                    lo: -iv.hi,
-                    hi: -iv.lo,
-                }) {
+                if sink
+                    .add(Interval {
+                        lo: -iv.hi,
+                        hi: -iv.lo,
+                    })
+                    .is_break()
+                {
                     return;
                 }
             }

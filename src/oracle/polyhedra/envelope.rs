@@ -4,7 +4,7 @@
 //! The hierarchy, coarse to fine:
 //! 1. the robot's bounding sphere / box swept over the whole motion against the obstacles'
 //!    bounding box — a motion far from everything costs nothing;
-//! 2. the robot's tree against the obstacles' tree ([`super::bvh`], `Bvh::visit_pairs`), each
+//! 2. the robot's tree against the obstacles' tree (the kernel's `Bvh::visit_pairs`), each
 //!    pair of nodes with a window of the motion parameter in which they may meet: along a
 //!    translation, the λ for which a robot node's box (placed in the world, and the obstacle
 //!    node's box turned into the robot's frame) moved by λ overlaps the other box; for a turn,
@@ -24,137 +24,12 @@
 //! return. Angles come from a polynomial arctangent ([`fast_atan2`]) whose error bound
 //! ([`ATAN_ERR`]) widens every angular bound, so bounds stay conservative.
 
+use super::Aabb;
 use crate::interval::Interval;
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 type V3 = Vector3<f64>;
-
-/// An axis-aligned box `[lo, hi]`; empty when `lo > hi` in some coordinate.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Aabb {
-    /// Lower corner.
-    pub lo: V3,
-    /// Upper corner.
-    pub hi: V3,
-}
-
-impl Aabb {
-    /// The empty box (neutral element of [`merge`](Self::merge)).
-    pub const EMPTY: Aabb = Aabb {
-        lo: V3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
-        hi: V3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
-    };
-
-    /// The box around `points`.
-    pub fn of_points<'a>(points: impl IntoIterator<Item = &'a V3>) -> Aabb {
-        let mut b = Aabb::EMPTY;
-        for p in points {
-            b.add_point(p);
-        }
-        b
-    }
-
-    /// Grows the box to contain `p`.
-    pub fn add_point(&mut self, p: &V3) {
-        self.lo = self.lo.inf(p);
-        self.hi = self.hi.sup(p);
-    }
-
-    /// The box around both.
-    pub fn merge(&self, o: &Aabb) -> Aabb {
-        Aabb {
-            lo: self.lo.inf(&o.lo),
-            hi: self.hi.sup(&o.hi),
-        }
-    }
-
-    /// The common part (possibly empty).
-    pub fn meet(&self, o: &Aabb) -> Aabb {
-        Aabb {
-            lo: self.lo.sup(&o.lo),
-            hi: self.hi.inf(&o.hi),
-        }
-    }
-
-    /// No point inside.
-    pub fn is_empty(&self) -> bool {
-        // written with `all` so that NaN ends count as empty
-        !(0..3).all(|k| self.lo[k] <= self.hi[k])
-    }
-
-    /// Centre.
-    pub fn centre(&self) -> V3 {
-        0.5 * (self.lo + self.hi)
-    }
-
-    /// Length of the diagonal (0 for an empty box).
-    pub fn diagonal(&self) -> f64 {
-        if self.is_empty() {
-            0.0
-        } else {
-            (self.hi - self.lo).norm()
-        }
-    }
-
-    /// Grown by `m` on every side.
-    pub fn grown(&self, m: f64) -> Aabb {
-        Aabb {
-            lo: self.lo.add_scalar(-m),
-            hi: self.hi.add_scalar(m),
-        }
-    }
-
-    /// Whether the closed boxes share a point.
-    pub fn overlaps(&self, o: &Aabb) -> bool {
-        (0..3).all(|k| self.lo[k] <= o.hi[k] && o.lo[k] <= self.hi[k])
-    }
-
-    /// The box moved by `d`.
-    pub fn shifted(&self, d: &V3) -> Aabb {
-        Aabb {
-            lo: self.lo + d,
-            hi: self.hi + d,
-        }
-    }
-
-    /// The parameters `s` for which `origin + s·dir` lies in the box (slab test), if any.
-    pub fn line_range(&self, origin: &V3, dir: &V3) -> Option<Interval> {
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-        for k in 0..3 {
-            if dir[k] == 0.0 {
-                if origin[k] < self.lo[k] || origin[k] > self.hi[k] {
-                    return None;
-                }
-            } else {
-                let a = (self.lo[k] - origin[k]) / dir[k];
-                let b = (self.hi[k] - origin[k]) / dir[k];
-                lo = lo.max(a.min(b));
-                hi = hi.min(a.max(b));
-            }
-        }
-        Interval::new(lo, hi)
-    }
-
-    /// The parameters `λ` for which this box moved by `λ·dir` overlaps `other`.
-    pub fn sweep_range(&self, dir: &V3, other: &Aabb) -> Option<Interval> {
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-        for k in 0..3 {
-            // other.lo - self.hi <= λ dir <= other.hi - self.lo
-            let (a, b) = (other.lo[k] - self.hi[k], other.hi[k] - self.lo[k]);
-            if dir[k] == 0.0 {
-                if a > 0.0 || b < 0.0 {
-                    return None;
-                }
-            } else {
-                let (x, y) = (a / dir[k], b / dir[k]);
-                lo = lo.max(x.min(y));
-                hi = hi.min(x.max(y));
-            }
-        }
-        Interval::new(lo, hi)
-    }
-}
 
 /// The λ for which the ball of radius `r` about `c + λ·dir` meets the ball of radius `radius`
 /// about `centre`: one quadratic inequality (CHS §2.2, "a simple quadratic inequality can tell
@@ -181,64 +56,59 @@ pub(crate) fn sphere_sweep(c: &V3, dir: &V3, r: f64, centre: &V3, radius: f64) -
     })
 }
 
-/// The extremes of `a cos φ + b sin φ + c` over `φ ∈ [p0, p1]` (`p1 - p0` may exceed 2π).
-fn trig_range(
-    a: f64,
-    b: f64,
-    c: f64,
-    p0: f64,
-    p1: f64,
-    cs0: (f64, f64),
-    cs1: (f64, f64),
-) -> (f64, f64) {
+/// The extremes of `a cos φ + b sin φ + c` over the angles of `r` (which may exceed 2π).
+///
+/// The maximum `c + √(a² + b²)` is reached at the angle θ of `(a, b)`, the minimum at θ + π;
+/// θ lies in the range iff `cos(θ − mid) ≥ cos(half)` (mid and half-width of the range), i.e.
+/// `a cos mid + b sin mid ≥ √(a² + b²) · cos(half)` — no arctangent, no reduction modulo 2π.
+/// The test is loosened by a relative 1e-12 and the half-width by [`ATAN_ERR`], so an extreme
+/// on the edge of the range counts as inside (a box a little larger, never smaller).
+fn trig_range(a: f64, b: f64, c: f64, r: &AngleRange) -> (f64, f64) {
     let amp = norm2(a, b);
-    if p1 - p0 >= TAU {
+    if r.full {
         return (c - amp, c + amp);
     }
-    let f0 = a * cs0.0 + b * cs0.1 + c;
-    let f1 = a * cs1.0 + b * cs1.1 + c;
+    let f0 = a * r.cs0.0 + b * r.cs0.1 + c;
+    let f1 = a * r.cs1.0 + b * r.cs1.1 + c;
     let (mut lo, mut hi) = (f0.min(f1), f0.max(f1));
     if amp > 0.0 {
-        // maximum at θ = atan2(b, a), minimum at θ + π (mod 2π); θ from the fast arctangent,
-        // so an extreme within its error of the range counts as inside (a box a little larger,
-        // never smaller)
-        let theta = fast_atan2(b, a);
-        let (q0, q1) = (p0 - ATAN_ERR, p1 + ATAN_ERR);
-        if angle_in(theta, q0, q1) {
+        let d = a * r.cs_mid.0 + b * r.cs_mid.1;
+        let reach = amp * (r.cos_half - 1e-12);
+        if d >= reach {
             hi = c + amp;
         }
-        if angle_in(theta + PI, q0, q1) {
+        if -d >= reach {
             lo = c - amp;
         }
     }
     (lo, hi)
 }
 
-/// Whether some `θ + 2πk` lies in `[p0, p1]`.
-pub(crate) fn angle_in(theta: f64, p0: f64, p1: f64) -> bool {
-    let k = ((p0 - theta) / TAU).ceil();
-    theta + k * TAU <= p1
-}
-
-/// Precomputed cosines and sines of the ends of an angle range, shared by many arcs.
+/// Precomputed cosines and sines of the ends and the middle of an angle range, shared by many
+/// arcs ([`AngleRange::arc_box`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct AngleRange {
-    /// Start angle.
-    pub p0: f64,
-    /// End angle (`>= p0`).
-    pub p1: f64,
     cs0: (f64, f64),
     cs1: (f64, f64),
+    /// Cosine and sine of the middle angle.
+    cs_mid: (f64, f64),
+    /// Cosine of the half-width widened by [`ATAN_ERR`] (−1 once that reaches π).
+    cos_half: f64,
+    /// Whether the range covers a whole turn.
+    full: bool,
 }
 
 impl AngleRange {
     /// `[p0, p1]`.
     pub fn new(p0: f64, p1: f64) -> AngleRange {
+        let half = 0.5 * (p1 - p0) + ATAN_ERR;
+        let mid = 0.5 * (p0 + p1);
         AngleRange {
-            p0,
-            p1,
             cs0: (p0.cos(), p0.sin()),
             cs1: (p1.cos(), p1.sin()),
+            cs_mid: (mid.cos(), mid.sin()),
+            cos_half: if half >= PI { -1.0 } else { half.cos() },
+            full: p1 - p0 >= TAU,
         }
     }
 
@@ -252,7 +122,7 @@ impl AngleRange {
         let b = axis.cross(x);
         let mut out = Aabb::EMPTY;
         for k in 0..3 {
-            let (lo, hi) = trig_range(a[k], b[k], c[k], self.p0, self.p1, self.cs0, self.cs1);
+            let (lo, hi) = trig_range(a[k], b[k], c[k], self);
             out.lo[k] = lo;
             out.hi[k] = hi;
         }
@@ -507,8 +377,8 @@ pub(crate) fn sector_window(m: (f64, f64), f: (f64, f64), window: Interval) -> O
         return Some(window);
     }
     let start = wrap_pi(f.0 - m.0 - half);
-    let spans = super::trig::arc_in_window(
-        super::trig::Arc::Part {
+    let spans: super::Spans = crate::geometry::kernel::trig::arc_in_window(
+        crate::geometry::kernel::trig::Arc {
             start,
             length: 2.0 * half,
         },
@@ -693,7 +563,5 @@ mod tests {
         assert!((wrap_pi(PI) - PI).abs() < 1e-15);
         assert!((wrap_pi(-PI) - PI).abs() < 1e-15);
         assert!((wrap_pi(3.0 * PI + 0.1) - (-PI + 0.1)).abs() < 1e-12);
-        assert!(angle_in(0.1 + 4.0 * PI, 0.0, 0.2));
-        assert!(!angle_in(0.3, 0.0, 0.2));
     }
 }

@@ -44,25 +44,30 @@
 //! returns them.
 
 mod body;
-mod bvh;
 mod containment;
 mod envelope;
 mod predicate;
 mod rotation;
-mod spans;
 mod translation;
-mod trig;
 
 use super::{CallCounts, CollisionOracle, OracleError};
+use crate::geometry::kernel::{aabb, bvh, hits::Hits, spans};
 use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
 use crate::space::rotation::quat_from_slice;
 use crate::space::{Change, Motion};
 use body::{Body, Face};
-use envelope::Aabb;
 use nalgebra::{Matrix3, Vector3};
 use predicate::Tolerance;
 use std::f64::consts::TAU;
+
+/// A box in space (the kernel's).
+pub(crate) type Aabb = aabb::Aabb<3>;
+/// The face trees (the kernel's).
+pub(crate) type Bvh = bvh::Bvh<3>;
+/// The value of one edge–face predicate under rotation: more than the k + 1 = 7 pieces a
+/// conjunction of six arcs can have.
+pub(crate) type Spans = spans::Spans<8>;
 
 type V3 = Vector3<f64>;
 
@@ -175,37 +180,6 @@ impl Pose {
             lo: c - h,
             hi: c + h,
         }
-    }
-}
-
-/// Where the pieces of the answer go; stops the sweep at the first one when only a yes/no is
-/// wanted ([`CollisionOracle::motion_is_free`]).
-pub(crate) struct Sink {
-    hits: Vec<Interval>,
-    first_only: bool,
-}
-
-impl Sink {
-    fn new(first_only: bool) -> Sink {
-        Sink {
-            hits: Vec::new(),
-            first_only,
-        }
-    }
-
-    /// Adds a collision interval; returns whether to go on.
-    fn add(&mut self, iv: Interval) -> bool {
-        if iv.lo <= iv.hi {
-            self.hits.push(iv);
-            !self.first_only
-        } else {
-            true
-        }
-    }
-
-    /// Whether the sweep should stop.
-    fn done(&self) -> bool {
-        self.first_only && !self.hits.is_empty()
     }
 }
 
@@ -353,7 +327,7 @@ impl Polyhedra {
     fn sweep(
         &self,
         motion: &Motion,
-        sink: &mut Sink,
+        sink: &mut Hits,
         counts: &mut CallCounts,
     ) -> Result<(), OracleError> {
         let (pose, kind) = Self::classify(motion)?;
@@ -364,7 +338,7 @@ impl Polyhedra {
         match kind {
             Kind::Still => {
                 if self.collides_at(&pose, counts) {
-                    sink.add(range);
+                    let _ = sink.add(range);
                 }
             }
             Kind::Translation(dir) => translation::sweep(self, &pose, &dir, range, sink, counts),
@@ -385,21 +359,24 @@ impl Polyhedra {
                     lo: p0,
                     hi: p1.min(p0 + TAU),
                 };
-                let mut local = Sink::new(sink.first_only);
+                let mut local = Hits::all();
+                local.reset(sink.is_first_only());
                 rotation::sweep(self, &pose, &axis, one, &mut local, counts);
                 let turns = ((p1 - p0) / TAU).ceil().max(1.0) as usize;
                 for k in 0..turns {
                     let shift = k as f64 * TAU;
-                    for iv in &local.hits {
+                    for iv in local.as_slice() {
                         let piece = Interval {
                             lo: (iv.lo + shift).max(p0),
                             hi: (iv.hi + shift).min(p1),
                         };
                         if piece.lo <= piece.hi
-                            && !sink.add(Interval {
-                                lo: piece.lo / angle,
-                                hi: piece.hi / angle,
-                            })
+                            && sink
+                                .add(Interval {
+                                    lo: piece.lo / angle,
+                                    hi: piece.hi / angle,
+                                })
+                                .is_break()
                         {
                             return Ok(());
                         }
@@ -490,9 +467,9 @@ impl CollisionOracle for Polyhedra {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        let mut sink = Sink::new(false);
+        let mut sink = Hits::all();
         self.sweep(motion, &mut sink, counts)?;
-        Ok(IntervalList::from_unsorted(sink.hits).clip(motion.range))
+        Ok(sink.to_list(motion.range))
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
@@ -512,8 +489,11 @@ impl CollisionOracle for Polyhedra {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<bool, OracleError> {
-        let mut sink = Sink::new(true);
+        let mut sink = Hits::first_only();
         self.sweep(motion, &mut sink, counts)?;
-        Ok(sink.hits.iter().all(|iv| iv.meet(&motion.range).is_none()))
+        Ok(sink
+            .as_slice()
+            .iter()
+            .all(|iv| iv.meet(&motion.range).is_none()))
     }
 }

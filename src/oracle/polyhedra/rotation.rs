@@ -19,11 +19,11 @@
 //! conjunctions are evaluated on small interval lists ([`Spans`]).
 
 use super::body::Face;
-use super::envelope::{sector_window, Aabb, AngleRange, CylBounds, CylBox, CylFrame};
+use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
-use super::spans::Spans;
-use super::trig::{arc_in_window, Arc, Trig};
-use super::{containment, Polyhedra, Pose, Sink};
+use super::{containment, Hits, Polyhedra, Pose};
+use super::{Aabb, Spans};
+use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -207,7 +207,7 @@ pub(crate) fn sweep(
     pose: &Pose,
     axis_w: &V3,
     phis: Interval,
-    sink: &mut Sink,
+    sink: &mut Hits,
     counts: &mut CallCounts,
 ) {
     let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
@@ -239,7 +239,7 @@ pub(crate) fn sweep(
                     of: &Face,
                     obox: &CylBox,
                     w: Interval,
-                    sink: &mut Sink,
+                    sink: &mut Hits,
                     counts: &mut CallCounts|
      -> bool {
         let rc = robot.corners(r);
@@ -249,7 +249,7 @@ pub(crate) fn sweep(
                 return true;
             }
             match rbox.turn_window(obox) {
-                Some((start, length)) => arc_in_window(Arc::Part { start, length }, w),
+                Some((start, length)) => arc_in_window(Arc { start, length }, w),
                 None => Spans::single(w),
             }
         } else {
@@ -261,10 +261,14 @@ pub(crate) fn sweep(
         ) else {
             return true;
         };
-        let around = Around::new(Interval {
+        let hull = Interval {
             lo: first.lo,
             hi: last.hi,
-        });
+        };
+        if sink.covers(hull) {
+            return true;
+        }
+        let around = Around::new(hull);
         // an edge meets a face only where its ends are not both strictly on one side of the
         // face's plane (the predicate's first atoms, with their slack doubled): if all three
         // corners of a face stay on one side for the whole window, its edges are skipped
@@ -281,7 +285,7 @@ pub(crate) fn sweep(
                 for iv in
                     edge_face_around(&p, &q, of, &axis, &pair_window, &around, &tol).as_slice()
                 {
-                    if !sink.add(*iv) {
+                    if sink.add(*iv).is_break() {
                         return false;
                     }
                 }
@@ -298,7 +302,7 @@ pub(crate) fn sweep(
             counts.pairs_tested += 1;
             for iv in edge_face_around(&p, &q, &rf, &-axis, &pair_window, &around, &tol).as_slice()
             {
-                if !sink.add(*iv) {
+                if sink.add(*iv).is_break() {
                     return false;
                 }
             }
@@ -348,6 +352,9 @@ pub(crate) fn sweep(
                 }
             },
             |ri, oi, w| {
+                if sink.covers(w) {
+                    return true;
+                }
                 for &o in oi {
                     let ow = obst.corners(o);
                     let owbox = Aabb::of_points(ow.iter());

@@ -13,9 +13,10 @@
 //! [`IntervalList::from_unsorted`]: crate::interval::IntervalList::from_unsorted
 
 use super::body::Face;
-use super::envelope::{sphere_sweep, Aabb, FrameBox, MotionFrame};
+use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
-use super::{containment, Polyhedra, Pose, Sink};
+use super::Aabb;
+use super::{containment, Hits, Polyhedra, Pose};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -111,7 +112,7 @@ pub(crate) fn sweep(
     pose: &Pose,
     dir_w: &V3,
     range: Interval,
-    sink: &mut Sink,
+    sink: &mut Hits,
     counts: &mut CallCounts,
 ) {
     let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
@@ -160,7 +161,7 @@ pub(crate) fn sweep(
                     of: &Face,
                     obox: &FrameBox,
                     w: Interval,
-                    sink: &mut Sink,
+                    sink: &mut Hits,
                     counts: &mut CallCounts|
      -> bool {
         let rc = robot.corners(r);
@@ -176,6 +177,9 @@ pub(crate) fn sweep(
         } else {
             w
         };
+        if sink.covers(pair_window) {
+            return true;
+        }
         // robot edges moving by +λ·dir against the obstacle face, only while the robot face
         // reaches the obstacle face's plane
         let rf = Face::new(rc);
@@ -189,7 +193,7 @@ pub(crate) fn sweep(
                 let (p, q) = robot.edge(e);
                 counts.pairs_tested += 1;
                 if let Some(iv) = edge_face(&p, &q, of, &dir, w, &tol) {
-                    if !sink.add(iv) {
+                    if sink.add(iv).is_break() {
                         return false;
                     }
                 }
@@ -210,7 +214,7 @@ pub(crate) fn sweep(
             let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
             counts.pairs_tested += 1;
             if let Some(iv) = edge_face(&p, &q, &rf, &-dir, w, &tol) {
-                if !sink.add(iv) {
+                if sink.add(iv).is_break() {
                     return false;
                 }
             }
@@ -257,6 +261,9 @@ pub(crate) fn sweep(
                     .meet(&w)
             },
             |ri, oi, w| {
+                if sink.covers(w) {
+                    return true;
+                }
                 for &o in oi {
                     let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
                     let obox = frame.box_of(&of.v);

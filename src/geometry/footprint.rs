@@ -18,7 +18,7 @@ const NEGLIGIBLE_AREA: f64 = 1e-12;
 /// The counter-clockwise triangles of the xy-projection of `mesh`: every triangle whose
 /// projection has non-negligible area, once, whatever its winding (double-sided soups list
 /// each face twice). Their union is the mesh's footprint; pass them to
-/// [`Polygons::new`](super::Polygons::new) as robot parts or obstacles.
+/// [`Polygons::new`](crate::oracle::polygons::Polygons::new) as robot parts or obstacles.
 pub fn footprint_polygons(mesh: &TriMesh) -> Vec<Polygon> {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for v in &mesh.vertices {

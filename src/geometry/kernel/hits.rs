@@ -1,0 +1,149 @@
+//! One way for both rigid-body oracles to report the collision pieces of a motion.
+//!
+//! The seed merges the intervals of all pairs of primitives with a balanced ∨-tree (CHS §2.2);
+//! here every piece goes into [`Hits`], which keeps them merged (sorted, disjoint, touching
+//! closed intervals joined). That costs a binary search per piece and buys two things:
+//! - a pair of primitives whose whole window is already known to collide can be skipped
+//!   ([`Hits::covers`]): its pieces could not change the union. Deep in collision that is most
+//!   pairs;
+//! - a yes/no question ([`Hits::first_only`], `motion_is_free`, a static test) stops the sweep
+//!   at the first piece: [`Hits::add`] breaks.
+//!
+//! The buffer is reused between calls ([`Hits::reset`]), so a sweep allocates nothing once it
+//! has grown to the largest answer seen.
+
+use crate::interval::{Interval, IntervalList};
+use std::ops::ControlFlow;
+
+/// The merged collision pieces of one sweep.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Hits {
+    pieces: Vec<Interval>,
+    first_only: bool,
+}
+
+impl Hits {
+    /// Collects every piece.
+    pub fn all() -> Hits {
+        Hits::default()
+    }
+
+    /// Stops at the first piece (a yes/no question).
+    pub fn first_only() -> Hits {
+        Hits {
+            pieces: Vec::new(),
+            first_only: true,
+        }
+    }
+
+    /// Empties the set for the next sweep, keeping the buffer; `first_only` as in
+    /// [`Hits::first_only`].
+    pub fn reset(&mut self, first_only: bool) {
+        self.pieces.clear();
+        self.first_only = first_only;
+    }
+
+    /// Whether the sweep stops at the first piece.
+    pub fn is_first_only(&self) -> bool {
+        self.first_only
+    }
+
+    /// Adds a collision piece (an empty or NaN one is ignored); breaks when the sweep should
+    /// stop.
+    #[inline]
+    pub fn add(&mut self, iv: Interval) -> ControlFlow<()> {
+        if iv.lo > iv.hi || iv.lo.is_nan() || iv.hi.is_nan() {
+            return ControlFlow::Continue(());
+        }
+        // pieces [i, j) meet `iv`
+        let i = self.pieces.partition_point(|p| p.hi < iv.lo);
+        let j = i + self.pieces[i..].partition_point(|p| p.lo <= iv.hi);
+        if i == j {
+            self.pieces.insert(i, iv);
+        } else {
+            self.pieces[i] = Interval {
+                lo: self.pieces[i].lo.min(iv.lo),
+                hi: self.pieces[j - 1].hi.max(iv.hi),
+            };
+            self.pieces.drain(i + 1..j);
+        }
+        if self.first_only {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    }
+
+    /// Whether every parameter of `w` is already known to collide.
+    #[inline]
+    pub fn covers(&self, w: Interval) -> bool {
+        let i = self.pieces.partition_point(|p| p.hi < w.lo);
+        self.pieces
+            .get(i)
+            .is_some_and(|p| p.lo <= w.lo && w.hi <= p.hi)
+    }
+
+    /// Whether the sweep should stop.
+    #[inline]
+    pub fn done(&self) -> bool {
+        self.first_only && !self.pieces.is_empty()
+    }
+
+    /// The pieces, sorted and disjoint.
+    pub fn as_slice(&self) -> &[Interval] {
+        &self.pieces
+    }
+
+    /// The pieces within `range`, as a list.
+    pub fn to_list(&self, range: Interval) -> IntervalList {
+        IntervalList::from_unsorted(self.pieces.clone()).clip(range)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Merging on insertion gives the list `IntervalList::from_unsorted` gives, and
+        /// `covers` is true exactly for windows inside one merged piece.
+        #[test]
+        fn merged_pieces_match_from_unsorted(
+            raw in prop::collection::vec((0u8..60, 0u8..8), 0..20),
+            w in (0u8..60, 0u8..10),
+        ) {
+            let ivs: Vec<Interval> = raw
+                .iter()
+                .map(|&(a, l)| Interval { lo: f64::from(a) * 0.5, hi: f64::from(a + l) * 0.5 })
+                .collect();
+            let mut h = Hits::all();
+            for iv in &ivs {
+                prop_assert!(h.add(*iv).is_continue());
+            }
+            let want = IntervalList::from_unsorted(ivs.clone());
+            prop_assert_eq!(h.as_slice(), want.as_slice());
+            let w = Interval { lo: f64::from(w.0) * 0.5, hi: f64::from(w.0 + w.1) * 0.5 };
+            let inside = want.as_slice().iter().any(|p| p.lo <= w.lo && w.hi <= p.hi);
+            prop_assert_eq!(h.covers(w), inside);
+        }
+    }
+
+    #[test]
+    fn first_only_breaks_and_reset_clears() {
+        let mut h = Hits::first_only();
+        assert!(!h.done());
+        assert!(h.add(Interval { lo: 1.0, hi: 0.0 }).is_continue());
+        assert!(h.add(Interval { lo: 0.0, hi: 1.0 }).is_break());
+        assert!(h.done());
+        h.reset(false);
+        assert!(h.as_slice().is_empty() && !h.done());
+        assert!(h
+            .add(Interval {
+                lo: f64::NAN,
+                hi: 1.0
+            })
+            .is_continue());
+        assert!(h.as_slice().is_empty());
+    }
+}
