@@ -59,13 +59,21 @@ fn walks(scene: &Scene, n: usize, seed: u64) -> usize {
                 .iter()
                 .filter(|g| !scene.space.same_in_group(&w[0], &w[1], g))
                 .count();
-            assert_eq!(differing, 1, "{}: a step moved {differing} groups", scene.name);
+            assert_eq!(
+                differing, 1,
+                "{}: a step moved {differing} groups",
+                scene.name
+            );
         }
         if corners.last() == Some(&target) {
             reached += 1;
         }
     }
-    assert!(moved * 2 >= n, "{}: only {moved} of {n} walks moved", scene.name);
+    assert!(
+        moved * 2 >= n,
+        "{}: only {moved} of {n} walks moved",
+        scene.name
+    );
     reached
 }
 
@@ -81,7 +89,10 @@ fn discs_steps_are_free_and_some_reach_their_target() {
 fn se3_steps_are_free() {
     let s = scene("scenes/ompl/3D/Easy.cfg");
     let reached = walks(&s, 30, 2);
-    assert!(reached < 30, "every target reached: the walls were never hit");
+    assert!(
+        reached < 30,
+        "every target reached: the walls were never hit"
+    );
 }
 
 #[test]

@@ -137,8 +137,9 @@ impl Learner<'_> {
                 let mut rng = stream(seed, round, i, WALK_STREAM);
                 let mut counts = CallCounts::default();
                 let walk = match &sides {
-                    Some(sides) if rng.random::<f64>() < params.directed_share => self
-                        .directed(shared, params, deadline, sides, &mut rng, &mut counts),
+                    Some(sides) if rng.random::<f64>() < params.directed_share => {
+                        self.directed(shared, params, deadline, sides, &mut rng, &mut counts)
+                    }
                     _ => self.walk(shared, params, deadline, &weights, &mut rng, &mut counts),
                 };
                 (walk, counts)
