@@ -175,3 +175,37 @@ fn a_via_point_search_allocates_only_its_answer() {
     }
     assert!(calls > 32 * 50, "the searches made only {calls} calls");
 }
+
+#[test]
+fn with_discoveries_a_search_allocates_only_what_it_reports() {
+    // the roadmap's default records what it learns: merging the configurations (cheap keys,
+    // kept tables) must not allocate per node either
+    let space = DiscProblem::space();
+    let method = ViaPoint::default();
+    let oracles: Vec<_> = (0..32)
+        .map(|i| problem(4, i, SEED_RADIUS).oracle())
+        .collect();
+    let first: Vec<_> = oracles
+        .iter()
+        .map(|o| method.connect(&space, o, &START, &GOAL).unwrap())
+        .collect();
+    let mut configs = 0;
+    for (o, expected) in oracles.iter().zip(&first) {
+        let before = allocations();
+        let c = method.connect(&space, o, &START, &GOAL).unwrap();
+        let allocs = allocations() - before;
+        assert_eq!(c.discoveries, expected.discoveries);
+        let d = &c.discoveries;
+        configs += d.configs.len();
+        // one vector per path corner and per configuration reported, the lists and their growth
+        let reported = 2 * (c.path.len() + d.configs.len()) as u64 + 12;
+        assert!(
+            allocs <= reported,
+            "{allocs} allocations for a search of {} calls reporting {} corners, {} configurations",
+            c.counts.intersect_calls(),
+            c.path.len(),
+            d.configs.len()
+        );
+    }
+    assert!(configs > 32 * 3, "only {configs} configurations discovered");
+}

@@ -18,6 +18,16 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 use std::ops::Range;
 
+/// Appends a configuration's few numbers one by one: for vectors this short a call of the
+/// library's `memmove` cost more than the copy itself (issue 11's profile).
+#[inline]
+pub fn extend_small(dst: &mut Vec<f64>, src: &[f64]) {
+    dst.reserve(src.len());
+    for &x in src {
+        dst.push(x);
+    }
+}
+
 /// A configuration: one `f64` per coordinate, in the space's layout.
 pub type Config = Vec<f64>;
 
@@ -507,7 +517,7 @@ impl Space {
     /// Allocation-free twin of [`with_group_of`](Self::with_group_of): overwrites `out`.
     pub fn with_group_of_into(&self, a: &[f64], b: &[f64], group: &Group, out: &mut Vec<f64>) {
         out.clear();
-        out.extend_from_slice(a);
+        extend_small(out, a);
         out[group.coords.clone()].copy_from_slice(&b[group.coords.clone()]);
     }
 

@@ -6,7 +6,7 @@
 //! rotational borderline of CHS §2.3.1).
 
 use super::rotation;
-use super::Config;
+use super::{extend_small, Config};
 use crate::interval::Interval;
 use serde::{Deserialize, Serialize};
 
@@ -105,7 +105,7 @@ impl Motion {
     /// agree (the allocation-free hot path, issue 11).
     pub fn copy_from(&mut self, other: &Motion) {
         self.origin.clear();
-        self.origin.extend_from_slice(&other.origin);
+        extend_small(&mut self.origin, &other.origin);
         match (&mut self.change, &other.change) {
             (Change::Linear(mine), Change::Linear(theirs)) => {
                 mine.clear();
@@ -126,7 +126,7 @@ impl Motion {
         sweep: Sweep,
     ) -> &mut [f64] {
         self.origin.clear();
-        self.origin.extend_from_slice(origin);
+        extend_small(&mut self.origin, origin);
         self.range = range;
         self.sweep = sweep;
         if !matches!(self.change, Change::Linear(_)) {
@@ -152,7 +152,7 @@ impl Motion {
         sweep: Sweep,
     ) {
         self.origin.clear();
-        self.origin.extend_from_slice(origin);
+        extend_small(&mut self.origin, origin);
         self.range = range;
         self.sweep = sweep;
         self.change = Change::Rotation { axis, angle };

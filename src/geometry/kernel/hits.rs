@@ -24,11 +24,13 @@ pub(crate) struct Hits {
 
 impl Hits {
     /// Collects every piece.
+    #[cfg(test)]
     pub fn all() -> Hits {
         Hits::default()
     }
 
     /// Stops at the first piece (a yes/no question).
+    #[cfg(test)]
     pub fn first_only() -> Hits {
         Hits {
             pieces: Vec::new(),
@@ -94,10 +96,27 @@ impl Hits {
         &self.pieces
     }
 
-    /// The pieces within `range`, as a list.
+    /// The pieces within `range`, as a list (the one allocation of a call: the answer).
     pub fn to_list(&self, range: Interval) -> IntervalList {
-        IntervalList::from_unsorted(self.pieces.clone()).clip(range)
+        IntervalList::from_unsorted(self.pieces.clone()).into_clipped(range)
     }
+}
+
+/// Sorts and merges `items` in place (empty and NaN intervals dropped): what
+/// [`IntervalList::from_unsorted`] does, without giving up the buffer.
+pub(crate) fn merge_in_place(items: &mut Vec<Interval>) {
+    items.retain(|iv| iv.lo <= iv.hi);
+    items.sort_unstable_by(|a, b| a.lo.total_cmp(&b.lo));
+    let mut w = 0;
+    for r in 1..items.len() {
+        if items[r].lo <= items[w].hi {
+            items[w].hi = items[w].hi.max(items[r].hi);
+        } else {
+            w += 1;
+            items[w] = items[r];
+        }
+    }
+    items.truncate((w + 1).min(items.len()));
 }
 
 #[cfg(test)]
@@ -123,6 +142,9 @@ mod tests {
             }
             let want = IntervalList::from_unsorted(ivs.clone());
             prop_assert_eq!(h.as_slice(), want.as_slice());
+            let mut merged = ivs.clone();
+            merge_in_place(&mut merged);
+            prop_assert_eq!(&merged[..], want.as_slice());
             let w = Interval { lo: f64::from(w.0) * 0.5, hi: f64::from(w.0 + w.1) * 0.5 };
             let inside = want.as_slice().iter().any(|p| p.lo <= w.lo && w.hi <= p.hi);
             prop_assert_eq!(h.covers(w), inside);

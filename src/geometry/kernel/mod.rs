@@ -9,10 +9,13 @@
 //! - [`aabb`], [`bvh`]: one box type and one box tree, in the plane and in space, for the
 //!   enveloping hierarchy (CHS §2.2);
 //! - [`hits`]: how every pair's pieces are reported and merged, with the shortcuts that merging
-//!   allows (skip a pair whose window already collides, stop at the first piece for a yes/no).
+//!   allows (skip a pair whose window already collides, stop at the first piece for a yes/no);
+//! - [`memo`]: per-call caches by face or node, reset in O(1), kept per thread with the hits,
+//!   so that an oracle call allocates nothing but its answer.
 
 pub(crate) mod aabb;
 pub(crate) mod bvh;
 pub(crate) mod hits;
+pub(crate) mod memo;
 pub(crate) mod spans;
 pub(crate) mod trig;

@@ -10,6 +10,7 @@
 use super::directions::{perpendicular_into, DirScratch};
 use super::options::{BasePoint, ViaPointOptions};
 use crate::interval::{Interval, IntervalList};
+use crate::space::extend_small;
 use crate::space::{Change, Config, Group, GroupKind, Motion, Space, Sweep};
 use rand::Rng;
 
@@ -108,7 +109,7 @@ pub fn borderlines_into(
         (GroupKind::Linear, Change::Linear(delta)) => {
             let mut u = std::mem::take(&mut lines.unit);
             u.clear();
-            u.extend_from_slice(&delta[g.coords.clone()]);
+            extend_small(&mut u, &delta[g.coords.clone()]);
             let n = u.iter().map(|x| x * x).sum::<f64>().sqrt();
             if n > 0.0 {
                 u.iter_mut().for_each(|x| *x /= n);

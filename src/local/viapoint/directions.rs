@@ -8,6 +8,7 @@
 //! blocked rotation's axis (CHS Lemma 2.2: perpendicular great circles ⇔ perpendicular axes).
 
 use super::options::Directions;
+use crate::space::extend_small;
 use rand::Rng;
 use rand_distr_free::standard_normal;
 
@@ -98,7 +99,7 @@ pub fn perpendicular_into(
                 v.extend((0..m).map(|_| standard_normal(rng)));
                 project_out(v, u);
                 if normalize(v) {
-                    out.extend_from_slice(v);
+                    extend_small(out, v);
                     kept += 1;
                 }
             }
@@ -138,7 +139,7 @@ fn orthogonal_complement(
             project_out(v, &out[start + k * m..start + (k + 1) * m]);
         }
         if v.iter().map(|x| x * x).sum::<f64>() > 1e-12 && normalize(v) {
-            out.extend_from_slice(v);
+            extend_small(out, v);
             count += 1;
         }
     }

@@ -24,10 +24,13 @@ use crate::deadline::Deadline;
 use crate::interval::{Interval, IntervalList};
 use crate::local::{Borderline, Discoveries};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError, Workspace};
+use crate::space::extend_small;
 use crate::space::{Config, Group, Motion, Space};
 use rand::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::collections::HashMap;
+use std::collections::hash_map::Entry;
+use std::collections::{HashMap, HashSet};
+use std::hash::{BuildHasherDefault, Hasher};
 
 pub(super) type NodeId = usize;
 type Pt = u32;
@@ -122,6 +125,7 @@ pub(super) struct Buffers {
     cands: Vec<Candidate>,
     pool: Vec<(usize, usize, f64, f64)>,
     ws: Workspace,
+    merge: Merge,
 }
 
 impl Buffers {
@@ -288,7 +292,7 @@ impl<'a> Search<'a> {
     }
 
     fn push_pt(&mut self, q: &[f64]) -> Pt {
-        self.b.pts.extend_from_slice(q);
+        extend_small(&mut self.b.pts, q);
         (self.b.pts.len() / self.dim - 1) as Pt
     }
 
@@ -374,9 +378,9 @@ impl<'a> Search<'a> {
         let mut next = std::mem::take(&mut self.b.next);
         let mut collisions = std::mem::take(&mut self.b.hits);
         goal.clear();
-        goal.extend_from_slice(self.pt(z));
+        extend_small(&mut goal, self.pt(z));
         cur.clear();
-        cur.extend_from_slice(self.pt(a));
+        extend_small(&mut cur, self.pt(a));
         let mut cur_idx = a;
         let first_corner = self.pt_count() as Pt;
         let mut length = 0.0;
@@ -493,7 +497,7 @@ impl<'a> Search<'a> {
         let (space, groups, options) = (self.space, self.groups, self.options);
         let mut base = std::mem::take(&mut self.b.base);
         base.clear();
-        base.extend_from_slice(self.pt(base_pt));
+        extend_small(&mut base, self.pt(base_pt));
         let mut blocked_motion = std::mem::take(&mut self.b.blocked_motion);
         space.group_motion_into(
             self.pt(cur_pt),
@@ -858,35 +862,33 @@ impl<'a> Search<'a> {
     /// successes "a → q found while q → z failed" and their mirror images — and the via points
     /// among their ends. Fragments of failed branches that hang off neither end are left out:
     /// they would only add components of their own to a roadmap.
-    pub fn discoveries(&self) -> Discoveries {
+    pub fn discoveries(&mut self) -> Discoveries {
         let (a, z) = (self.pt(0), self.pt(1));
         let mut found = Discoveries::new(a, z);
         if !self.recording {
             return found;
         }
-        // merge identical configurations first: the same corner may be reached by several walks
-        let mut index: HashMap<Vec<u64>, u32> = HashMap::new();
-        index.insert(key(a), 0);
-        index.entry(key(z)).or_insert(1);
-        let mut configs: Vec<Pt> = vec![0, 1];
-        let mut canon = |p: Pt| -> u32 {
-            let k = key(self.pt(p));
-            let next = configs.len() as u32;
-            let id = *index.entry(k).or_insert(next);
-            if id == next {
-                configs.push(p);
-            }
-            id
-        };
-        let segments: Vec<(u32, u32)> = self
-            .b
-            .segments
-            .iter()
-            .map(|&(i, j)| (canon(i), canon(j)))
-            .collect();
-        let vias: Vec<u32> = self.b.vias_found.iter().map(|&v| canon(v)).collect();
+        let mut m = std::mem::take(&mut self.b.merge);
+        m.clear();
+        let (pts, dim) = (&self.b.pts[..], self.dim);
+        // merge identical configurations first: the same corner may be reached by several
+        // walks (ids in order of first appearance; the start is 0, the goal 1 unless it has
+        // the start's very bits)
+        m.configs.extend([0, 1]);
+        canonical(&mut m.index, &mut m.configs, pts, dim, 0, Some(0));
+        canonical(&mut m.index, &mut m.configs, pts, dim, 1, Some(1));
+        for &(i, j) in &self.b.segments {
+            let i = canonical(&mut m.index, &mut m.configs, pts, dim, i, None);
+            let j = canonical(&mut m.index, &mut m.configs, pts, dim, j, None);
+            m.segments.push((i, j));
+        }
+        for &v in &self.b.vias_found {
+            let v = canonical(&mut m.index, &mut m.configs, pts, dim, v, None);
+            m.vias.push(v);
+        }
         // components of the segment graph (union–find)
-        let mut parent: Vec<u32> = (0..configs.len() as u32).collect();
+        let n = m.configs.len();
+        m.parent.extend(0..n as u32);
         fn find(p: &mut [u32], mut x: u32) -> u32 {
             while p[x as usize] != x {
                 p[x as usize] = p[p[x as usize] as usize];
@@ -894,43 +896,131 @@ impl<'a> Search<'a> {
             }
             x
         }
-        for &(i, j) in &segments {
-            let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
-            parent[ri as usize] = rj;
+        for &(i, j) in &m.segments {
+            let (ri, rj) = (find(&mut m.parent, i), find(&mut m.parent, j));
+            m.parent[ri as usize] = rj;
         }
-        let (ra, rz) = (find(&mut parent, 0), find(&mut parent, 1));
-        let mut keep = |i: u32| {
-            let r = find(&mut parent, i);
-            r == ra || r == rz
-        };
-        let mut new_index: HashMap<u32, u32> = HashMap::from([(0, 0), (1, 1)]);
-        let mut seen = std::collections::HashSet::new();
-        for (i, j) in segments {
-            if i == j || !keep(i) || !seen.insert((i.min(j), i.max(j))) {
+        let (ra, rz) = (find(&mut m.parent, 0), find(&mut m.parent, 1));
+        // canonical id → index in `found` (NONE: not kept)
+        const NONE: u32 = u32::MAX;
+        m.new_index.resize(n, NONE);
+        m.new_index[0] = 0;
+        m.new_index[1] = 1;
+        for &(i, j) in &m.segments {
+            let r = find(&mut m.parent, i);
+            let keep = r == ra || r == rz;
+            if i == j || !keep || !m.seen.insert(((i.min(j) as u64) << 32) | i.max(j) as u64) {
                 continue;
             }
             let mut map = |c: u32| {
-                *new_index
-                    .entry(c)
-                    .or_insert_with(|| found.add(self.pt(configs[c as usize]).to_vec()))
+                if m.new_index[c as usize] == NONE {
+                    let p = m.configs[c as usize] as usize;
+                    m.new_index[c as usize] = found.add(pts[p * dim..(p + 1) * dim].to_vec());
+                }
+                m.new_index[c as usize]
             };
             let (i, j) = (map(i), map(j));
             found.free_segments.push((i, j));
         }
-        let mut vias_seen = std::collections::HashSet::new();
-        for v in vias {
-            if let Some(&n) = new_index.get(&v) {
-                if n > 1 && vias_seen.insert(n) {
-                    found.via_points.push(n);
-                }
+        m.vias_seen.resize(found.configs.len(), false);
+        for &v in &m.vias {
+            let n = m.new_index[v as usize];
+            if n != NONE && n > 1 && !m.vias_seen[n as usize] {
+                m.vias_seen[n as usize] = true;
+                found.via_points.push(n);
             }
         }
+        self.b.merge = m;
         found
     }
 }
 
-fn key(q: &[f64]) -> Vec<u64> {
-    q.iter().map(|x| x.to_bits()).collect()
+/// Buffers of [`Search::discoveries`], kept between searches like the others.
+#[derive(Default)]
+pub(super) struct Merge {
+    /// Hash of a configuration's bits → its canonical id (collisions probe onwards).
+    index: HashMap<u64, u32, BuildHasherDefault<MixHasher>>,
+    /// Canonical id → arena index of its first appearance.
+    configs: Vec<Pt>,
+    segments: Vec<(u32, u32)>,
+    vias: Vec<u32>,
+    parent: Vec<u32>,
+    new_index: Vec<u32>,
+    seen: HashSet<u64, BuildHasherDefault<MixHasher>>,
+    vias_seen: Vec<bool>,
+}
+
+impl Merge {
+    fn clear(&mut self) {
+        self.index.clear();
+        self.configs.clear();
+        self.segments.clear();
+        self.vias.clear();
+        self.parent.clear();
+        self.new_index.clear();
+        self.seen.clear();
+        self.vias_seen.clear();
+    }
+}
+
+/// A hasher for the search's own `u64` keys: one multiply and a fold, where the standard
+/// SipHash over a `Vec<u64>` key cost a sixth of a shallow search (issue 11: cheap node keys).
+#[derive(Default)]
+pub(super) struct MixHasher(u64);
+
+impl Hasher for MixHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        let h = (self.0 ^ x).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        self.0 = h ^ (h >> 32);
+    }
+}
+
+/// The canonical id of arena point `p`: the id of an earlier point with the same bits, or a
+/// new one (`fixed`, or the next free id, recorded in `configs`).
+fn canonical(
+    index: &mut HashMap<u64, u32, BuildHasherDefault<MixHasher>>,
+    configs: &mut Vec<Pt>,
+    pts: &[f64],
+    dim: usize,
+    p: Pt,
+    fixed: Option<u32>,
+) -> u32 {
+    let at = |i: Pt| &pts[i as usize * dim..(i as usize + 1) * dim];
+    let q = at(p);
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    for x in q {
+        h = (h ^ x.to_bits()).wrapping_mul(0x0000_0100_0000_01b3);
+        h ^= h >> 29;
+    }
+    loop {
+        match index.entry(h) {
+            Entry::Occupied(o) => {
+                let id = *o.get();
+                let other = at(configs[id as usize]);
+                if other.iter().zip(q).all(|(x, y)| x.to_bits() == y.to_bits()) {
+                    return id;
+                }
+                // a different configuration with the same hash: probe on
+                h = h.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            }
+            Entry::Vacant(v) => {
+                let id = fixed.unwrap_or_else(|| {
+                    configs.push(p);
+                    (configs.len() - 1) as u32
+                });
+                v.insert(id);
+                return id;
+            }
+        }
+    }
 }
 
 #[cfg(test)]

@@ -44,9 +44,11 @@ pub use crate::geometry::footprint_polygons;
 
 use super::{CallCounts, CollisionOracle, OracleError};
 use crate::geometry::kernel::bvh;
+use crate::geometry::kernel::hits::{merge_in_place, Hits};
 use crate::geometry::Polygon;
 use crate::interval::{Interval, IntervalList};
 use crate::space::{Change, Motion};
+use std::cell::RefCell;
 
 /// A box of the plane.
 type Aabb = crate::geometry::kernel::aabb::Aabb<2>;
@@ -116,6 +118,28 @@ struct Body {
     refs: Vec<P>,
     /// Largest distance of a vertex from the reference point.
     radius: f64,
+}
+
+/// A call's reusable space: the pieces, and the copies of one turn's pieces for a longer turn.
+/// One per thread, so that a call allocates nothing but its answer.
+#[derive(Default)]
+struct Scratch {
+    hits: Hits,
+    turns: Vec<Interval>,
+    trans: translation::Buffers,
+    rot: rotation::Buffers,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// Runs `f` with this thread's scratch space (a fresh one should a call ever nest).
+fn with_scratch<R>(f: impl FnOnce(&mut Scratch) -> R) -> R {
+    SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut s) => f(&mut s),
+        Err(_) => f(&mut Scratch::default()),
+    })
 }
 
 /// The obstacles, prepared in the world frame, with their search trees.
@@ -433,7 +457,7 @@ impl Polygons {
 
     /// Maps intervals of turned angle `φ = omega · t` back to `t`. The ends of the angle range
     /// map exactly to the ends of `range` (a division would miss them by rounding).
-    fn angles_to_parameters(angles: &IntervalList, omega: f64, range: Interval) -> IntervalList {
+    fn angles_to_parameters(angles: &[Interval], omega: f64, range: Interval) -> IntervalList {
         let (a, b) = (omega * range.lo, omega * range.hi);
         let to_t = |phi: f64| {
             if phi == a {
@@ -488,66 +512,61 @@ impl CollisionOracle for Polygons {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        let mut hits: Vec<Interval> = Vec::new();
-        let mut collect = |iv: Interval| {
-            // pairs of neighbouring primitives tend to report overlapping runs: merge them
-            // here, which leaves less to sort
-            match hits.last_mut() {
-                Some(last) if iv.lo <= last.hi && last.lo <= iv.hi => {
-                    last.lo = last.lo.min(iv.lo);
-                    last.hi = last.hi.max(iv.hi);
-                }
-                _ => hits.push(iv),
-            }
-            ControlFlow::Continue(())
-        };
-        match Self::classify(motion)? {
-            Kind::Translation { centre, theta, m } => {
-                let _ = translation::sweep(
-                    self,
-                    centre,
-                    theta,
-                    m,
-                    motion.range,
-                    &mut counts.pairs_tested,
-                    &mut collect,
-                );
-                Ok(IntervalList::from_unsorted(hits).clip(motion.range))
-            }
-            Kind::Rotation {
-                centre,
-                theta,
-                omega,
-            } => {
-                let (window, reach) = Self::rotation_window(motion.range, omega)?;
-                let _ = rotation::sweep(
-                    self,
-                    centre,
-                    theta,
-                    window,
-                    &mut counts.pairs_tested,
-                    &mut collect,
-                );
-                // one turn computed; later turns repeat it
-                let base = IntervalList::from_unsorted(hits);
-                let mut all: Vec<Interval> = base.as_slice().to_vec();
-                let mut k = 1.0;
-                while window.lo + k * TAU <= reach {
-                    let shift = k * TAU;
-                    all.extend(
-                        base.iter().filter_map(|iv| {
-                            Interval::new(iv.lo + shift, (iv.hi + shift).min(reach))
-                        }),
+        with_scratch(|scratch| {
+            let Scratch {
+                hits,
+                turns,
+                trans,
+                rot,
+            } = scratch;
+            hits.reset(false);
+            let mut collect = |iv: Interval| hits.add(iv);
+            match Self::classify(motion)? {
+                Kind::Translation { centre, theta, m } => {
+                    let _ = translation::sweep(
+                        self,
+                        centre,
+                        theta,
+                        m,
+                        motion.range,
+                        &mut counts.pairs_tested,
+                        trans,
+                        &mut collect,
                     );
-                    k += 1.0;
+                    Ok(hits.to_list(motion.range))
                 }
-                Ok(Self::angles_to_parameters(
-                    &IntervalList::from_unsorted(all),
+                Kind::Rotation {
+                    centre,
+                    theta,
                     omega,
-                    motion.range,
-                ))
+                } => {
+                    let (window, reach) = Self::rotation_window(motion.range, omega)?;
+                    let _ = rotation::sweep(
+                        self,
+                        centre,
+                        theta,
+                        window,
+                        &mut counts.pairs_tested,
+                        rot,
+                        &mut collect,
+                    );
+                    // one turn computed; later turns repeat it
+                    let base = hits.as_slice();
+                    turns.clear();
+                    turns.extend_from_slice(base);
+                    let mut k = 1.0;
+                    while window.lo + k * TAU <= reach {
+                        let shift = k * TAU;
+                        turns.extend(base.iter().filter_map(|iv| {
+                            Interval::new(iv.lo + shift, (iv.hi + shift).min(reach))
+                        }));
+                        k += 1.0;
+                    }
+                    merge_in_place(turns);
+                    Ok(Self::angles_to_parameters(turns, omega, motion.range))
+                }
             }
-        }
+        })
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
@@ -555,16 +574,19 @@ impl CollisionOracle for Polygons {
             // not a configuration of this scene: never call it free
             return true;
         }
-        translation::sweep(
-            self,
-            [q[0], q[1]],
-            q[2],
-            [0.0, 0.0],
-            Interval { lo: 0.0, hi: 0.0 },
-            &mut counts.pairs_tested,
-            &mut |_| ControlFlow::Break(()),
-        )
-        .is_break()
+        with_scratch(|s| {
+            translation::sweep(
+                self,
+                [q[0], q[1]],
+                q[2],
+                [0.0, 0.0],
+                Interval { lo: 0.0, hi: 0.0 },
+                &mut counts.pairs_tested,
+                &mut s.trans,
+                &mut |_| ControlFlow::Break(()),
+            )
+            .is_break()
+        })
     }
 
     fn motion_is_free(
@@ -573,32 +595,35 @@ impl CollisionOracle for Polygons {
         counts: &mut CallCounts,
     ) -> Result<bool, OracleError> {
         let mut stop = |_| ControlFlow::Break(());
-        let flow = match Self::classify(motion)? {
-            Kind::Translation { centre, theta, m } => translation::sweep(
+        let kind = Self::classify(motion)?;
+        let flow = with_scratch(|s| match kind {
+            Kind::Translation { centre, theta, m } => Ok(translation::sweep(
                 self,
                 centre,
                 theta,
                 m,
                 motion.range,
                 &mut counts.pairs_tested,
+                &mut s.trans,
                 &mut stop,
-            ),
+            )),
             Kind::Rotation {
                 centre,
                 theta,
                 omega,
             } => {
                 let (window, _) = Self::rotation_window(motion.range, omega)?;
-                rotation::sweep(
+                Ok(rotation::sweep(
                     self,
                     centre,
                     theta,
                     window,
                     &mut counts.pairs_tested,
+                    &mut s.rot,
                     &mut stop,
-                )
+                ))
             }
-        };
+        })?;
         Ok(flow.is_continue())
     }
 }

@@ -190,6 +190,16 @@ pub(super) fn triangle_radii(tri: &[P; 3]) -> (f64, f64) {
 /// turned angles `φ ∈ window` (length at most `2π`) from orientation `theta`, and hands every
 /// pair's collision set (in `φ`) to `sink`, stopping when it breaks. Counts pairs in `pairs`.
 ///
+/// Reusable buffers of a rotation sweep (the candidates the tree returns, the robot's
+/// reference points), kept in the oracle's per-thread scratch space.
+#[derive(Default)]
+pub(super) struct Buffers {
+    cands: Vec<(usize, [P; 2], (f64, f64))>,
+    refs: Vec<(P, f64)>,
+    tris: Vec<(usize, [P; 3], (f64, f64))>,
+    points: Vec<(P, f64)>,
+}
+
 /// Enveloping: one query of the obstacle tree per kind of primitive with the annulus the robot
 /// sweeps, then, per robot primitive, its own annulus against the candidates' distances.
 pub(super) fn sweep(
@@ -198,8 +208,15 @@ pub(super) fn sweep(
     theta: f64,
     window: Interval,
     pairs: &mut u64,
+    bufs: &mut Buffers,
     sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
+    let Buffers {
+        cands,
+        refs,
+        tris,
+        points,
+    } = bufs;
     let body = &oracle.body;
     let world = &oracle.world;
     let env = oracle.enveloping;
@@ -213,7 +230,7 @@ pub(super) fn sweep(
     let overlap = |lo: f64, hi: f64, r: (f64, f64)| lo - slack <= r.1 && r.0 <= hi + slack;
 
     // edge against edge; a robot edge sweeps the annulus of its distances from the centre
-    let mut cands: Vec<(usize, [P; 2], (f64, f64))> = Vec::new();
+    cands.clear();
     let keep_edge = |j: usize| {
         let [c, d] = world.edges[j];
         let (c, d) = (rel(c), rel(d));
@@ -237,7 +254,7 @@ pub(super) fn sweep(
     }
     for ((edge, &le), &(lo, hi)) in body.edges.iter().zip(&body.edge_len).zip(&body.edge_radii) {
         let (a, b) = (turn(edge[0]), turn(edge[1]));
-        for &(j, [c, d], radii) in &cands {
+        for &(j, [c, d], radii) in cands.iter() {
             if env && !overlap(lo, hi, radii) {
                 continue;
             }
@@ -251,15 +268,12 @@ pub(super) fn sweep(
     }
 
     // the reference vertex of every robot part on its circle, against obstacle triangles
-    let refs: Vec<(P, f64)> = body
-        .refs
-        .iter()
-        .map(|&r| {
-            let v = turn(r);
-            (v, norm(v))
-        })
-        .collect();
-    let mut tris: Vec<(usize, [P; 3], (f64, f64))> = Vec::new();
+    refs.clear();
+    refs.extend(body.refs.iter().map(|&r| {
+        let v = turn(r);
+        (v, norm(v))
+    }));
+    tris.clear();
     let keep_tri = |j: usize| {
         let t = world.tris[j];
         let tri = [rel(t[0]), rel(t[1]), rel(t[2])];
@@ -286,8 +300,8 @@ pub(super) fn sweep(
     } else {
         tris.extend((0..world.tris.len()).map(keep_tri));
     }
-    for &(v, rho) in &refs {
-        for &(j, tri, radii) in &tris {
+    for &(v, rho) in refs.iter() {
+        for &(j, tri, radii) in tris.iter() {
             if env && !overlap(rho, rho, radii) {
                 continue;
             }
@@ -304,7 +318,7 @@ pub(super) fn sweep(
     if body.tris.is_empty() {
         return ControlFlow::Continue(());
     }
-    let mut points: Vec<(P, f64)> = Vec::new();
+    points.clear();
     let keep_point = |j: usize| {
         let w = rel(world.refs[j]);
         (w, norm(w))
@@ -330,7 +344,7 @@ pub(super) fn sweep(
     }
     for ((tri, lens), &(lo, hi)) in body.tris.iter().zip(&body.tri_len).zip(&body.tri_radii) {
         let placed = [turn(tri[0]), turn(tri[1]), turn(tri[2])];
-        for &(w, rho) in &points {
+        for &(w, rho) in points.iter() {
             if env && !overlap(lo, hi, (rho, rho)) {
                 continue;
             }

@@ -198,8 +198,19 @@ impl Frame {
 /// placement `(centre, theta)` can collide in, and hands every pair's collision interval to
 /// `sink` (stopping when it breaks). Counts the pairs evaluated in `pairs`.
 ///
+/// Reusable buffers of a translation sweep (the robot placed, the candidates the tree returns),
+/// kept in the oracle's per-thread scratch space.
+#[derive(Default)]
+pub(super) struct Buffers {
+    vertices: Vec<P>,
+    cands: Vec<(usize, Ranges)>,
+    refs: Vec<P>,
+    points: Vec<(P, Ranges)>,
+}
+
 /// Enveloping: one query of the obstacle tree with the box the whole robot sweeps, then, per
 /// robot primitive, the box it sweeps itself against the candidates' projections.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn sweep(
     oracle: &Polygons,
     centre: P,
@@ -207,8 +218,15 @@ pub(super) fn sweep(
     m: P,
     range: Interval,
     pairs: &mut u64,
+    bufs: &mut Buffers,
     sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
+    let Buffers {
+        vertices,
+        cands,
+        refs,
+        points,
+    } = bufs;
     let body = &oracle.body;
     let world = &oracle.world;
     let env = oracle.enveloping;
@@ -235,15 +253,16 @@ pub(super) fn sweep(
         }
     };
     let full = Span::within(range);
-    let vertices: Vec<P> = body.vertices.iter().map(|&v| place(v)).collect();
-    let robot = frame.boxed(&frame.swept(&vertices));
+    vertices.clear();
+    vertices.extend(body.vertices.iter().map(|&v| place(v)));
+    let robot = frame.boxed(&frame.swept(vertices));
     let unculled = Ranges {
         u: (0.0, 0.0),
         n: (0.0, 0.0),
     };
 
     // edge against edge
-    let mut cands: Vec<(usize, Ranges)> = Vec::new();
+    cands.clear();
     if env {
         let _ = world.edge_tree.query::<()>(
             |bx| robot.overlaps(bx),
@@ -258,7 +277,7 @@ pub(super) fn sweep(
     for (edge, &le) in body.edges.iter().zip(&body.edge_len) {
         let (a, b) = (place(edge[0]), place(edge[1]));
         let swept = frame.swept(&[a, b]);
-        for &(j, r) in &cands {
+        for &(j, r) in cands.iter() {
             if env && !swept.meets(&r) {
                 continue;
             }
@@ -271,10 +290,11 @@ pub(super) fn sweep(
     }
 
     // a reference vertex of every robot part in the obstacles' triangles
-    let refs: Vec<P> = body.refs.iter().map(|&r| place(r)).collect();
+    refs.clear();
+    refs.extend(body.refs.iter().map(|&r| place(r)));
     cands.clear();
     if env {
-        let paths = frame.boxed(&frame.swept(&refs));
+        let paths = frame.boxed(&frame.swept(refs));
         let _ = world.tri_tree.query::<()>(
             |bx| paths.overlaps(bx),
             |j| {
@@ -285,9 +305,9 @@ pub(super) fn sweep(
     } else {
         cands.extend((0..world.tris.len()).map(|j| (j, unculled)));
     }
-    for &p in &refs {
+    for &p in refs.iter() {
         let path = frame.swept(&[p]);
-        for &(j, r) in &cands {
+        for &(j, r) in cands.iter() {
             if env && !path.meets(&r) {
                 continue;
             }
@@ -303,7 +323,7 @@ pub(super) fn sweep(
     if body.tris.is_empty() {
         return ControlFlow::Continue(());
     }
-    let mut points: Vec<(P, Ranges)> = Vec::new();
+    points.clear();
     if env {
         let _ = world.ref_tree.query::<()>(
             |bx| robot.overlaps(bx),
@@ -323,7 +343,7 @@ pub(super) fn sweep(
     for (tri, lens) in body.tris.iter().zip(&body.tri_len) {
         let placed = [place(tri[0]), place(tri[1]), place(tri[2])];
         let swept = frame.swept(&placed);
-        for &(w, r) in &points {
+        for &(w, r) in points.iter() {
             if env && !swept.meets(&r) {
                 continue;
             }

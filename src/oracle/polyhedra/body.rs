@@ -31,26 +31,33 @@ pub(crate) struct Face {
     pub n: V3,
     /// `n · v0`.
     pub offset: f64,
+    /// `|n|`, which scales every tolerance of the predicate with this face.
+    pub n_norm: f64,
+    /// Edge vectors `v_{i+1} − v_i`.
+    e: [V3; 3],
+    /// Their lengths.
+    pub e_len: [f64; 3],
 }
 
 impl Face {
-    /// The face with corners `v`.
+    /// The face with corners `v`. The norms the predicate needs are computed here once, not
+    /// per edge–face pair.
     pub fn new(v: [V3; 3]) -> Face {
         let n = (v[1] - v[0]).cross(&(v[2] - v[0]));
+        let e = [v[1] - v[0], v[2] - v[1], v[0] - v[2]];
         Face {
             v,
             n,
             offset: n.dot(&v[0]),
+            n_norm: n.norm(),
+            e,
+            e_len: e.map(|x| x.norm()),
         }
     }
 
     /// Edge vectors `v_{i+1} − v_i`.
     pub fn edges(&self) -> [V3; 3] {
-        [
-            self.v[1] - self.v[0],
-            self.v[2] - self.v[1],
-            self.v[0] - self.v[2],
-        ]
+        self.e
     }
 }
 
@@ -90,6 +97,9 @@ pub(crate) struct Body {
     pub vertices: Vec<V3>,
     /// Faces, each geometric triangle once.
     pub faces: Vec<[u32; 3]>,
+    /// Every face with its plane and norms, in this body's frame (the robot's faces never
+    /// move in it, so they are prepared once).
+    geo: Vec<Face>,
     /// Unique edges.
     pub edges: Vec<[u32; 2]>,
     /// `owned[owned_start[f]..owned_start[f + 1]]` are the edges owned by face `f`.
@@ -280,10 +290,15 @@ impl Body {
             .flatten()
             .map(|&i| vertices[i as usize].norm())
             .fold(0.0, f64::max);
+        let geo = faces
+            .iter()
+            .map(|t| Face::new(t.map(|i| vertices[i as usize])))
+            .collect();
         Body {
-            bvh: Bvh::build(boxes.clone()),
+            bvh: Bvh::build(boxes),
             vertices,
             faces,
+            geo,
             edges,
             owned_start,
             owned,
@@ -296,6 +311,11 @@ impl Body {
     /// The corners of face `f`.
     pub fn corners(&self, f: u32) -> [V3; 3] {
         self.faces[f as usize].map(|i| self.vertices[i as usize])
+    }
+
+    /// Face `f` with its plane and norms.
+    pub fn face(&self, f: u32) -> &Face {
+        &self.geo[f as usize]
     }
 
     /// The edges owned by face `f`.

@@ -32,6 +32,7 @@ use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
 use std::f64::consts::TAU;
+use std::ops::ControlFlow;
 
 type V3 = Vector3<f64>;
 
@@ -78,7 +79,7 @@ fn classify(d: [f64; 3], margin: f64) -> Cross {
 
 /// The line `x0 + s·u` against a face.
 fn line_face(x0: &V3, u: &V3, f: &Face, margin: f64, parallel: f64) -> Cross {
-    let nn = f.n.norm();
+    let nn = f.n_norm;
     let denom = f.n.dot(u);
     if denom.abs() <= parallel * nn * u.norm() {
         return if (f.n.dot(x0) - f.offset).abs() <= margin * nn {
@@ -145,7 +146,7 @@ fn pick_point(view: View, comp: &Component, k: u64, along: Option<&V3>) -> Optio
     }
     let f = view.face(comp.faces[(mix(k * 7 + 3) % n) as usize]);
     if let Some(dir) = along {
-        if k < ATTEMPTS / 2 && f.n.dot(dir).abs() < 0.2 * f.n.norm() * dir.norm() {
+        if k < ATTEMPTS / 2 && f.n.dot(dir).abs() < 0.2 * f.n_norm * dir.norm() {
             return None;
         }
     }
@@ -187,6 +188,7 @@ fn inside(
 }
 
 /// `{λ ∈ window : x0 + λ·dir inside the part}`; `None` when degenerate.
+#[allow(clippy::too_many_arguments)]
 fn inside_along_line(
     view: View,
     x0: &V3,
@@ -195,8 +197,14 @@ fn inside_along_line(
     margin: f64,
     parallel: f64,
     counts: &mut CallCounts,
-) -> Option<Vec<Interval>> {
-    let mut hits = Vec::new();
+    buf: &mut Pieces,
+) -> bool {
+    let Pieces {
+        crossings: hits,
+        out,
+    } = buf;
+    hits.clear();
+    out.clear();
     let mut degenerate = false;
     let speed = dir.norm();
     view.part.parity_bvh.visit_line(x0, dir, margin, |i| {
@@ -209,18 +217,18 @@ fn inside_along_line(
         !degenerate
     });
     if degenerate || hits.len() % 2 == 1 {
-        return None;
+        return false;
     }
     hits.sort_by(f64::total_cmp);
     if hits.windows(2).any(|w| (w[1] - w[0]) * speed <= margin) {
         // two crossings at one point: through an edge or vertex after all
-        return None;
+        return false;
     }
-    Some(
+    out.extend(
         hits.chunks(2)
-            .filter_map(|c| Interval { lo: c[0], hi: c[1] }.meet(&window))
-            .collect(),
-    )
+            .filter_map(|c| Interval { lo: c[0], hi: c[1] }.meet(&window)),
+    );
+    true
 }
 
 /// `{ψ ∈ window : x0 turned by ψ about (centre, unit axis) inside the part}`, `window` within
@@ -236,12 +244,17 @@ fn inside_along_circle(
     margin: f64,
     parallel: f64,
     counts: &mut CallCounts,
-) -> Option<Vec<Interval>> {
+    buf: &mut Pieces,
+) -> bool {
+    let Pieces { crossings, out } = buf;
+    crossings.clear();
+    out.clear();
     let rel = x0 - centre;
     let start = centre + turn(&rel, axis, window.lo);
-    let mut state = inside(view, &start, &direction(k), margin, parallel, counts)?;
+    let Some(mut state) = inside(view, &start, &direction(k), margin, parallel, counts) else {
+        return false;
+    };
     let radius = (rel - axis * axis.dot(&rel)).norm();
-    let mut crossings: Vec<f64> = Vec::new();
     if radius > margin {
         let arc = AngleRange::new(window.lo, window.hi)
             .arc_box(&rel, axis)
@@ -251,7 +264,7 @@ fn inside_along_circle(
         view.part.parity_bvh.visit_overlapping(&arc, |i| {
             counts.pairs_tested += 1;
             let f = view.face(i);
-            let nn = f.n.norm();
+            let nn = f.n_norm;
             let h = lin(&f.n, &rel, axis).plus(f.n.dot(centre) - f.offset);
             let zeros = match h.zeros() {
                 Zeros::None => return true,
@@ -285,7 +298,7 @@ fn inside_along_circle(
             !degenerate
         });
         if degenerate {
-            return None;
+            return false;
         }
     }
     crossings.sort_by(f64::total_cmp);
@@ -293,11 +306,10 @@ fn inside_along_circle(
         .windows(2)
         .any(|w| (w[1] - w[0]) * radius <= margin)
     {
-        return None;
+        return false;
     }
-    let mut out = Vec::new();
     let mut from = window.lo;
-    for &c in &crossings {
+    for &c in crossings.iter() {
         if state {
             out.push(Interval { lo: from, hi: c });
         }
@@ -310,7 +322,40 @@ fn inside_along_circle(
             hi: window.hi,
         });
     }
-    Some(out)
+    true
+}
+
+/// Reusable buffers of one containment answer along a path: the parameters at which the path
+/// crosses the surface, and the inside pieces (kept in the per-thread scratch space).
+#[derive(Default)]
+pub(crate) struct Pieces {
+    crossings: Vec<f64>,
+    out: Vec<Interval>,
+}
+
+/// Reports the inside pieces of one component (`pieces` if an attempt `found` them, else the
+/// whole `window`, conservatively), negated if `negate` (a turn seen from the other body).
+fn report(
+    found: bool,
+    pieces: &[Interval],
+    window: Interval,
+    negate: bool,
+    sink: &mut Hits,
+) -> ControlFlow<()> {
+    let all = [window];
+    let pieces = if found { pieces } else { &all[..] };
+    for iv in pieces {
+        let iv = if negate {
+            Interval {
+                lo: -iv.hi,
+                hi: -iv.lo,
+            }
+        } else {
+            *iv
+        };
+        sink.add(iv)?;
+    }
+    ControlFlow::Continue(())
 }
 
 /// The robot's part, if containment applies to it (a closed mesh with an inside).
@@ -388,6 +433,7 @@ pub(crate) fn translation(
     dir_w: &V3,
     window: Interval,
     sink: &mut Hits,
+    buf: &mut Pieces,
     counts: &mut CallCounts,
 ) {
     let Some(rpart) = both_solid(ph) else {
@@ -413,22 +459,22 @@ pub(crate) fn translation(
             else {
                 continue;
             };
-            let answer = (0..ATTEMPTS).find_map(|k| {
-                let v = pick_point(rview, comp, k, Some(&dir_b))?;
-                inside_along_line(
-                    oview,
-                    &pose.world_point(&v),
-                    dir_w,
-                    w,
-                    margin,
-                    parallel,
-                    counts,
-                )
+            let found = (0..ATTEMPTS).any(|k| {
+                pick_point(rview, comp, k, Some(&dir_b)).is_some_and(|v| {
+                    inside_along_line(
+                        oview,
+                        &pose.world_point(&v),
+                        dir_w,
+                        w,
+                        margin,
+                        parallel,
+                        counts,
+                        buf,
+                    )
+                })
             });
-            for iv in answer.unwrap_or_else(|| vec![w]) {
-                if sink.add(iv).is_break() {
-                    return;
-                }
+            if report(found, &buf.out, w, false, sink).is_break() {
+                return;
             }
         }
         // obstacle pieces, moving by −λ·dir relative to the robot
@@ -441,22 +487,22 @@ pub(crate) fn translation(
             else {
                 continue;
             };
-            let answer = (0..ATTEMPTS).find_map(|k| {
-                let p = pick_point(oview, comp, k, Some(dir_w))?;
-                inside_along_line(
-                    rview,
-                    &pose.body_point(&p),
-                    &back,
-                    w,
-                    margin,
-                    parallel,
-                    counts,
-                )
+            let found = (0..ATTEMPTS).any(|k| {
+                pick_point(oview, comp, k, Some(dir_w)).is_some_and(|p| {
+                    inside_along_line(
+                        rview,
+                        &pose.body_point(&p),
+                        &back,
+                        w,
+                        margin,
+                        parallel,
+                        counts,
+                        buf,
+                    )
+                })
             });
-            for iv in answer.unwrap_or_else(|| vec![w]) {
-                if sink.add(iv).is_break() {
-                    return;
-                }
+            if report(found, &buf.out, w, false, sink).is_break() {
+                return;
             }
         }
     }
@@ -470,6 +516,7 @@ pub(crate) fn rotation(
     axis_w: &V3,
     phis: Interval,
     sink: &mut Hits,
+    buf: &mut Pieces,
     counts: &mut CallCounts,
 ) {
     let Some(rpart) = both_solid(ph) else {
@@ -498,17 +545,16 @@ pub(crate) fn rotation(
             if !swept.overlaps(&opart.aabb.grown(margin)) {
                 continue;
             }
-            let answer = (0..ATTEMPTS).find_map(|k| {
-                let v = pick_point(rview, comp, k, None)?;
-                let x0 = pose.world_point(&v);
-                inside_along_circle(
-                    oview, &x0, &pose.pos, axis_w, phis, k, margin, parallel, counts,
-                )
+            let found = (0..ATTEMPTS).any(|k| {
+                pick_point(rview, comp, k, None).is_some_and(|v| {
+                    let x0 = pose.world_point(&v);
+                    inside_along_circle(
+                        oview, &x0, &pose.pos, axis_w, phis, k, margin, parallel, counts, buf,
+                    )
+                })
             });
-            for iv in answer.unwrap_or_else(|| vec![phis]) {
-                if sink.add(iv).is_break() {
-                    return;
-                }
+            if report(found, &buf.out, phis, false, sink).is_break() {
+                return;
             }
         }
         // obstacle pieces, turning by −φ about the axis as seen from the robot
@@ -537,32 +583,26 @@ pub(crate) fn rotation(
             if !swept.overlaps(&rpart.aabb.grown(margin)) {
                 continue;
             }
-            let answer = (0..ATTEMPTS).find_map(|k| {
-                let p = pick_point(oview, comp, k, None)?;
-                let y0 = pose.body_point(&p);
-                inside_along_circle(
-                    rview,
-                    &y0,
-                    &V3::zeros(),
-                    &axis_b,
-                    back,
-                    k,
-                    margin,
-                    parallel,
-                    counts,
-                )
+            let found = (0..ATTEMPTS).any(|k| {
+                pick_point(oview, comp, k, None).is_some_and(|p| {
+                    let y0 = pose.body_point(&p);
+                    inside_along_circle(
+                        rview,
+                        &y0,
+                        &V3::zeros(),
+                        &axis_b,
+                        back,
+                        k,
+                        margin,
+                        parallel,
+                        counts,
+                        buf,
+                    )
+                })
             });
-            for iv in answer.unwrap_or_else(|| vec![back]) {
-                // ψ = −φ
-                if sink
-                    .add(Interval {
-                        lo: -iv.hi,
-                        hi: -iv.lo,
-                    })
-                    .is_break()
-                {
-                    return;
-                }
+            // ψ = −φ
+            if report(found, &buf.out, back, true, sink).is_break() {
+                return;
             }
         }
     }
@@ -614,7 +654,8 @@ mod tests {
             part: &b.parts[0],
         };
         let mut c = CallCounts::default();
-        let ivs = inside_along_line(
+        let mut buf = Pieces::default();
+        assert!(inside_along_line(
             view,
             &V3::new(-5.0, 0.3, 0.2),
             &V3::new(2.0, 0.0, 0.0),
@@ -622,14 +663,16 @@ mod tests {
             1e-9,
             1e-10,
             &mut c,
-        )
-        .unwrap();
+            &mut buf,
+        ));
+        let ivs = buf.out.clone();
         assert_eq!(ivs.len(), 1);
         assert!((ivs[0].lo - 2.0).abs() < 1e-12 && (ivs[0].hi - 3.0).abs() < 1e-12);
         // a point at radius 1.2 about the z-axis is inside the cube where |cos ψ| and |sin ψ|
         // are at most 1/1.2: four arcs around the diagonals
         let r = 1.2f64;
-        let ivs = inside_along_circle(
+        // the buffers are reused: the first answer must not leak into the second
+        assert!(inside_along_circle(
             view,
             &V3::new(r, 0.0, 0.3),
             &V3::zeros(),
@@ -639,8 +682,9 @@ mod tests {
             1e-9,
             1e-10,
             &mut c,
-        )
-        .unwrap();
+            &mut buf,
+        ));
+        let ivs = buf.out.clone();
         let half = FRAC_PI_4 - (1.0 / r).acos();
         assert_eq!(ivs.len(), 4, "{ivs:?}");
         for (k, iv) in ivs.iter().enumerate() {

@@ -394,7 +394,7 @@ pub(crate) fn sector_window(m: (f64, f64), f: (f64, f64), window: Interval) -> O
 /// Distance from the origin to the triangle `xy` in the plane (0 if inside).
 fn origin_distance_2d(xy: &[(f64, f64); 3]) -> f64 {
     let cross = |a: (f64, f64), b: (f64, f64)| a.0 * b.1 - a.1 * b.0;
-    let s: Vec<f64> = (0..3).map(|i| cross(xy[i], xy[(i + 1) % 3])).collect();
+    let s: [f64; 3] = std::array::from_fn(|i| cross(xy[i], xy[(i + 1) % 3]));
     if (s[0] >= 0.0 && s[1] >= 0.0 && s[2] >= 0.0) || (s[0] <= 0.0 && s[1] <= 0.0 && s[2] <= 0.0) {
         return 0.0;
     }

@@ -51,14 +51,17 @@ mod rotation;
 mod translation;
 
 use super::{CallCounts, CollisionOracle, OracleError};
+use crate::geometry::kernel::memo::Memo;
 use crate::geometry::kernel::{aabb, bvh, hits::Hits, spans};
 use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
 use crate::space::rotation::quat_from_slice;
 use crate::space::{Change, Motion};
 use body::{Body, Face};
+use envelope::{CylBox, FrameBox};
 use nalgebra::{Matrix3, Vector3};
 use predicate::Tolerance;
+use std::cell::RefCell;
 use std::f64::consts::TAU;
 
 /// A box in space (the kernel's).
@@ -181,6 +184,44 @@ impl Pose {
             hi: c + h,
         }
     }
+}
+
+/// Per-call caches of the sweeps, by robot face or robot tree node (see [`Memo`]).
+#[derive(Default)]
+pub(crate) struct Caches {
+    /// A robot face's box in the frame of a translation.
+    frame_boxes: Memo<FrameBox>,
+    /// A robot face's cylindrical box about the axis of a turn.
+    cyl_boxes: Memo<CylBox>,
+    /// A robot node's box placed at the pose.
+    placed: Memo<Aabb>,
+    /// A robot node's bounds for a turn.
+    nodes: Memo<rotation::NodeBounds>,
+    /// A robot face's world box swept over a turn.
+    swept: Memo<Aabb>,
+    /// Containment along a path.
+    pieces: containment::Pieces,
+}
+
+/// Everything a call needs besides the oracle: the pieces, one turn's pieces, the caches.
+/// One per thread, reused, so that a call allocates nothing but its answer.
+#[derive(Default)]
+struct Scratch {
+    hits: Hits,
+    turn: Hits,
+    caches: Caches,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// Runs `f` with this thread's scratch space (a fresh one should a call ever nest).
+fn with_scratch<R>(f: impl FnOnce(&mut Scratch) -> R) -> R {
+    SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut s) => f(&mut s),
+        Err(_) => f(&mut Scratch::default()),
+    })
 }
 
 /// What a motion does, in the world frame.
@@ -323,13 +364,19 @@ impl Polyhedra {
         Ok((pose, kind))
     }
 
-    /// The sweep behind both `intervals` and `motion_is_free`: collision pieces in `t`, unsorted.
+    /// The sweep behind both `intervals` and `motion_is_free`: collision pieces in `t` into
+    /// `scratch.hits` (reset by the caller).
     fn sweep(
         &self,
         motion: &Motion,
-        sink: &mut Hits,
+        scratch: &mut Scratch,
         counts: &mut CallCounts,
     ) -> Result<(), OracleError> {
+        let Scratch {
+            hits: sink,
+            turn: local,
+            caches,
+        } = scratch;
         let (pose, kind) = Self::classify(motion)?;
         let range = motion.range;
         if self.obstacles.faces.is_empty() || self.robot.faces.is_empty() {
@@ -337,11 +384,13 @@ impl Polyhedra {
         }
         match kind {
             Kind::Still => {
-                if self.collides_at(&pose, counts) {
+                if self.collides_at(&pose, caches, counts) {
                     let _ = sink.add(range);
                 }
             }
-            Kind::Translation(dir) => translation::sweep(self, &pose, &dir, range, sink, counts),
+            Kind::Translation(dir) => {
+                translation::sweep(self, &pose, &dir, range, sink, caches, counts)
+            }
             Kind::Rotation { axis, angle } => {
                 if !range.is_bounded() {
                     return Err(OracleError::Unsupported(
@@ -359,9 +408,8 @@ impl Polyhedra {
                     lo: p0,
                     hi: p1.min(p0 + TAU),
                 };
-                let mut local = Hits::all();
                 local.reset(sink.is_first_only());
-                rotation::sweep(self, &pose, &axis, one, &mut local, counts);
+                rotation::sweep(self, &pose, &axis, one, local, caches, counts);
                 let turns = ((p1 - p0) / TAU).ceil().max(1.0) as usize;
                 for k in 0..turns {
                     let shift = k as f64 * TAU;
@@ -389,7 +437,7 @@ impl Polyhedra {
 
     /// The static test at a pose: surface contact by the predicate in both directions, then
     /// containment.
-    fn collides_at(&self, pose: &Pose, counts: &mut CallCounts) -> bool {
+    fn collides_at(&self, pose: &Pose, caches: &mut Caches, counts: &mut CallCounts) -> bool {
         let (robot, obst) = (&self.robot, &self.obstacles);
         let m = self.tol.dist;
         let test = |rf: &Face, of: &Face, counts: &mut CallCounts| -> bool {
@@ -412,20 +460,20 @@ impl Polyhedra {
                     let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
                     let obox = Aabb::of_points(of.v.iter()).grown(m);
                     robot.bvh.visit_overlapping(&obox, |r| {
-                        let rf = Face::new(robot.corners(r));
-                        hit =
-                            Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(&rf, &of, counts);
+                        let rf = robot.face(r);
+                        hit = Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(rf, &of, counts);
                         !hit
                     })
                 });
                 return hit || containment::at_pose(self, pose, counts);
             }
-            let mut placed: Vec<Option<Aabb>> = vec![None; robot.bvh.node_count()];
+            let placed = &mut caches.placed;
+            placed.reset(robot.bvh.node_count());
             robot.bvh.visit_pairs(
                 &obst.bvh,
                 (),
                 |a, rb, ob, ()| {
-                    let world = placed[a as usize].get_or_insert_with(|| pose.world_box(rb));
+                    let world = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
                     (world.overlaps(&ob.grown(m)) && rb.overlaps(&pose.body_box(ob).grown(m)))
                         .then_some(())
                 },
@@ -434,9 +482,8 @@ impl Polyhedra {
                         let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
                         let obox = Aabb::of_points(of.v.iter()).grown(m);
                         for &r in ri {
-                            let rf = Face::new(robot.corners(r));
-                            if Aabb::of_points(rf.v.iter()).overlaps(&obox)
-                                && test(&rf, &of, counts)
+                            let rf = robot.face(r);
+                            if Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(rf, &of, counts)
                             {
                                 hit = true;
                                 return false;
@@ -450,7 +497,7 @@ impl Polyhedra {
             'all: for o in 0..obst.faces.len() as u32 {
                 let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
                 for r in 0..robot.faces.len() as u32 {
-                    if test(&Face::new(robot.corners(r)), &of, counts) {
+                    if test(robot.face(r), &of, counts) {
                         hit = true;
                         break 'all;
                     }
@@ -467,9 +514,11 @@ impl CollisionOracle for Polyhedra {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        let mut sink = Hits::all();
-        self.sweep(motion, &mut sink, counts)?;
-        Ok(sink.to_list(motion.range))
+        with_scratch(|s| {
+            s.hits.reset(false);
+            self.sweep(motion, s, counts)?;
+            Ok(s.hits.to_list(motion.range))
+        })
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
@@ -477,7 +526,7 @@ impl CollisionOracle for Polyhedra {
             Ok(pose) => {
                 !self.obstacles.faces.is_empty()
                     && !self.robot.faces.is_empty()
-                    && self.collides_at(&pose, counts)
+                    && with_scratch(|s| self.collides_at(&pose, &mut s.caches, counts))
             }
             // not a configuration of this space: nothing sensible to place, report collision
             Err(_) => true,
@@ -489,11 +538,13 @@ impl CollisionOracle for Polyhedra {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<bool, OracleError> {
-        let mut sink = Hits::first_only();
-        self.sweep(motion, &mut sink, counts)?;
-        Ok(sink
-            .as_slice()
-            .iter()
-            .all(|iv| iv.meet(&motion.range).is_none()))
+        with_scratch(|s| {
+            s.hits.reset(true);
+            self.sweep(motion, s, counts)?;
+            Ok(s.hits
+                .as_slice()
+                .iter()
+                .all(|iv| iv.meet(&motion.range).is_none()))
+        })
     }
 }

@@ -63,7 +63,7 @@ pub(crate) fn det(a: &V3, b: &V3, c: &V3) -> f64 {
 pub(crate) fn edge_meets_face(p: &V3, q: &V3, f: &Face, tol: &Tolerance) -> bool {
     let d = q - p;
     let g = f.n.dot(&d);
-    let nn = f.n.norm();
+    let nn = f.n_norm;
     if g.abs() <= tol.parallel * nn * d.norm() {
         return false;
     }
@@ -75,7 +75,7 @@ pub(crate) fn edge_meets_face(p: &V3, q: &V3, f: &Face, tol: &Tolerance) -> bool
     }
     let dl = d.norm();
     let e = f.edges();
-    (0..3).all(|i| s * det(&d, &e[i], &(p - f.v[i])) >= -tol.dist * dl * e[i].norm())
+    (0..3).all(|i| s * det(&d, &e[i], &(p - f.v[i])) >= -tol.dist * dl * f.e_len[i])
 }
 
 /// Whether two triangles meet (touching counts), by the predicate in both directions: the

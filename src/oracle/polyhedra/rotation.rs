@@ -21,7 +21,7 @@
 use super::body::Face;
 use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
-use super::{containment, Hits, Polyhedra, Pose};
+use super::{containment, Caches, Hits, Polyhedra, Pose};
 use super::{Aabb, Spans};
 use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
 use crate::interval::Interval;
@@ -30,6 +30,10 @@ use nalgebra::Vector3;
 use std::f64::consts::PI;
 
 type V3 = Vector3<f64>;
+
+/// A robot node's bounds for a turn: cylindrical bounds, their angular sector, and the world box
+/// its ball sweeps.
+pub(crate) type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
 
 /// A piece of a pair's answer shorter than this (radians) …
 const DEGENERATE_SPAN: f64 = 1e-7;
@@ -142,7 +146,7 @@ pub(crate) fn edge_face_around(
         return Spans::EMPTY;
     }
     let d = q - p;
-    let nn = f.n.norm();
+    let nn = f.n_norm;
     let dl = d.norm();
     let g = lin(&f.n, &d, axis);
     let kg = tol.parallel * nn * dl;
@@ -173,12 +177,12 @@ pub(crate) fn edge_face_around(
     }
     let m = p.cross(&d);
     let e = f.edges();
-    for (ei, vi) in e.iter().zip(&f.v) {
+    for ((ei, vi), el) in e.iter().zip(&f.v).zip(&f.e_len) {
         if out.is_empty() && inw.is_empty() {
             return Spans::EMPTY;
         }
         let di = lin(ei, &m, axis).minus(lin(&ei.cross(vi), &d, axis));
-        let slack = tol.dist * dl * ei.norm();
+        let slack = tol.dist * dl * el;
         if !out.is_empty() {
             out = out.intersect(&around.at_least(di, slack));
         }
@@ -208,6 +212,7 @@ pub(crate) fn sweep(
     axis_w: &V3,
     phis: Interval,
     sink: &mut Hits,
+    caches: &mut Caches,
     counts: &mut CallCounts,
 ) {
     let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
@@ -231,7 +236,14 @@ pub(crate) fn sweep(
 
     let cyl = CylFrame::new(&axis);
     let whole = Spans::single(phis);
-    let mut robot_boxes: Vec<Option<CylBox>> = vec![None; robot.faces.len()];
+    let Caches {
+        cyl_boxes: robot_boxes,
+        nodes: robot_nodes,
+        swept: robot_swept,
+        pieces,
+        ..
+    } = caches;
+    robot_boxes.reset(robot.faces.len());
     // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
     // cylindrical box) for φ in `w`; returns whether to go on
     let mut pair = |r: u32,
@@ -244,7 +256,7 @@ pub(crate) fn sweep(
      -> bool {
         let rc = robot.corners(r);
         let pair_window = if ph.enveloping {
-            let rbox = robot_boxes[r as usize].get_or_insert_with(|| cyl.box_of(&rc, margin));
+            let rbox = robot_boxes.get_or_insert_with(r as usize, || cyl.box_of(&rc, margin));
             if !rbox.fixed_overlap(obox) {
                 return true;
             }
@@ -273,11 +285,11 @@ pub(crate) fn sweep(
         // face's plane (the predicate's first atoms, with their slack doubled): if all three
         // corners of a face stay on one side for the whole window, its edges are skipped
         let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
-            let th = 2.0 * tol.dist * face.n.norm();
+            let th = 2.0 * tol.dist * face.n_norm;
             let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
             b.iter().all(|(lo, _)| *lo > th) || b.iter().all(|(_, hi)| *hi < -th)
         };
-        let rf = Face::new(rc);
+        let rf = robot.face(r);
         if !ph.enveloping || !one_side(&rc, of, &axis) {
             for &e in robot.owned_edges(r) {
                 let (p, q) = robot.edge(e);
@@ -291,7 +303,7 @@ pub(crate) fn sweep(
                 }
             }
         }
-        if ph.enveloping && one_side(&of.v, &rf, &-axis) {
+        if ph.enveloping && one_side(&of.v, rf, &-axis) {
             return true;
         }
         let ids = obst.faces[o as usize];
@@ -300,8 +312,7 @@ pub(crate) fn sweep(
             let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
             let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
             counts.pairs_tested += 1;
-            for iv in edge_face_around(&p, &q, &rf, &-axis, &pair_window, &around, &tol).as_slice()
-            {
+            for iv in edge_face_around(&p, &q, rf, &-axis, &pair_window, &around, &tol).as_slice() {
                 if sink.add(*iv).is_break() {
                     return false;
                 }
@@ -320,14 +331,13 @@ pub(crate) fn sweep(
         // a world box for the whole turn (computed once per node and call), and each robot
         // face its swept world box (the arcs of its corners).
         let world_cyl = cyl.rotated(&pose.rot);
-        type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
-        let mut robot_nodes: Vec<Option<NodeBounds>> = vec![None; robot.bvh.node_count()];
-        let mut robot_swept: Vec<Option<Aabb>> = vec![None; robot.faces.len()];
+        robot_nodes.reset(robot.bvh.node_count());
+        robot_swept.reset(robot.faces.len());
         robot.bvh.visit_pairs(
             &obst.bvh,
             phis,
             |a, rb, ob, w| {
-                let (rn, rsector, swept) = *robot_nodes[a as usize].get_or_insert_with(|| {
+                let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
                     let half = 0.5 * (rb.hi - rb.lo);
                     let n = cyl.node_bounds(&rb.centre(), &half, margin);
                     let c = pose.rot * rb.centre();
@@ -359,8 +369,8 @@ pub(crate) fn sweep(
                     let ow = obst.corners(o);
                     let owbox = Aabb::of_points(ow.iter());
                     if !ri.iter().any(|&r| {
-                        robot_swept[r as usize]
-                            .get_or_insert_with(|| {
+                        robot_swept
+                            .get_or_insert_with(r as usize, || {
                                 face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
                             })
                             .overlaps(&owbox)
@@ -370,7 +380,7 @@ pub(crate) fn sweep(
                     let of = Face::new(ow.map(|x| pose.body_point(&x)));
                     let obox = cyl.box_of(&of.v, margin);
                     for &r in ri {
-                        let swept = robot_swept[r as usize].get_or_insert_with(|| {
+                        let swept = robot_swept.get_or_insert_with(r as usize, || {
                             face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
                         });
                         if !swept.overlaps(&owbox) {
@@ -396,7 +406,7 @@ pub(crate) fn sweep(
         }
     }
     if !sink.done() {
-        containment::rotation(ph, pose, axis_w, phis, sink, counts);
+        containment::rotation(ph, pose, axis_w, phis, sink, pieces, counts);
     }
 }
 
@@ -485,7 +495,7 @@ mod tests {
             a in prop::array::uniform3(-1.0f64..1.0),
         ) {
             let f = Face::new([v([c[0], c[1], c[2]]), v([c[3], c[4], c[5]]), v([c[6], c[7], c[8]])]);
-            prop_assume!(f.n.norm() > 1e-3);
+            prop_assume!(f.n_norm > 1e-3);
             let axis = v(a);
             prop_assume!(axis.norm() > 1e-2);
             let axis = axis.normalize();

@@ -16,7 +16,7 @@ use super::body::Face;
 use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
 use super::Aabb;
-use super::{containment, Hits, Polyhedra, Pose};
+use super::{containment, Caches, Hits, Polyhedra, Pose};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -34,7 +34,7 @@ pub(crate) fn edge_face(
     tol: &Tolerance,
 ) -> Option<Interval> {
     let d = q - p;
-    let nn = f.n.norm();
+    let nn = f.n_norm;
     let dl = d.norm();
     let g = f.n.dot(&d);
     if g.abs() <= tol.parallel * nn * dl {
@@ -62,9 +62,9 @@ pub(crate) fn edge_face(
         return None;
     }
     let e = f.edges();
-    for (ei, vi) in e.iter().zip(&f.v) {
+    for ((ei, vi), el) in e.iter().zip(&f.v).zip(&f.e_len) {
         let w = d.cross(ei);
-        if !atom(w.dot(dir), w.dot(&(p - vi)), tol.dist * dl * ei.norm()) {
+        if !atom(w.dot(dir), w.dot(&(p - vi)), tol.dist * dl * el) {
             return None;
         }
     }
@@ -83,7 +83,7 @@ fn straddle(
     tol: &Tolerance,
     window: Interval,
 ) -> Option<Interval> {
-    let th = 2.0 * tol.dist * f.n.norm();
+    let th = 2.0 * tol.dist * f.n_norm;
     let a = corners.map(|x| f.n.dot(&x) - f.offset);
     let (lo, hi) = (a[0].min(a[1]).min(a[2]), a[0].max(a[1]).max(a[2]));
     let k = f.n.dot(dir);
@@ -113,6 +113,7 @@ pub(crate) fn sweep(
     dir_w: &V3,
     range: Interval,
     sink: &mut Hits,
+    caches: &mut Caches,
     counts: &mut CallCounts,
 ) {
     let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
@@ -153,7 +154,13 @@ pub(crate) fn sweep(
     }
 
     let frame = MotionFrame::new(&dir);
-    let mut robot_boxes: Vec<Option<FrameBox>> = vec![None; robot.faces.len()];
+    let Caches {
+        frame_boxes: robot_boxes,
+        placed,
+        pieces,
+        ..
+    } = caches;
+    robot_boxes.reset(robot.faces.len());
     // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its box in
     // the motion frame) for λ in `w`; returns whether to go on
     let mut pair = |r: u32,
@@ -166,7 +173,7 @@ pub(crate) fn sweep(
      -> bool {
         let rc = robot.corners(r);
         let pair_window = if ph.enveloping {
-            let rbox = robot_boxes[r as usize].get_or_insert_with(|| frame.box_of(&rc));
+            let rbox = robot_boxes.get_or_insert_with(r as usize, || frame.box_of(&rc));
             match rbox
                 .sweep_window(obox, speed, margin)
                 .and_then(|x| x.meet(&w))
@@ -182,7 +189,7 @@ pub(crate) fn sweep(
         }
         // robot edges moving by +λ·dir against the obstacle face, only while the robot face
         // reaches the obstacle face's plane
-        let rf = Face::new(rc);
+        let rf = robot.face(r);
         let robot_window = if ph.enveloping {
             straddle(&rc, of, &dir, &tol, pair_window)
         } else {
@@ -201,7 +208,7 @@ pub(crate) fn sweep(
         }
         // obstacle edges moving by −λ·dir against the robot face, likewise
         let obstacle_window = if ph.enveloping {
-            straddle(&of.v, &rf, &-dir, &tol, pair_window)
+            straddle(&of.v, rf, &-dir, &tol, pair_window)
         } else {
             Some(pair_window)
         };
@@ -213,7 +220,7 @@ pub(crate) fn sweep(
             let [a, b] = obst.edges[e as usize];
             let (p, q) = (of.v[corner(&ids, a)], of.v[corner(&ids, b)]);
             counts.pairs_tested += 1;
-            if let Some(iv) = edge_face(&p, &q, &rf, &-dir, w, &tol) {
+            if let Some(iv) = edge_face(&p, &q, rf, &-dir, w, &tol) {
                 if sink.add(iv).is_break() {
                     return false;
                 }
@@ -248,12 +255,12 @@ pub(crate) fn sweep(
         // the window only narrows on the way down, and a pair of leaves passes it on to the
         // per-face boxes of the motion frame
         let dir_body = dir;
-        let mut placed: Vec<Option<Aabb>> = vec![None; robot.bvh.node_count()];
+        placed.reset(robot.bvh.node_count());
         robot.bvh.visit_pairs(
             &obst.bvh,
             window,
             |a, rb, ob, w| {
-                let placed = placed[a as usize].get_or_insert_with(|| pose.world_box(rb));
+                let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
                 let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
                 // the same test in the robot's frame (the obstacle box turned into it), which
                 // is tight where the first one is loose
@@ -288,7 +295,7 @@ pub(crate) fn sweep(
         }
     }
     if !sink.done() {
-        containment::translation(ph, pose, dir_w, window, sink, counts);
+        containment::translation(ph, pose, dir_w, window, sink, pieces, counts);
     }
 }
 
@@ -331,7 +338,7 @@ mod tests {
             r in prop::array::uniform3(-1.0f64..1.0),
         ) {
             let f = Face::new([v([c[0], c[1], c[2]]), v([c[3], c[4], c[5]]), v([c[6], c[7], c[8]])]);
-            prop_assume!(f.n.norm() > 1e-3);
+            prop_assume!(f.n_norm > 1e-3);
             let (p, q, dir) = (v([e[0], e[1], e[2]]), v([e[3], e[4], e[5]]), v(r));
             let tol = Tolerance::for_scale(1.0);
             let iv = edge_face(&p, &q, &f, &dir, Interval { lo: -3.0, hi: 3.0 }, &tol);
