@@ -33,7 +33,9 @@ pub struct PlanningScene {
     pub joint_state: JointState,
     /// The virtual joint's transform (`robot_state.multi_dof_joint_state`), if given.
     pub base: Option<Isometry3<f64>>,
-    /// Pairs the allowed-collision matrix allows (names of links or objects).
+    /// Pairs the allowed-collision matrix allows (names of links or objects). Link–link pairs
+    /// are applied by [`PlanningScene::apply_to`]; link–object pairs are read but not yet
+    /// applied by the checker or the oracle (the MotionBenchMaker scenes have none).
     pub allowed: Vec<(String, String)>,
 }
 
