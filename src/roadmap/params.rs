@@ -59,8 +59,10 @@ pub struct LearnParams {
     /// node of one end's component nearest to a uniform sample towards it, each single-group
     /// step as far as it is free, the end then tried against the other end's component too.
     /// The rest are OS94's random-bounce walks. Random bounces explore around difficult nodes;
-    /// directed walks push a component's frontier out (Voronoi bias), which is what a start
-    /// boxed in by a narrow passage needs. 0: bounces only. Learning without a pair ignores it.
+    /// directed walks push a component's frontier out (Voronoi bias), meant for a start boxed
+    /// in by a narrow passage. 0 (the default): bounces only — on alpha-1.5 (`solve --roadmap
+    /// --time 30`, 3 seeds, 2026-12-01) a share of 0.5 solved no more than 0 did (0 of 3 each),
+    /// so it stays an option to measure. Learning without a pair ignores it.
     pub directed_share: f64,
 }
 
@@ -79,7 +81,7 @@ impl Default for LearnParams {
             feedback: true,
             stall_rounds: 100,
             deep_neighbours: None,
-            directed_share: 0.5,
+            directed_share: 0.0,
         }
     }
 }
