@@ -1,8 +1,8 @@
 //! viaroad-fuzz: a mutation fuzzer for viaroad's loaders that runs on the stable toolchain.
 //!
 //! Every input runs in-process on a worker thread behind `catch_unwind`; the main thread waits
-//! at most `--timeout` seconds for it (a hang otherwise), and the global allocator aborts on an
-//! allocation over [`alloc::MAX_ONE`] (a loader must refuse a huge count before allocating).
+//! at most `--timeout` seconds of CPU time for it (a hang otherwise; see `WorkerClock`), and
+//! the global allocator aborts on an allocation over [`alloc::MAX_ONE`] (a loader must refuse a huge count before allocating).
 //! Findings are saved under `fuzz/artifacts/`; the exit status is 1 when there are any.
 //!
 //! ```text
@@ -36,6 +36,60 @@ struct Shared {
     current: Mutex<Arc<Vec<u8>>>,
     execs: AtomicU64,
     done: AtomicBool,
+    /// The worker's CPU-time clock, once it has started (see [`WorkerClock`]).
+    clock: Mutex<Option<WorkerClock>>,
+}
+
+/// How long the worker has run on a CPU. A hang is judged by the worker's CPU time, not by the
+/// wall clock: on a loaded machine (the fuzzer runs `nice`d beside builds) a worker can wait
+/// seconds for a core, and a wall-clock limit then reports inputs that load in milliseconds
+/// (seen on 2026-12-01: a TOML "hang" that replays in 40 ms). A loader that blocks without
+/// burning CPU is still caught, by [`WALL_FACTOR`] times the limit on the wall clock.
+#[derive(Clone, Copy)]
+struct WorkerClock {
+    #[cfg(target_os = "linux")]
+    id: libc::clockid_t,
+}
+
+/// A stuck input is also a hang after this many times the limit of wall-clock time.
+const WALL_FACTOR: u32 = 12;
+
+impl WorkerClock {
+    /// The calling thread's CPU clock (`None` where the platform has none: the wall clock
+    /// alone then judges).
+    fn of_this_thread() -> Option<WorkerClock> {
+        #[cfg(target_os = "linux")]
+        {
+            let mut id: libc::clockid_t = 0;
+            // SAFETY: pthread_self is always valid for the calling thread; `id` is written by
+            // the call and read only when it succeeded
+            let rc = unsafe { libc::pthread_getcpuclockid(libc::pthread_self(), &mut id) };
+            (rc == 0).then_some(WorkerClock { id })
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            None
+        }
+    }
+
+    /// CPU time the worker has used so far.
+    fn now(&self) -> Option<Duration> {
+        #[cfg(target_os = "linux")]
+        {
+            let mut ts = libc::timespec {
+                tv_sec: 0,
+                tv_nsec: 0,
+            };
+            // SAFETY: `ts` is a valid timespec to write; the clock id came from
+            // pthread_getcpuclockid of a thread that outlives every call (it is joined later)
+            let rc = unsafe { libc::clock_gettime(self.id, &mut ts) };
+            (rc == 0).then(|| Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32))
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            None
+        }
+    }
 }
 
 struct Options {
@@ -93,12 +147,14 @@ fn fuzz(name: &str, opts: &Options, root: &Path, artifacts: &Path) -> Result<Sta
         current: Mutex::new(Arc::new(Vec::new())),
         execs: AtomicU64::new(0),
         done: AtomicBool::new(false),
+        clock: Mutex::new(None),
     });
     let replay = opts.run.is_some();
     let (seed, work, artifacts_w) = (opts.seed, dir.clone(), artifacts.to_path_buf());
     let sh = Arc::clone(&shared);
     let start = Instant::now();
     let handle = std::thread::spawn(move || -> Result<Stats, String> {
+        *sh.clock.lock().map_err(|_| "poisoned")? = WorkerClock::of_this_thread();
         let mut m = Mutator::new(seed ^ viaroad::roadmap::persist::checksum(tname.as_bytes()));
         let mut stats = Stats::default();
         let mut last_report = Instant::now();
@@ -141,14 +197,25 @@ fn fuzz(name: &str, opts: &Options, root: &Path, artifacts: &Path) -> Result<Sta
         sh.done.store(true, Ordering::Release);
         Ok(stats)
     });
-    // the watchdog: an input that runs longer than the limit is a hang
-    let (mut seen, mut since) = (u64::MAX, Instant::now());
+    // the watchdog: an input that keeps the worker busy longer than the limit (CPU time), or
+    // stuck for WALL_FACTOR times the limit, is a hang
+    let cpu = || {
+        let clock = *shared.clock.lock().ok()?;
+        clock?.now()
+    };
+    let (mut seen, mut since, mut cpu_since) = (u64::MAX, Instant::now(), cpu());
     while !shared.done.load(Ordering::Acquire) && !handle.is_finished() {
         std::thread::sleep(Duration::from_millis(20));
         let now = shared.execs.load(Ordering::Acquire);
         if now != seen {
-            (seen, since) = (now, Instant::now());
-        } else if since.elapsed() > opts.timeout {
+            (seen, since, cpu_since) = (now, Instant::now(), cpu());
+            continue;
+        }
+        let busy = match (cpu_since, cpu()) {
+            (Some(a), Some(b)) => b.saturating_sub(a) > opts.timeout,
+            _ => since.elapsed() > opts.timeout, // no CPU clock: the wall clock judges
+        };
+        if busy || since.elapsed() > opts.timeout * WALL_FACTOR {
             let input = shared
                 .current
                 .lock()
