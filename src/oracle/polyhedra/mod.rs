@@ -199,6 +199,8 @@ pub(crate) struct Caches {
     nodes: Memo<rotation::NodeBounds>,
     /// A robot face's world box swept over a turn.
     swept: Memo<Aabb>,
+    /// A robot vertex's arc box over a turn.
+    vertex_arcs: Memo<Aabb>,
     /// Containment along a path.
     pieces: containment::Pieces,
 }
@@ -256,8 +258,9 @@ impl Polyhedra {
         }
     }
 
-    /// Switches enveloping (bounding volumes, trees, per-face boxes) on or off. Off, every
-    /// edge–face pair is evaluated: the brute-force reference for benchmarks. On by default.
+    /// Switches enveloping (bounding volumes, trees, per-face boxes, skipping pairs whose window
+    /// already collides) on or off. Off, every edge–face pair is evaluated: the brute-force
+    /// reference for benchmarks and tests. On by default.
     pub fn with_enveloping(mut self, on: bool) -> Polyhedra {
         self.enveloping = on;
         self
