@@ -5,9 +5,10 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use viaroad::bench::discs::{problem, DiscProblem, GOAL, SEED_RADIUS, START};
+use viaroad::interval::IntervalList;
 use viaroad::local::viapoint::{Depth, ViaLimit, ViaPoint, ViaPointOptions};
 use viaroad::local::{LocalMethod, StraightLine};
-use viaroad::oracle::{CallCounts, CountedOracle};
+use viaroad::oracle::{CallCounts, CountedOracle, Workspace};
 use viaroad::space::{Change, Motion};
 
 fn oracle_calls(c: &mut Criterion) {
@@ -31,6 +32,34 @@ fn oracle_calls(c: &mut Criterion) {
             oracle
                 .intersect(black_box(&line), &mut CallCounts::default())
                 .unwrap()
+        })
+    });
+    // the allocation-free twin the via-point search uses (issue 11: ≤ 150 ns a segment call)
+    let (mut out, mut ws) = (IntervalList::new(), Workspace::new());
+    g.bench_function("intersect_into_segment_50_discs", |b| {
+        b.iter(|| {
+            oracle
+                .intersect_into(
+                    black_box(&segment),
+                    &mut out,
+                    &mut ws,
+                    &mut CallCounts::default(),
+                )
+                .unwrap();
+            out.len()
+        })
+    });
+    g.bench_function("intersect_into_line_50_discs", |b| {
+        b.iter(|| {
+            oracle
+                .intersect_into(
+                    black_box(&line),
+                    &mut out,
+                    &mut ws,
+                    &mut CallCounts::default(),
+                )
+                .unwrap();
+            out.len()
         })
     });
     g.bench_function("check_segment_50_discs", |b| {

@@ -105,6 +105,27 @@ impl IntervalList {
         IntervalList { items }
     }
 
+    /// Allocation-free twin of [`from_unsorted`](Self::from_unsorted) for the oracles' hot
+    /// path (issue 11): sorts and merges `items` in place and swaps the buffers, so `self`
+    /// holds the union and `items` comes back empty with the old list's allocation. Steady
+    /// state: no allocation at all.
+    pub fn set_from_unsorted(&mut self, items: &mut Vec<Interval>) {
+        items.retain(|iv| iv.lo <= iv.hi);
+        sort_by_lo(items);
+        let mut w = 0;
+        for r in 1..items.len() {
+            if items[r].lo <= items[w].hi {
+                items[w].hi = items[w].hi.max(items[r].hi);
+            } else {
+                w += 1;
+                items[w] = items[r];
+            }
+        }
+        items.truncate((w + 1).min(items.len()));
+        std::mem::swap(&mut self.items, items);
+        items.clear();
+    }
+
     /// The intervals, sorted.
     pub fn as_slice(&self) -> &[Interval] {
         &self.items
@@ -233,6 +254,12 @@ impl IntervalList {
 
     /// [`clip`](Self::clip) in place, keeping the allocation.
     pub fn into_clipped(mut self, range: Interval) -> IntervalList {
+        self.clip_in_place(range);
+        self
+    }
+
+    /// [`clip`](Self::clip) on a borrowed list, keeping the allocation.
+    pub fn clip_in_place(&mut self, range: Interval) {
         self.items.retain_mut(|iv| match iv.meet(&range) {
             Some(m) => {
                 *iv = m;
@@ -240,14 +267,31 @@ impl IntervalList {
             }
             None => false,
         });
-        self
+    }
+
+    /// Copies `other` into `self`, keeping `self`'s allocation.
+    pub fn copy_from(&mut self, other: &IntervalList) {
+        self.items.clear();
+        self.items.extend_from_slice(&other.items);
     }
 
     /// The closures of the gaps of this list within `range`: the *free sections* when this list
     /// holds collision intervals. Each free section is returned as a closed interval whose ends
     /// are collision times (or the ends of `range`).
     pub fn complement_within(&self, range: Interval) -> IntervalList {
-        let mut out = Vec::with_capacity(self.items.len() + 1);
+        let mut out = IntervalList {
+            items: Vec::with_capacity(self.items.len() + 1),
+        };
+        self.complement_within_into(range, &mut out);
+        out
+    }
+
+    /// Allocation-free twin of [`complement_within`](Self::complement_within): writes the free
+    /// sections into `out`, keeping its allocation (the via-point search asks for them on
+    /// every borderline).
+    pub fn complement_within_into(&self, range: Interval, out: &mut IntervalList) {
+        let out = &mut out.items;
+        out.clear();
         let mut cursor = range.lo;
         // whether `cursor` is still the start of the range rather than the end of a collision
         let mut at_range_start = true;
@@ -279,7 +323,6 @@ impl IntervalList {
                 hi: cursor,
             });
         }
-        IntervalList { items: out }
     }
 
     /// Applies `t ↦ scale · t + shift` to every end; a negative `scale` reverses the order.
@@ -299,6 +342,24 @@ impl IntervalList {
             items.reverse();
         }
         IntervalList { items }
+    }
+}
+
+/// Sorts by lower end. Oracle answers hold a handful of intervals, where an insertion sort
+/// beats the general sort's set-up; longer lists take the library sort.
+fn sort_by_lo(items: &mut [Interval]) {
+    if items.len() > 16 {
+        items.sort_unstable_by(|a, b| a.lo.total_cmp(&b.lo));
+        return;
+    }
+    for i in 1..items.len() {
+        let x = items[i];
+        let mut j = i;
+        while j > 0 && items[j - 1].lo.total_cmp(&x.lo).is_gt() {
+            items[j] = items[j - 1];
+            j -= 1;
+        }
+        items[j] = x;
     }
 }
 

@@ -17,7 +17,8 @@
 //! | [`local`] | local methods: straight line, via-point planner, path shortening |
 //! | [`deadline`] | budgets that hold: one deadline checked before every oracle call |
 //! | [`roadmap`] | learning, persistence, queries |
-//! | [`scene`] | TOML scenes, OMPL.app problems, meshes |
+//! | [`robot`] | robot arms: URDF + SRDF, forward kinematics, the independent arm checker |
+//! | [`scene`] | TOML scenes, OMPL.app problems, MoveIt scenes and requests, meshes |
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
 //! | [`limits`] | the largest numbers accepted from users |
 //! | [`safe_file`] | atomic saves that never replace special files; bounded reads |
@@ -32,6 +33,7 @@ pub mod local;
 pub mod oracle;
 pub mod render;
 pub mod roadmap;
+pub mod robot;
 pub mod safe_file;
 pub mod scene;
 pub mod space;

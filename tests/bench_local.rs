@@ -49,6 +49,7 @@ fn tiny_plan(scene: &str, methods: Vec<Method>, runs: u32) -> Plan {
         direct: false,
         attach: 30,
         escalation: 0,
+        query_calls: None,
     }
 }
 
@@ -161,6 +162,42 @@ fn the_same_seed_gives_the_same_counts() {
         assert_eq!(bits.iter().filter(|&&b| b).count(), r.solved);
         assert!(r.peak_rss_mib.is_none_or(|m| m > 0.0));
     }
+}
+
+/// `--query-calls`: a per-query call budget bounds the evaluations after each stage and nothing
+/// else. Learning is the same with and without it (stage for stage), queries that spend it are
+/// counted, and the evaluations spend fewer calls (the per-query bound itself is tested in
+/// `tests/roadmap_query.rs`).
+#[test]
+fn a_query_call_budget_bounds_the_evaluations_only() {
+    let mut plan = tiny_plan(
+        "gen:discs:n=40,r=0.06,seed=3",
+        methods(&["viapoint:max=3,calls=1000"]),
+        1,
+    );
+    plan.schedule.cap = 80;
+    let (_, free) = run_all(&plan, false);
+    let budget = 3;
+    plan.query_calls = Some(budget);
+    let (_, tight) = run_all(&plan, false);
+    let (free, tight) = (&free[0], &tight[0]);
+    assert_eq!((free.query_calls, tight.query_calls), (None, Some(budget)));
+    assert_eq!(free.out_of_calls, 0);
+    assert!(tight.out_of_calls > 0, "{tight:?}");
+    assert!(tight.out_of_calls + tight.solved <= tight.scored);
+    // learning does not see the budget: the stages both evaluated are the same roadmaps
+    for (a, b) in free.stages.iter().zip(&tight.stages) {
+        assert_eq!(
+            (a.nodes, a.edges, a.components, a.counts),
+            (b.nodes, b.edges, b.components, b.counts)
+        );
+    }
+    assert!(
+        tight.query_counts.intersect_calls() < free.query_counts.intersect_calls(),
+        "{} vs {}",
+        tight.query_counts.intersect_calls(),
+        free.query_counts.intersect_calls()
+    );
 }
 
 #[test]
@@ -619,6 +656,7 @@ fn bad_arguments_are_one_line_errors() {
         (vec!["gen:discs:n=5", "--runs", "0"], "--runs"),
         (vec!["gen:discs:n=5", "--growth", "1"], "growth"),
         (vec!["gen:boxes"], "unknown generator"),
+        (vec!["gen:discs:n=5", "--query-calls", "0"], "call budget"),
     ] {
         let out = std::process::Command::new(exe)
             .args(["bench", "local"])

@@ -280,6 +280,7 @@ fn extreme_parameters_are_harmless() {
             escalation_candidates: usize::MAX,
             time: None,
             grow: false,
+            max_calls: Some(u64::MAX),
         });
     let (s, g) = random_queries(&scene, 1, 4).remove(0);
     assert!(planner.query(&s, &g).is_ok());

@@ -345,3 +345,57 @@ fn answers_serialise_to_json() {
         .to_string()
         .contains("local method     straight"));
 }
+
+/// A per-query call budget ([`QueryOptions::max_calls`]): a budget no query reaches changes no
+/// answer; a small one ends queries with [`QueryOutcome::OutOfCalls`] once it is spent, keeps
+/// every unsolved query within the budget and one via-point walk past it, and every answer it
+/// still gives is free under the independent checker.
+#[test]
+fn a_call_budget_bounds_each_query() {
+    let (scene, roadmap) = scene_and_roadmap(false, 200);
+    let d = discs(&scene);
+    let oracle = scene.oracle();
+    let queries = random_queries(&scene, 100, 31);
+    let answers = |max_calls: Option<u64>| {
+        let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+            .unwrap()
+            .with_options(QueryOptions {
+                try_direct: false,
+                escalation_candidates: 3,
+                max_calls,
+                ..QueryOptions::default()
+            });
+        queries
+            .iter()
+            .map(|(s, g)| planner.query(s, g).unwrap())
+            .collect::<Vec<_>>()
+    };
+    let unlimited = answers(None);
+    assert_eq!(answers(Some(u64::MAX / 2)), unlimited);
+    let budget = 6;
+    let tight = answers(Some(budget));
+    let (mut out_of_calls, mut worst) = (0, 0);
+    for (i, r) in tight.iter().enumerate() {
+        if r.is_solved() {
+            assert!(path_free(&r.path, &d), "query {i}: a colliding path");
+            continue;
+        }
+        let calls = r.counts.intersect_calls();
+        worst = worst.max(calls);
+        if r.outcome == QueryOutcome::OutOfCalls {
+            out_of_calls += 1;
+            assert!(calls >= budget, "query {i}: out of calls after {calls}");
+        }
+    }
+    // the via-point search checks its budget between via points: one walk (a few segments
+    // on a disc scene) may end past it
+    assert!(worst <= budget + 8, "an unsolved query spent {worst} calls");
+    assert!(
+        out_of_calls > 0,
+        "a budget of {budget} calls stopped no query"
+    );
+    let total = |rs: &[viaroad::roadmap::QueryResult]| -> u64 {
+        rs.iter().map(|r| r.counts.intersect_calls()).sum()
+    };
+    assert!(total(&tight) < total(&unlimited));
+}

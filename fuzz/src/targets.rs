@@ -7,11 +7,14 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use viaroad::roadmap::persist::checksum;
 use viaroad::roadmap::Roadmap;
-use viaroad::scene::{collada, mesh_io, ompl_cfg, Scene};
+use viaroad::robot::{srdf, urdf, Model};
+use viaroad::scene::{collada, mesh_io, moveit, ompl_cfg, Scene};
 use viaroad::space::Space;
 
 /// The target names, in the order `all` runs them.
-pub const NAMES: &[&str] = &["toml", "cfg", "obj", "stl", "dae", "queries", "roadmap"];
+pub const NAMES: &[&str] = &[
+    "toml", "cfg", "obj", "stl", "dae", "queries", "roadmap", "urdf", "srdf", "moveit",
+];
 
 /// Separates a `cfg` input's problem file from the mesh written as `mut.dae` beside it.
 pub const MESH_SEPARATOR: &[u8] = b"\n#--viaroad-fuzz-mesh--\n";
@@ -141,6 +144,15 @@ impl Target {
                 "bin",
                 Kind::Binary,
                 read_all(&files(&root.join("roadmaps"), &["bin"], 1 << 20)),
+                vec![],
+            ),
+            "urdf" => ("urdf", "urdf", Kind::Text, both(&["urdf"], 1 << 20), vec![]),
+            "srdf" => ("srdf", "srdf", Kind::Text, both(&["srdf"], 1 << 20), vec![]),
+            "moveit" => (
+                "moveit",
+                "yaml",
+                Kind::Text,
+                both(&["yaml"], 1 << 20),
                 vec![],
             ),
             _ => return None,
@@ -360,6 +372,65 @@ pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
                     false
                 }
             }
+        }
+        "urdf" => {
+            let text = String::from_utf8_lossy(input);
+            let p = Path::new("in.urdf");
+            match urdf::parse_urdf(&text, p).and_then(|u| Model::new(u, p)) {
+                Ok(model) => {
+                    let values = vec![0.5; model.urdf.joints.len()];
+                    let _ = model.link_poses(&nalgebra::Isometry3::identity(), &values);
+                    for l in &model.urdf.links {
+                        for c in &l.collisions {
+                            if let urdf::Geometry::Primitive(prim) = &c.geometry {
+                                let _ = prim.polytope();
+                            }
+                        }
+                    }
+                    true
+                }
+                Err(e) => {
+                    let _ = e.to_string();
+                    false
+                }
+            }
+        }
+        "srdf" => {
+            let text = String::from_utf8_lossy(input);
+            let p = Path::new("in.srdf");
+            match srdf::parse_srdf(&text, p) {
+                Ok(s) => {
+                    // resolve every group against the shipped Panda, when present
+                    let panda = Path::new(env!("CARGO_MANIFEST_DIR"))
+                        .join("../scenes/arms/panda/panda.urdf");
+                    if let Ok(model) = urdf::load_urdf(&panda).and_then(|u| Model::new(u, &panda)) {
+                        for g in &s.groups {
+                            let _ = model.resolve_group(&s, &g.name, p);
+                        }
+                    }
+                    true
+                }
+                Err(e) => {
+                    let _ = e.to_string();
+                    false
+                }
+            }
+        }
+        "moveit" => {
+            let text = String::from_utf8_lossy(input);
+            let p = Path::new("in.yaml");
+            let scene = moveit::parse_planning_scene(&text, p);
+            let request = moveit::parse_motion_plan_request(&text, p);
+            if let Ok(s) = &scene {
+                for o in &s.objects {
+                    for (_, shape) in &o.parts {
+                        if let moveit::ObjectShape::Primitive(prim) = shape {
+                            let _ = prim.polytope();
+                        }
+                    }
+                }
+            }
+            scene.is_ok() || request.is_ok()
         }
         _ => false,
     })

@@ -115,6 +115,11 @@ pub struct BenchLocalArgs {
     /// query to the run's own method, so methods are compared on their roadmaps alone.
     #[arg(long, default_value_t = 0)]
     pub escalation: usize,
+    /// The intersect calls one query may spend after each stage (attaching, direct and deeper
+    /// tries; default: no limit). Bounds the evaluation of deep via-point settings on SE(3)
+    /// scenes reproducibly; a query that spends it counts as unsolved.
+    #[arg(long, value_name = "CALLS")]
+    pub query_calls: Option<u64>,
     /// Feedback for methods without a suffix.
     #[arg(long, value_enum, default_value_t = FeedbackChoice::On)]
     pub feedback: FeedbackChoice,
@@ -437,6 +442,7 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         direct: !a.no_direct,
         attach: a.attach,
         escalation: a.escalation,
+        query_calls: a.query_calls,
     };
     plan.validate()?;
     if a.jobs == 0 {

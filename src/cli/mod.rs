@@ -14,6 +14,7 @@ mod path_out;
 mod probe;
 mod query;
 mod render;
+mod serve;
 mod solve;
 
 use clap::{Parser, Subcommand};
@@ -44,6 +45,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Print the collision intervals of one straight motion (translation or turn).
     Probe(probe::ProbeArgs),
+    /// Load a roadmap once and answer queries as JSON lines on stdin/stdout or a TCP port.
+    Serve(serve::ServeArgs),
     /// Benchmarks: the seed's disc experiments (Tables A.1–A.4) and local methods compared.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
@@ -59,6 +62,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Solve(a) => solve::run(a),
         Command::Render(a) => render::run(a),
         Command::Probe(a) => probe::run(a),
+        Command::Serve(a) => serve::run(a),
         Command::Bench(b) => bench::run(b),
     }
 }

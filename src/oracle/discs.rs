@@ -4,7 +4,7 @@
 //! solution set of one quadratic inequality in `t`, hence at most one interval per ball; the
 //! answer is the union over all balls.
 
-use super::{CallCounts, CollisionOracle, OracleError};
+use super::{CallCounts, CollisionOracle, OracleError, Workspace};
 use crate::interval::{Interval, IntervalList};
 use crate::space::{Change, Motion};
 
@@ -15,8 +15,21 @@ pub struct Discs {
     /// Centres, `dim` coordinates each, flattened.
     centres: Vec<f64>,
     radii: Vec<f64>,
-    /// The planar case laid out for a tight loop: centre x, centre y, squared radius.
-    planar: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
+    /// The planar case laid out for a vectorised loop (issue 11): blocks of [`LANES`] discs,
+    /// each block centre xs, centre ys, squared radii; the last block is padded with discs
+    /// of squared radius −∞, which no line meets.
+    planar: Option<Vec<Block>>,
+}
+
+/// Discs per block of the planar layout: four doubles fill an AVX register, two SSE ones.
+const LANES: usize = 4;
+
+/// [`LANES`] planar discs: centre x, centre y, squared radius.
+#[derive(Clone, Debug, PartialEq)]
+struct Block {
+    x: [f64; LANES],
+    y: [f64; LANES],
+    r2: [f64; LANES],
 }
 
 impl Discs {
@@ -26,11 +39,23 @@ impl Discs {
         debug_assert_eq!(centres.len(), radii.len());
         debug_assert!(centres.iter().all(|c| c.len() == dim));
         let planar = (dim == 2).then(|| {
-            (
-                centres.iter().map(|c| c[0]).collect(),
-                centres.iter().map(|c| c[1]).collect(),
-                radii.iter().map(|r| r * r).collect(),
-            )
+            centres
+                .chunks(LANES)
+                .zip(radii.chunks(LANES))
+                .map(|(cs, rs)| {
+                    let mut b = Block {
+                        x: [0.0; LANES],
+                        y: [0.0; LANES],
+                        r2: [f64::NEG_INFINITY; LANES],
+                    };
+                    for (k, (c, r)) in cs.iter().zip(rs).enumerate() {
+                        b.x[k] = c[0];
+                        b.y[k] = c[1];
+                        b.r2[k] = r * r;
+                    }
+                    b
+                })
+                .collect()
         });
         Discs {
             dim,
@@ -80,15 +105,25 @@ impl Discs {
             let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
             hit(t1.min(t2), t1.max(t2))
         };
-        if let Some((xs, ys, r2)) = &self.planar {
-            // the seed's planar case: one pass over plain arrays
+        if let Some(blocks) = &self.planar {
+            // the seed's planar case: the discriminants of a block of discs at once, without
+            // branches (so the compiler vectorises them), then the rare hits one by one; the
+            // arithmetic is the same as for one disc at a time, so are the answers
             let (o0, o1, d0, d1) = (o[0], o[1], d[0], d[1]);
-            for ((x, y), rr) in xs.iter().zip(ys).zip(r2) {
-                let (w0, w1) = (o0 - x, o1 - y);
-                let b = d0 * w0 + d1 * w1;
-                let e = w0 * w0 + w1 * w1 - rr;
-                if b * b >= a * e && !solve(b, e) {
-                    return;
+            for blk in blocks {
+                let (mut b, mut e, mut meets) = ([0.0; LANES], [0.0; LANES], [false; LANES]);
+                for k in 0..LANES {
+                    let (w0, w1) = (o0 - blk.x[k], o1 - blk.y[k]);
+                    b[k] = d0 * w0 + d1 * w1;
+                    e[k] = w0 * w0 + w1 * w1 - blk.r2[k];
+                    meets[k] = b[k] * b[k] >= a * e[k];
+                }
+                if meets.iter().any(|m| *m) {
+                    for k in 0..LANES {
+                        if meets[k] && !solve(b[k], e[k]) {
+                            return;
+                        }
+                    }
                 }
             }
             return;
@@ -136,29 +171,48 @@ impl CollisionOracle for Discs {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
+        let mut out = IntervalList::new();
+        self.intervals_into(motion, &mut out, &mut Workspace::new(), counts)?;
+        Ok(out)
+    }
+
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
         let d = self.linear_delta(motion)?;
         counts.pairs_tested += self.radii.len() as u64;
+        out.clear();
         if d.iter().all(|x| *x == 0.0) {
-            let inside = self.contains_point(&motion.origin);
-            return Ok(if inside {
-                IntervalList::single(motion.range)
-            } else {
-                IntervalList::new()
-            });
+            if self.contains_point(&motion.origin) {
+                out.push(motion.range);
+            }
+            return Ok(());
         }
-        let mut hits = Vec::new();
+        let hits = &mut ws.hits;
+        hits.clear();
         self.for_each_hit(&motion.origin, d, |lo, hi| {
             if let Some(iv) = (Interval { lo, hi }).meet(&motion.range) {
                 hits.push(iv);
             }
             true
         });
-        Ok(IntervalList::from_unsorted(hits))
+        out.set_from_unsorted(hits);
+        Ok(())
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
         counts.pairs_tested += self.radii.len() as u64;
         self.contains_point(q)
+    }
+
+    /// Analytic: a whole line costs what a segment does, so [`super::Bounded`] need not copy
+    /// the motion to clip it (the answer is the same set either way, issue 11).
+    fn prefers_unclipped(&self) -> bool {
+        true
     }
 
     fn motion_is_free(

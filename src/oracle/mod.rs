@@ -78,6 +78,29 @@ impl std::iter::Sum for CallCounts {
     }
 }
 
+/// Reusable scratch space for [`CollisionOracle::intervals_into`]: each thread (each via-point
+/// search) keeps one, so that in steady state an intersect call allocates nothing (issue 11;
+/// proved by `tests/alloc_free.rs`). Oracles may use any buffer; none carries meaning between
+/// calls.
+#[derive(Debug, Default)]
+pub struct Workspace {
+    /// Unsorted, unclipped hits before they are merged into the answer.
+    pub hits: Vec<Interval>,
+    /// One configuration's worth of numbers (sampled checking writes its states here).
+    pub config: Vec<f64>,
+    /// The inner answer of a wrapper such as [`Bounded`].
+    pub inner: IntervalList,
+    /// A motion a wrapper narrows before it asks its inner oracle.
+    pub motion: Option<Motion>,
+}
+
+impl Workspace {
+    /// An empty workspace; its buffers grow on first use and are kept.
+    pub fn new() -> Self {
+        Workspace::default()
+    }
+}
+
 /// A scene's collision test, asked about whole motions.
 ///
 /// # Contract
@@ -97,6 +120,22 @@ pub trait CollisionOracle: Send + Sync {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError>;
+
+    /// Allocation-free twin of [`intervals`](Self::intervals): writes the answer into `out`
+    /// (overwriting it) using `ws` for scratch, so that the hot path allocates nothing per
+    /// call in steady state (issue 11). Same contract and same answer as `intervals`. The
+    /// default calls `intervals` (and so allocates); the oracles on the hot path override it.
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        let _ = ws;
+        *out = self.intervals(motion, counts)?;
+        Ok(())
+    }
 
     /// Whether configuration `q` collides.
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool;
@@ -129,6 +168,15 @@ pub trait CountedOracle {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError>;
+    /// [`intersect`](Self::intersect) without allocating: the answer goes into `out`, scratch
+    /// into `ws` (see [`CollisionOracle::intervals_into`]). Counted the same way.
+    fn intersect_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError>;
     /// A yes/no check of a bounded motion, counted as one segment call.
     fn check_motion(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError>;
     /// Whether `q` is collision-free, counted as one state check.
@@ -146,6 +194,20 @@ impl<T: CollisionOracle + ?Sized> CountedOracle for T {
             Sweep::Line | Sweep::Turn => counts.line_calls += 1,
         }
         self.intervals(motion, counts)
+    }
+
+    fn intersect_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        match motion.sweep {
+            Sweep::Segment => counts.segment_calls += 1,
+            Sweep::Line | Sweep::Turn => counts.line_calls += 1,
+        }
+        self.intervals_into(motion, out, ws, counts)
     }
 
     fn check_motion(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError> {
@@ -166,6 +228,9 @@ macro_rules! forward_oracle {
         impl<T: CollisionOracle + ?Sized> CollisionOracle for $ptr {
             fn intervals(&self, motion: &Motion, counts: &mut CallCounts) -> Result<IntervalList, OracleError> {
                 (**self).intervals(motion, counts)
+            }
+            fn intervals_into(&self, motion: &Motion, out: &mut IntervalList, ws: &mut Workspace, counts: &mut CallCounts) -> Result<(), OracleError> {
+                (**self).intervals_into(motion, out, ws, counts)
             }
             fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
                 (**self).collides(q, counts)
@@ -242,6 +307,59 @@ impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
             });
         }
         Ok(out)
+    }
+
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        let Some(inside) = self.space.inside_range(motion) else {
+            out.clear();
+            out.push(motion.range);
+            return Ok(());
+        };
+        if inside == motion.range {
+            return self.inner.intervals_into(motion, out, ws, counts);
+        }
+        // the inner answer goes to a buffer of the workspace (taken out, so that the inner
+        // oracle may use the rest of it), then the out-of-bounds ends are added around it
+        let mut hits = std::mem::take(&mut ws.inner);
+        let asked = if self.inner.prefers_unclipped() {
+            self.inner.intervals_into(motion, &mut hits, ws, counts)
+        } else {
+            let mut clipped = ws.motion.take().unwrap_or_default();
+            clipped.copy_from(motion);
+            clipped.range = inside;
+            let r = self.inner.intervals_into(&clipped, &mut hits, ws, counts);
+            ws.motion = Some(clipped);
+            r
+        };
+        if let Err(e) = asked {
+            ws.inner = hits;
+            return Err(e);
+        }
+        if self.inner.prefers_unclipped() {
+            hits.clip_in_place(inside);
+        }
+        out.clear();
+        if inside.lo > motion.range.lo {
+            out.push(Interval {
+                lo: motion.range.lo,
+                hi: inside.lo,
+            });
+        }
+        hits.iter().for_each(|iv| out.push(*iv));
+        if inside.hi < motion.range.hi {
+            out.push(Interval {
+                lo: inside.hi,
+                hi: motion.range.hi,
+            });
+        }
+        ws.inner = hits;
+        Ok(())
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {

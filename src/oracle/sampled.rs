@@ -10,7 +10,7 @@
 //! `[t_{i-1}, t_{j+1}]`. Collisions thinner than a step can be missed entirely — which is why
 //! this is the baseline and never the default.
 
-use super::{CallCounts, CollisionOracle, OracleError};
+use super::{CallCounts, CollisionOracle, OracleError, Workspace};
 use crate::interval::{Interval, IntervalList};
 use crate::space::{Change, Motion, Space, SpaceKind};
 use std::collections::VecDeque;
@@ -108,11 +108,27 @@ impl<O: CollisionOracle> CollisionOracle for Sampled<O> {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
+        let mut out = IntervalList::new();
+        self.intervals_into(motion, &mut out, &mut Workspace::new(), counts)?;
+        Ok(out)
+    }
+
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
         let range = Self::bounded_range(motion)?;
         let n = self.step_count(motion, range.lo, range.hi);
         let t_at = |i: usize| range.lo + (range.hi - range.lo) * (i as f64 / n as f64);
-        let mut q = motion.origin.clone();
-        let mut out = IntervalList::new();
+        // the states go to the workspace's configuration buffer (taken out, so that the inner
+        // oracle may use the rest of the workspace for its state checks)
+        let mut q = std::mem::take(&mut ws.config);
+        q.clear();
+        q.extend_from_slice(&motion.origin);
+        out.clear();
         let mut run_start: Option<usize> = None;
         for i in 0..=n {
             let hit = self.sample_collides(motion, t_at(i), &mut q, counts);
@@ -134,7 +150,8 @@ impl<O: CollisionOracle> CollisionOracle for Sampled<O> {
                 hi: range.hi,
             });
         }
-        Ok(out)
+        ws.config = q;
+        Ok(())
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {

@@ -86,6 +86,16 @@ pub struct QueryOptions {
     /// [`Self::time`]. Off: the deeper local search of
     /// [`Self::escalation_candidates`] instead.
     pub grow: bool,
+    /// The intersect calls one query may spend on its local-method attempts (the quick try,
+    /// attaching, the direct and the deeper search); `None`: no limit. Each attempt runs the
+    /// method limited to what is left ([`crate::local::LocalSpec::budgeted`]; the via-point
+    /// search checks its budget between via points, so a query may overrun it by one walk),
+    /// and a query that spends it all before start and goal meet answers
+    /// [`QueryOutcome::OutOfCalls`]. Shortening a path found is not limited; growing stops once
+    /// the budget is spent. Unlike [`Self::time`] it does not depend on the machine, so
+    /// benchmarks of deep local methods can bound the query phase reproducibly
+    /// (`viaroad bench local --query-calls`).
+    pub max_calls: Option<u64>,
 }
 
 impl QueryOptions {
@@ -106,6 +116,7 @@ impl Default for QueryOptions {
             escalation_candidates: 3,
             time: None,
             grow: true,
+            max_calls: None,
         }
     }
 }
@@ -182,6 +193,8 @@ pub enum QueryOutcome {
     Grown,
     /// The query's time ran out before an answer ([`QueryOptions::time`]).
     TimedOut,
+    /// The query's call budget ran out before an answer ([`QueryOptions::max_calls`]).
+    OutOfCalls,
 }
 
 /// The answer to one query (serialisable, for `--json` output).
@@ -240,10 +253,9 @@ impl QueryResult {
         }
     }
 
-    /// Counts a connection from start to goal; if it connected, the answer is
-    /// [`QueryOutcome::Direct`] along the returned path.
+    /// If connection `c` from start to goal connected, the answer is [`QueryOutcome::Direct`]
+    /// along the returned path.
     fn take_direct(&mut self, c: Connection) -> Option<Vec<Config>> {
-        self.counts += c.counts;
         if !c.is_connected() {
             return None;
         }
@@ -297,14 +309,17 @@ enum Escalated {
     Attached(Option<(usize, usize)>),
 }
 
-/// How a query the roadmap could not join ended: out of time, an end not attached, or the two
-/// ends attached only to different components.
+/// How a query the roadmap could not join ended: out of time or calls (`calls_left`), an end
+/// not attached, or the two ends attached only to different components.
 fn unjoined(
     deadline: &Deadline,
+    calls_left: Option<u64>,
     (at_start, at_goal): &(Vec<Attached>, Vec<Attached>),
 ) -> QueryOutcome {
     if deadline.expired() {
         QueryOutcome::TimedOut
+    } else if calls_left == Some(0) {
+        QueryOutcome::OutOfCalls
     } else if at_start.is_empty() || at_goal.is_empty() {
         QueryOutcome::NotAttached {
             start_attached: !at_start.is_empty(),
@@ -413,7 +428,7 @@ impl<'a> QueryPlanner<'a> {
         // a quick try first (the direct path, or a budgeted via-point search)
         let mut retry_direct = self.options.try_direct;
         if self.options.try_direct {
-            let quick = self.quick_try(&start, &goal, &deadline)?;
+            let quick = self.quick_try(&start, &goal, &mut result, &deadline)?;
             let outcome = quick.outcome;
             if let Some(path) = result.take_direct(quick) {
                 return self.finish(result, path, &deadline);
@@ -432,7 +447,7 @@ impl<'a> QueryPlanner<'a> {
         // across a large scene it mostly fails, and tried first it cost most of a query's time
         // (Home, 32 803 nodes: 25–60 ms of a 30–60 ms answer)
         if meeting.is_none() && retry_direct {
-            let c = local.connect_within(self.space(), self.oracle, &start, &goal, &deadline)?;
+            let c = self.attempt(local, (&start, &goal), &mut result, &deadline)?;
             if let Some(path) = result.take_direct(c) {
                 return self.finish(result, path, &deadline);
             }
@@ -440,7 +455,8 @@ impl<'a> QueryPlanner<'a> {
         // where the roadmap cannot join them, grow it around them for the rest of the time
         // (only with a time limit: a cancel flag alone would let it grow until cancelled)
         let timed = deadline.remaining().is_some();
-        if meeting.is_none() && self.options.grow && timed && !deadline.expired() {
+        let spent = self.calls_left(&result) == Some(0);
+        if meeting.is_none() && self.options.grow && timed && !deadline.expired() && !spent {
             return self.grow(result, &deadline);
         }
         if meeting.is_none() {
@@ -452,7 +468,7 @@ impl<'a> QueryPlanner<'a> {
         match meeting {
             Some((si, gi)) => self.through_roadmap(result, &ends.0[si], &ends.1[gi], &deadline),
             None => {
-                result.outcome = unjoined(&deadline, &ends);
+                result.outcome = unjoined(&deadline, self.calls_left(&result), &ends);
                 Ok(result)
             }
         }
@@ -479,7 +495,7 @@ impl<'a> QueryPlanner<'a> {
         // the deep search straight from start to goal first: one attempt, and the planner's
         // own strength where the roadmap has not reached (a narrow goal)
         if self.options.try_direct {
-            let c = deep.connect_within(self.space(), self.oracle, start, goal, deadline)?;
+            let c = self.attempt(deep, (start, goal), result, deadline)?;
             if let Some(path) = result.take_direct(c) {
                 return Ok(Escalated::Direct(path));
             }
@@ -600,10 +616,44 @@ impl<'a> QueryPlanner<'a> {
         &self,
         start: &[f64],
         goal: &[f64],
+        result: &mut QueryResult,
         deadline: &Deadline,
     ) -> Result<Connection, QueryError> {
         let method = self.quick.as_deref().unwrap_or(self.local.as_ref());
-        Ok(method.connect_within(self.space(), self.oracle, start, goal, deadline)?)
+        self.attempt(method, (start, goal), result, deadline)
+    }
+
+    /// The intersect calls the query may still spend ([`QueryOptions::max_calls`]; `None`: no
+    /// limit).
+    fn calls_left(&self, result: &QueryResult) -> Option<u64> {
+        self.options
+            .max_calls
+            .map(|m| m.saturating_sub(result.counts.intersect_calls()))
+    }
+
+    /// One local-method attempt of the query from `a` to `z`, within `deadline` and what is
+    /// left of the call budget, counted in `result`.
+    fn attempt(
+        &self,
+        method: &dyn LocalMethod,
+        (a, z): (&[f64], &[f64]),
+        result: &mut QueryResult,
+        deadline: &Deadline,
+    ) -> Result<Connection, QueryError> {
+        let space = self.space();
+        let c = match self.calls_left(result) {
+            None => method.connect_within(space, self.oracle, a, z, deadline)?,
+            Some(0) => Connection::interrupted(a, z),
+            Some(left) => match method.spec().budgeted(left) {
+                Some(spec) => spec
+                    .build()
+                    .connect_within(space, self.oracle, a, z, deadline)?,
+                // a method that does not search costs a few calls: it runs as it is
+                None => method.connect_within(space, self.oracle, a, z, deadline)?,
+            },
+        };
+        result.counts += c.counts;
+        Ok(c)
     }
 
     /// Attaches start and goal to their `k` nearest nodes with `method`, alternating sides, one
@@ -618,7 +668,6 @@ impl<'a> QueryPlanner<'a> {
         result: &mut QueryResult,
         deadline: &Deadline,
     ) -> Result<Option<(usize, usize)>, QueryError> {
-        let space = self.roadmap.space();
         let near_start = self.roadmap.nearest(start, k, None);
         let near_goal = self.roadmap.nearest(goal, k, None);
         for i in 0..near_start.len().max(near_goal.len()) {
@@ -634,19 +683,15 @@ impl<'a> QueryPlanner<'a> {
                 if mine.iter().any(|a| a.component == component) {
                     continue;
                 }
-                if deadline.expired() {
+                if deadline.expired() || self.calls_left(result) == Some(0) {
                     return Ok(None);
                 }
                 let q = self.roadmap.node(node);
-                let connection = match side {
-                    Endpoint::Start => {
-                        method.connect_within(space, self.oracle, start, q, deadline)?
-                    }
-                    Endpoint::Goal => {
-                        method.connect_within(space, self.oracle, q, goal, deadline)?
-                    }
+                let ends = match side {
+                    Endpoint::Start => (start, q),
+                    Endpoint::Goal => (q, goal),
                 };
-                result.counts += connection.counts;
+                let connection = self.attempt(method, ends, result, deadline)?;
                 result.attach_attempts += 1;
                 if !connection.is_connected() {
                     continue;

@@ -9,11 +9,13 @@
 //! | [`toml_format`] | viaroad's TOML scenes (the format is documented there) |
 //! | [`ompl_cfg`] | OMPL.app problems (`.cfg`), OMPL path files and query-pair files |
 //! | [`mesh_io`] | meshes: Wavefront OBJ, STL |
+//! | [`moveit`] | MoveIt PlanningScene and MotionPlanRequest YAML (robot arms) |
 //! | [`collada`] | Collada meshes as OMPL.app sees them through assimp (frame, robot centre) |
 //! | [`shapes`] | convex hulls, 2D footprints of prism meshes, simple-polygon check |
 
 pub mod collada;
 pub mod mesh_io;
+pub mod moveit;
 pub mod ompl_cfg;
 pub mod shapes;
 pub mod toml_format;

@@ -18,6 +18,16 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 use std::ops::Range;
 
+/// Appends a configuration's few numbers one by one: for vectors this short a call of the
+/// library's `memmove` cost more than the copy itself (issue 11's profile).
+#[inline]
+pub fn extend_small(dst: &mut Vec<f64>, src: &[f64]) {
+    dst.reserve(src.len());
+    for &x in src {
+        dst.push(x);
+    }
+}
+
 /// A configuration: one `f64` per coordinate, in the space's layout.
 pub type Config = Vec<f64>;
 
@@ -402,20 +412,27 @@ impl Space {
     /// rigid body. With `split_axes` every position coordinate is a group of its own, so paths
     /// run parallel to the axes (CHS A.1.1).
     pub fn groups(&self, split_axes: bool) -> Vec<Group> {
+        let mut groups = Vec::new();
+        self.groups_into(split_axes, &mut groups);
+        groups
+    }
+
+    /// [`groups`](Self::groups) written into `groups` (overwriting it, keeping its
+    /// allocation): the planners ask for them on every connection.
+    pub fn groups_into(&self, split_axes: bool, groups: &mut Vec<Group>) {
         let p = self.position_dim();
-        let mut groups = if split_axes {
-            (0..p)
-                .map(|i| Group {
-                    kind: GroupKind::Linear,
-                    coords: i..i + 1,
-                })
-                .collect()
+        groups.clear();
+        if split_axes {
+            groups.extend((0..p).map(|i| Group {
+                kind: GroupKind::Linear,
+                coords: i..i + 1,
+            }));
         } else {
-            vec![Group {
+            groups.push(Group {
                 kind: GroupKind::Linear,
                 coords: 0..p,
-            }]
-        };
+            });
+        }
         match self.kind {
             SpaceKind::Euclidean(_) => {}
             SpaceKind::Se2 => groups.push(Group {
@@ -427,7 +444,6 @@ impl Space {
                 coords: 3..7,
             }),
         }
-        groups
     }
 
     /// Whether `a` and `b` have the same coordinates in `group` (orientations compared as
@@ -475,6 +491,36 @@ impl Space {
         Motion::segment(a.to_vec(), change)
     }
 
+    /// Allocation-free twin of [`group_motion`](Self::group_motion): overwrites `out`,
+    /// reusing its buffers (the via-point search keeps one motion per group, issue 11).
+    pub fn group_motion_into(&self, a: &[f64], z: &[f64], group: &Group, out: &mut Motion) {
+        match group.kind {
+            GroupKind::Linear => {
+                let delta = out.reset_linear(a, Interval::UNIT, Sweep::Segment);
+                for i in group.coords.clone() {
+                    delta[i] = z[i] - a[i];
+                }
+            }
+            GroupKind::Angle => {
+                let delta = out.reset_linear(a, Interval::UNIT, Sweep::Segment);
+                delta[2] = rotation::wrap_angle(z[2] - a[2]);
+            }
+            GroupKind::Quaternion => {
+                let qa = rotation::quat_from_slice(&a[3..7]);
+                let qz = rotation::quat_from_slice(&z[3..7]);
+                let (axis, angle) = rotation::relative_axis_angle(&qa, &qz);
+                out.reset_rotation(a, axis, angle, Interval::UNIT, Sweep::Segment);
+            }
+        }
+    }
+
+    /// Allocation-free twin of [`with_group_of`](Self::with_group_of): overwrites `out`.
+    pub fn with_group_of_into(&self, a: &[f64], b: &[f64], group: &Group, out: &mut Vec<f64>) {
+        out.clear();
+        extend_small(out, a);
+        out[group.coords.clone()].copy_from_slice(&b[group.coords.clone()]);
+    }
+
     /// The straight motion from `a` to `z` when all coordinates may change at once (R^n only,
     /// or motions that differ in a single group). `None` if `a` and `z` differ in more than one
     /// natural group of a rigid body.
@@ -500,6 +546,35 @@ impl Space {
             delta[i] = *d;
         }
         Motion::line(base.to_vec(), Change::Linear(delta))
+    }
+
+    /// Allocation-free twin of [`line_through`](Self::line_through): overwrites `out`.
+    pub fn line_through_into(
+        &self,
+        base: &[f64],
+        group: &Group,
+        direction: &[f64],
+        out: &mut Motion,
+    ) {
+        debug_assert_eq!(group.kind, GroupKind::Linear);
+        let delta = out.reset_linear(base, Interval::ALL, Sweep::Line);
+        for (i, d) in group.coords.clone().zip(direction) {
+            delta[i] = *d;
+        }
+    }
+
+    /// Allocation-free twin of [`turn_through`](Self::turn_through): overwrites `out`.
+    /// `group` must be rotational.
+    pub fn turn_through_into(&self, base: &[f64], group: &Group, axis: [f64; 3], out: &mut Motion) {
+        let turn = Interval { lo: -0.5, hi: 0.5 };
+        match group.kind {
+            GroupKind::Angle => {
+                let delta = out.reset_linear(base, turn, Sweep::Turn);
+                delta[2] = TAU;
+            }
+            GroupKind::Quaternion => out.reset_rotation(base, axis, TAU, turn, Sweep::Turn),
+            GroupKind::Linear => panic!("turn_through on a linear group"),
+        }
     }
 
     /// The full turn through `base` in a rotational group (about the unit `axis` for a

@@ -6,7 +6,7 @@
 //! rotational borderline of CHS §2.3.1).
 
 use super::rotation;
-use super::Config;
+use super::{extend_small, Config};
 use crate::interval::Interval;
 use serde::{Deserialize, Serialize};
 
@@ -54,6 +54,14 @@ pub struct Motion {
     pub sweep: Sweep,
 }
 
+/// A segment of no coordinates: a slot to be overwritten by the `*_into` builders of
+/// [`Space`](super::Space) (the via-point search keeps such slots, issue 11).
+impl Default for Motion {
+    fn default() -> Self {
+        Motion::segment(Vec::new(), Change::Linear(Vec::new()))
+    }
+}
+
 impl Motion {
     /// The bounded motion `t ∈ [0, 1]`.
     pub fn segment(origin: Config, change: Change) -> Motion {
@@ -91,6 +99,63 @@ impl Motion {
             range,
             ..self.clone()
         }
+    }
+
+    /// Overwrites `self` with `other`, keeping `self`'s buffers where the kinds of change
+    /// agree (the allocation-free hot path, issue 11).
+    pub fn copy_from(&mut self, other: &Motion) {
+        self.origin.clear();
+        extend_small(&mut self.origin, &other.origin);
+        match (&mut self.change, &other.change) {
+            (Change::Linear(mine), Change::Linear(theirs)) => {
+                mine.clear();
+                mine.extend_from_slice(theirs);
+            }
+            (mine, theirs) => mine.clone_from(theirs),
+        }
+        self.range = other.range;
+        self.sweep = other.sweep;
+    }
+
+    /// Resets `self` to a linear motion from `origin` with a zero `delta` (one entry per
+    /// coordinate), reusing the buffers, and hands out the delta to be filled in.
+    pub(crate) fn reset_linear(
+        &mut self,
+        origin: &[f64],
+        range: Interval,
+        sweep: Sweep,
+    ) -> &mut [f64] {
+        self.origin.clear();
+        extend_small(&mut self.origin, origin);
+        self.range = range;
+        self.sweep = sweep;
+        if !matches!(self.change, Change::Linear(_)) {
+            self.change = Change::Linear(Vec::with_capacity(origin.len()));
+        }
+        match &mut self.change {
+            Change::Linear(delta) => {
+                delta.clear();
+                delta.resize(origin.len(), 0.0);
+                delta
+            }
+            Change::Rotation { .. } => unreachable!("set to linear just above"),
+        }
+    }
+
+    /// Resets `self` to a rotation from `origin`, reusing the origin's buffer.
+    pub(crate) fn reset_rotation(
+        &mut self,
+        origin: &[f64],
+        axis: [f64; 3],
+        angle: f64,
+        range: Interval,
+        sweep: Sweep,
+    ) {
+        self.origin.clear();
+        extend_small(&mut self.origin, origin);
+        self.range = range;
+        self.sweep = sweep;
+        self.change = Change::Rotation { axis, angle };
     }
 
     /// The configuration at parameter `t` (not normalised: SE(2) angles are not wrapped).

@@ -6,14 +6,17 @@ use super::queries::QuerySet;
 use super::spec::RunJob;
 use super::BenchError;
 use crate::local::direct_pieces;
+use crate::local::LocalMethod;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
-use crate::roadmap::{LearnParams, Learner, Learnt, QueryOptions, QueryPlanner, StopReason};
+use crate::roadmap::{
+    LearnParams, Learner, Learnt, QueryOptions, QueryOutcome, QueryPlanner, Roadmap, StopReason,
+};
 use crate::scene::Scene;
 use crate::space::{Config, Group, Space};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::ops::ControlFlow;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Why a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -109,6 +112,9 @@ pub struct RunRecord {
     pub target: f64,
     /// Queries tried the local method from start to goal first.
     pub direct: bool,
+    /// The intersect calls a query could spend ([`RunJob::query_calls`]; `None`: no limit).
+    #[serde(default)]
+    pub query_calls: Option<u64>,
     /// Scored queries the target asks for: `⌈target · scored⌉`.
     pub needed: usize,
     /// Every stage evaluated, in order.
@@ -142,6 +148,10 @@ pub struct RunRecord {
     pub invalid_paths: usize,
     /// Returned paths whose unshortened form collides.
     pub invalid_raw_paths: usize,
+    /// Scored queries at the end that spent the call budget before an answer
+    /// ([`RunJob::query_calls`]).
+    #[serde(default)]
+    pub out_of_calls: usize,
     /// Separate-group queries solved at the end.
     pub separate_solved: usize,
     /// Separate-group queries answered at the end (free or not).
@@ -234,6 +244,8 @@ struct Evaluation {
     claimed: usize,
     invalid: usize,
     invalid_raw: usize,
+    /// Queries that spent their call budget before an answer.
+    out_of_calls: usize,
     latencies: Vec<f64>,
     raw_lengths: Vec<f64>,
     lengths: Vec<f64>,
@@ -277,6 +289,7 @@ fn evaluate(
         claimed: 0,
         invalid: 0,
         invalid_raw: 0,
+        out_of_calls: 0,
         latencies: Vec::with_capacity(which.len()),
         raw_lengths: Vec::new(),
         lengths: Vec::new(),
@@ -288,6 +301,7 @@ fn evaluate(
         let (r, ok, raw_ok, secs) = c?;
         e.latencies.push(secs);
         e.counts += r.counts;
+        e.out_of_calls += usize::from(r.outcome == QueryOutcome::OutOfCalls);
         if r.is_solved() {
             e.claimed += 1;
             e.invalid += usize::from(!ok);
@@ -346,59 +360,169 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
     machine::reset_peak_rss();
     let oracle = scene.oracle();
     let local = job.method.local.build();
-    let groups = local.groups(&scene.space);
-    let params = LearnParams {
-        feedback: job.method.feedback,
-        sampler: job.method.sampler.clone(),
-        ..LearnParams::default()
-    };
-    let learner = Learner::for_scene(scene, oracle.as_ref(), local.as_ref());
-    let query_options = QueryOptions {
-        try_direct: job.direct,
-        attach_candidates: job.attach.max(1),
-        escalation_candidates: job.escalation,
-        ..QueryOptions::default()
+    let bench = Bench {
+        scene,
+        set,
+        job,
+        oracle: oracle.as_ref(),
+        groups: local.groups(&scene.space),
+        options: query_options(job),
     };
     let scored = set.scored();
     let needed = target_count(job.target, scored.len());
-    let time = match job.time_limit {
-        Some(t) => match crate::limits::duration_from_secs(t) {
-            Some(d) => Some(d),
-            None => {
-                return Err(BenchError::Invalid(format!(
-                    "the time limit must be a positive number of seconds of at most {:e}, \
-                     got {t:?}",
-                    crate::limits::MAX_SECONDS
-                )))
-            }
-        },
-        None => None,
+    let (learnt, stages, eval) = bench.learn_in_stages(local.as_ref(), &scored, needed)?;
+    let (Some(eval), Some(end)) = (eval, stages.last().cloned()) else {
+        return Err(BenchError::Invalid(
+            "learning ended before its first stage".into(),
+        ));
     };
-    let mut stages: Vec<StageRecord> = Vec::new();
-    let mut last: Option<Evaluation> = None;
-    let mut failure: Option<BenchError> = None;
-    let learnt = learner.learn_in_stages(
-        &params,
-        &job.stages,
-        time,
-        job.seed,
-        &mut |_| {},
-        &mut |l| {
-            let eval = QueryPlanner::new(&l.roadmap, oracle.as_ref())
-                .map_err(BenchError::from)
-                .and_then(|planner| {
-                    let planner = planner.with_options(query_options.clone());
-                    evaluate(
-                        &planner,
-                        &scene.space,
-                        oracle.as_ref(),
-                        &groups,
-                        set,
-                        &scored,
-                        job.keep_paths,
-                    )
-                });
-            match eval {
+    let reached = eval.valid >= needed;
+    let stop = run_stop(reached, learnt.report.stop);
+    // the separate group, once, against the final roadmap
+    let separate = set.separate();
+    let apart = bench.evaluate(&learnt.roadmap, &separate)?;
+    let paths = job
+        .keep_paths
+        .then(|| all_paths(set.len(), &eval.paths, &apart.paths));
+    Ok(bench.record(RunEnd {
+        end,
+        stages,
+        eval,
+        apart,
+        stop,
+        needed,
+        reached,
+        roadmap_bytes: learnt.roadmap.to_bytes()?.len(),
+        paths,
+        wall_seconds: wall.elapsed().as_secs_f64(),
+    }))
+}
+
+/// How a run ended, for its record.
+struct RunEnd {
+    /// The last stage.
+    end: StageRecord,
+    /// Every stage evaluated.
+    stages: Vec<StageRecord>,
+    /// The last evaluation of the scored queries.
+    eval: Evaluation,
+    /// The evaluation of the separate group.
+    apart: Evaluation,
+    stop: RunStop,
+    /// Scored queries the target asks for.
+    needed: usize,
+    /// Whether the last stage solved them.
+    reached: bool,
+    roadmap_bytes: usize,
+    paths: Option<Vec<Option<Vec<Config>>>>,
+    wall_seconds: f64,
+}
+
+/// The query options of `job`'s evaluations.
+fn query_options(job: &RunJob) -> QueryOptions {
+    QueryOptions {
+        try_direct: job.direct,
+        attach_candidates: job.attach.max(1),
+        escalation_candidates: job.escalation,
+        max_calls: job.query_calls,
+        ..QueryOptions::default()
+    }
+}
+
+/// `job`'s learning-time limit, checked.
+fn time_limit(job: &RunJob) -> Result<Option<Duration>, BenchError> {
+    let Some(t) = job.time_limit else {
+        return Ok(None);
+    };
+    crate::limits::duration_from_secs(t)
+        .map(Some)
+        .ok_or_else(|| {
+            BenchError::Invalid(format!(
+                "the time limit must be a positive number of seconds of at most {:e}, got {t:?}",
+                crate::limits::MAX_SECONDS
+            ))
+        })
+}
+
+/// Why a run ended, from whether it `reached` its target and why learning stopped.
+fn run_stop(reached: bool, stop: StopReason) -> RunStop {
+    if reached {
+        return RunStop::Target;
+    }
+    match stop {
+        StopReason::NodeBudget => RunStop::NodeCap,
+        StopReason::TimeBudget | StopReason::Cancelled => RunStop::TimeLimit,
+        StopReason::Stalled => RunStop::Stalled,
+        // learn_in_stages grows no pair
+        StopReason::Connected => RunStop::Target,
+    }
+}
+
+/// The paths kept by two evaluations, per query of a set of `n` (`None`: none returned).
+fn all_paths(
+    n: usize,
+    scored: &[(usize, Vec<Config>)],
+    separate: &[(usize, Vec<Config>)],
+) -> Vec<Option<Vec<Config>>> {
+    let mut all: Vec<Option<Vec<Config>>> = vec![None; n];
+    for (i, p) in scored.iter().chain(separate) {
+        all[*i] = Some(p.clone());
+    }
+    all
+}
+
+/// One run's fixed parts: the scene, its queries, the job, the exact oracle and the query
+/// options of every evaluation.
+struct Bench<'a> {
+    scene: &'a Scene,
+    set: &'a QuerySet,
+    job: &'a RunJob,
+    oracle: &'a dyn CollisionOracle,
+    groups: Vec<Group>,
+    options: QueryOptions,
+}
+
+impl Bench<'_> {
+    /// Answers queries `which` with `roadmap` and re-checks the paths ([`evaluate`]).
+    fn evaluate(&self, roadmap: &Roadmap, which: &[usize]) -> Result<Evaluation, BenchError> {
+        let planner = QueryPlanner::new(roadmap, self.oracle)?.with_options(self.options.clone());
+        evaluate(
+            &planner,
+            &self.scene.space,
+            self.oracle,
+            &self.groups,
+            self.set,
+            which,
+            self.job.keep_paths,
+        )
+    }
+
+    /// Learns in the job's stages with `local`, evaluating the `scored` queries after each,
+    /// until a stage solves `needed` of them. Returns the last roadmap, every stage's record
+    /// and the last evaluation.
+    #[allow(clippy::type_complexity)]
+    fn learn_in_stages(
+        &self,
+        local: &dyn LocalMethod,
+        scored: &[usize],
+        needed: usize,
+    ) -> Result<(Learnt, Vec<StageRecord>, Option<Evaluation>), BenchError> {
+        let params = LearnParams {
+            feedback: self.job.method.feedback,
+            sampler: self.job.method.sampler.clone(),
+            ..LearnParams::default()
+        };
+        let learner = Learner::for_scene(self.scene, self.oracle, local);
+        let mut stages: Vec<StageRecord> = Vec::new();
+        let mut last: Option<Evaluation> = None;
+        let mut failure: Option<BenchError> = None;
+        let learnt = learner.learn_in_stages(
+            &params,
+            &self.job.stages,
+            time_limit(self.job)?,
+            self.job.seed,
+            &mut |_| {},
+            &mut |l| match self.evaluate(&l.roadmap, scored) {
                 Ok(e) => {
                     stages.push(stage_record(l, &e));
                     let done = e.valid >= needed;
@@ -413,94 +537,77 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
                     failure = Some(e);
                     ControlFlow::Break(())
                 }
-            }
-        },
-    )?;
-    if let Some(e) = failure {
-        return Err(e);
+            },
+        )?;
+        match failure {
+            Some(e) => Err(e),
+            None => Ok((learnt, stages, last)),
+        }
     }
-    let (Some(eval), Some(end)) = (last, stages.last().cloned()) else {
-        return Err(BenchError::Invalid(
-            "learning ended before its first stage".into(),
-        ));
-    };
-    let reached = eval.valid >= needed;
-    let stop = if reached {
-        RunStop::Target
-    } else {
-        match learnt.report.stop {
-            StopReason::NodeBudget => RunStop::NodeCap,
-            StopReason::TimeBudget | StopReason::Cancelled => RunStop::TimeLimit,
-            StopReason::Stalled => RunStop::Stalled,
-            // learn_in_stages grows no pair
-            StopReason::Connected => RunStop::Target,
+
+    /// The run's record; its summary fields describe the last stage.
+    fn record(&self, run: RunEnd) -> RunRecord {
+        let (job, set) = (self.job, self.set);
+        let RunEnd {
+            end,
+            stages,
+            eval,
+            apart,
+            stop,
+            needed,
+            reached,
+            roadmap_bytes,
+            paths,
+            wall_seconds,
+        } = run;
+        RunRecord {
+            scene: self.scene.name.clone(),
+            scene_source: job.scene.to_string(),
+            method: job.method.label(),
+            local_spec: job.method.local.to_string(),
+            feedback: job.method.feedback,
+            sampler: job.method.sampler.to_string(),
+            run: job.run,
+            seed: job.seed,
+            threads: rayon::current_num_threads(),
+            queries: set.len(),
+            scored: set.scored().len(),
+            separate: set.separate().len(),
+            invalid_queries: set.invalid().len(),
+            target: job.target,
+            direct: job.direct,
+            query_calls: job.query_calls,
+            needed,
+            time_to_target: reached.then_some(end.learn_seconds),
+            nodes_at_target: reached.then_some(end.nodes),
+            stop,
+            nodes: end.nodes,
+            edges: end.edges,
+            components: end.components,
+            learn_seconds: end.learn_seconds,
+            counts: end.counts,
+            attempts: end.attempts,
+            connected: end.connected,
+            solved: eval.valid,
+            claimed: eval.claimed,
+            invalid_paths: eval.invalid + apart.invalid,
+            invalid_raw_paths: eval.invalid_raw + apart.invalid_raw,
+            out_of_calls: eval.out_of_calls,
+            separate_solved: apart.valid,
+            separate_claimed: apart.claimed,
+            query_p50_ms: 1e3 * percentile(&eval.latencies, 0.5),
+            query_p95_ms: 1e3 * percentile(&eval.latencies, 0.95),
+            query_mean_ms: 1e3 * mean(&eval.latencies).unwrap_or(0.0),
+            query_counts: eval.counts,
+            path_length_raw: mean(&eval.raw_lengths),
+            path_length: mean(&eval.lengths),
+            roadmap_bytes,
+            peak_rss_mib: machine::peak_rss_mib(),
+            wall_seconds,
+            paths,
+            stages,
         }
-    };
-    // the separate group, once, against the final roadmap
-    let separate = set.separate();
-    let planner = QueryPlanner::new(&learnt.roadmap, oracle.as_ref())?.with_options(query_options);
-    let apart = evaluate(
-        &planner,
-        &scene.space,
-        oracle.as_ref(),
-        &groups,
-        set,
-        &separate,
-        job.keep_paths,
-    )?;
-    let paths = job.keep_paths.then(|| {
-        let mut all: Vec<Option<Vec<Config>>> = vec![None; set.len()];
-        for (i, p) in eval.paths.iter().chain(&apart.paths) {
-            all[*i] = Some(p.clone());
-        }
-        all
-    });
-    let roadmap_bytes = learnt.roadmap.to_bytes()?.len();
-    Ok(RunRecord {
-        scene: scene.name.clone(),
-        scene_source: job.scene.to_string(),
-        method: job.method.label(),
-        local_spec: job.method.local.to_string(),
-        feedback: job.method.feedback,
-        sampler: job.method.sampler.to_string(),
-        run: job.run,
-        seed: job.seed,
-        threads: rayon::current_num_threads(),
-        queries: set.len(),
-        scored: scored.len(),
-        separate: separate.len(),
-        invalid_queries: set.invalid().len(),
-        target: job.target,
-        direct: job.direct,
-        needed,
-        time_to_target: reached.then_some(end.learn_seconds),
-        nodes_at_target: reached.then_some(end.nodes),
-        stop,
-        nodes: end.nodes,
-        edges: end.edges,
-        components: end.components,
-        learn_seconds: end.learn_seconds,
-        counts: end.counts,
-        attempts: end.attempts,
-        connected: end.connected,
-        solved: eval.valid,
-        claimed: eval.claimed,
-        invalid_paths: eval.invalid + apart.invalid,
-        invalid_raw_paths: eval.invalid_raw + apart.invalid_raw,
-        separate_solved: apart.valid,
-        separate_claimed: apart.claimed,
-        query_p50_ms: 1e3 * percentile(&eval.latencies, 0.5),
-        query_p95_ms: 1e3 * percentile(&eval.latencies, 0.95),
-        query_mean_ms: 1e3 * mean(&eval.latencies).unwrap_or(0.0),
-        query_counts: eval.counts,
-        path_length_raw: mean(&eval.raw_lengths),
-        path_length: mean(&eval.lengths),
-        roadmap_bytes,
-        peak_rss_mib: machine::peak_rss_mib(),
-        wall_seconds: wall.elapsed().as_secs_f64(),
-        stages,
-        paths,
-    })
+    }
 }
 
 #[cfg(test)]

@@ -369,6 +369,13 @@ pub struct Plan {
     /// compared on what their roadmaps answer; `viaroad query` escalates with 3.
     #[serde(default)]
     pub escalation: usize,
+    /// The intersect calls one query may spend in the evaluations after each stage
+    /// ([`crate::roadmap::QueryOptions::max_calls`]; `None`: no limit). Deep via-point
+    /// settings attach start and goal with searches of thousands of calls each; a budget keeps
+    /// a stage's evaluation on an SE(3) scene to seconds, reproducibly (queries that spend it
+    /// count as unsolved).
+    #[serde(default)]
+    pub query_calls: Option<u64>,
 }
 
 impl Plan {
@@ -408,6 +415,11 @@ impl Plan {
         for m in &self.methods {
             crate::limits::check_local_spec(&m.local).map_err(BenchError::Invalid)?;
         }
+        if self.query_calls == Some(0) {
+            return Err(BenchError::Invalid(
+                "a query's call budget must be at least 1 call".into(),
+            ));
+        }
         if self.attach == 0 {
             return Err(BenchError::Invalid(
                 "queries must try at least one node to attach to".into(),
@@ -442,6 +454,7 @@ impl Plan {
                         direct: self.direct,
                         attach: self.attach,
                         escalation: self.escalation,
+                        query_calls: self.query_calls,
                         keep_paths: false,
                     });
                 }
@@ -481,6 +494,9 @@ pub struct RunJob {
     /// Nearest nodes a side retried with the deep via-point planner (0: none).
     #[serde(default)]
     pub escalation: usize,
+    /// The intersect calls one query may spend ([`Plan::query_calls`]).
+    #[serde(default)]
+    pub query_calls: Option<u64>,
     /// Keep the paths of the last evaluation in the record (for tests and debugging).
     #[serde(default)]
     pub keep_paths: bool,

@@ -7,9 +7,10 @@
 //! their centres, ranked by `V_β(d, l) = d / l^β` with `d` the distance of the via point from the
 //! blocked motion and `l` the length of its free section (CHS §1.3, "Via Points").
 
-use super::directions::perpendicular;
+use super::directions::{perpendicular_into, DirScratch};
 use super::options::{BasePoint, ViaPointOptions};
 use crate::interval::{Interval, IntervalList};
+use crate::space::extend_small;
 use crate::space::{Change, Config, Group, GroupKind, Motion, Space, Sweep};
 use rand::Rng;
 
@@ -52,47 +53,106 @@ pub struct Crossing<'a> {
     pub base: &'a [f64],
 }
 
+/// Reusable buffers for [`borderlines_into`]: the motions are slots overwritten round after
+/// round, so that erecting borderlines allocates nothing in steady state (issue 11).
+#[derive(Debug, Default)]
+pub struct Lines {
+    /// Motion slots and the group each one dodges in; the first [`Lines::len`] are current.
+    slots: Vec<(Motion, usize)>,
+    len: usize,
+    dirs: Vec<f64>,
+    unit: Vec<f64>,
+    scratch: DirScratch,
+}
+
+impl Lines {
+    /// The current borderlines.
+    pub fn as_slice(&self) -> &[(Motion, usize)] {
+        &self.slots[..self.len]
+    }
+
+    /// Number of current borderlines.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    fn next_slot(&mut self) -> &mut (Motion, usize) {
+        if self.len == self.slots.len() {
+            self.slots.push((Motion::default(), 0));
+        }
+        self.len += 1;
+        &mut self.slots[self.len - 1]
+    }
+}
+
 /// The borderlines of round `round` through the crossing's base point: unbounded motions paired
-/// with the group each one dodges in.
+/// with the group each one dodges in, written into `lines` (overwriting what was there).
 ///
 /// Round 0 holds the directions perpendicular to the motion within its own group and — if
 /// `dodge_other_groups`, or if the group has no perpendicular direction (one axis, an angle) —
 /// lines along the axes of every other linear group and full turns in every other rotational
 /// group (about the world axes for a quaternion). Later rounds are the rotated bases of
 /// [`Directions::Basis`](super::options::Directions) or nothing.
-pub fn borderlines(
+pub fn borderlines_into(
     space: &Space,
     groups: &[Group],
     options: &ViaPointOptions,
     crossing: &Crossing,
     round: u32,
     rng: &mut impl Rng,
-) -> Vec<(Motion, usize)> {
+    lines: &mut Lines,
+) {
     let (blocked, blocked_group, base) = (crossing.motion, crossing.group, crossing.base);
     let g = &groups[blocked_group];
-    let mut out = Vec::new();
+    lines.len = 0;
     match (g.kind, &blocked.change) {
         (GroupKind::Linear, Change::Linear(delta)) => {
-            let mut u: Vec<f64> = delta[g.coords.clone()].to_vec();
+            let mut u = std::mem::take(&mut lines.unit);
+            u.clear();
+            extend_small(&mut u, &delta[g.coords.clone()]);
             let n = u.iter().map(|x| x * x).sum::<f64>().sqrt();
             if n > 0.0 {
                 u.iter_mut().for_each(|x| *x /= n);
-                for d in perpendicular(&u, options.directions, round, rng) {
-                    out.push((space.line_through(base, g, &d), blocked_group));
+                let mut dirs = std::mem::take(&mut lines.dirs);
+                let count = perpendicular_into(
+                    &u,
+                    options.directions,
+                    round,
+                    rng,
+                    &mut lines.scratch,
+                    &mut dirs,
+                );
+                let m = u.len();
+                for d in dirs.chunks_exact(m).take(count) {
+                    let slot = lines.next_slot();
+                    space.line_through_into(base, g, d, &mut slot.0);
+                    slot.1 = blocked_group;
                 }
+                lines.dirs = dirs;
             }
+            lines.unit = u;
         }
         (GroupKind::Quaternion, Change::Rotation { axis, .. }) => {
-            for d in perpendicular(axis, options.directions, round, rng) {
-                out.push((
-                    space.turn_through(base, g, [d[0], d[1], d[2]]),
-                    blocked_group,
-                ));
+            let mut dirs = std::mem::take(&mut lines.dirs);
+            let count = perpendicular_into(
+                axis,
+                options.directions,
+                round,
+                rng,
+                &mut lines.scratch,
+                &mut dirs,
+            );
+            for d in dirs.chunks_exact(3).take(count) {
+                let slot = lines.next_slot();
+                space.turn_through_into(base, g, [d[0], d[1], d[2]], &mut slot.0);
+                slot.1 = blocked_group;
             }
+            lines.dirs = dirs;
         }
         _ => {}
     }
-    if round == 0 && (options.dodge_other_groups || out.is_empty()) {
+    if round == 0 && (options.dodge_other_groups || lines.len == 0) {
+        let mut d = std::mem::take(&mut lines.unit);
         for (k, h) in groups.iter().enumerate() {
             if k == blocked_group {
                 continue;
@@ -100,21 +160,30 @@ pub fn borderlines(
             match h.kind {
                 GroupKind::Linear => {
                     for i in 0..h.len() {
-                        let mut d = vec![0.0; h.len()];
+                        d.clear();
+                        d.resize(h.len(), 0.0);
                         d[i] = 1.0;
-                        out.push((space.line_through(base, h, &d), k));
+                        let slot = lines.next_slot();
+                        space.line_through_into(base, h, &d, &mut slot.0);
+                        slot.1 = k;
                     }
                 }
-                GroupKind::Angle => out.push((space.turn_through(base, h, [0.0, 0.0, 1.0]), k)),
+                GroupKind::Angle => {
+                    let slot = lines.next_slot();
+                    space.turn_through_into(base, h, [0.0, 0.0, 1.0], &mut slot.0);
+                    slot.1 = k;
+                }
                 GroupKind::Quaternion => {
                     for axis in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {
-                        out.push((space.turn_through(base, h, axis), k));
+                        let slot = lines.next_slot();
+                        space.turn_through_into(base, h, axis, &mut slot.0);
+                        slot.1 = k;
                     }
                 }
             }
         }
+        lines.unit = d;
     }
-    out
 }
 
 /// A via point on a borderline and what it is worth.
@@ -135,9 +204,24 @@ pub fn via_point(space: &Space, motion: &Motion, t: f64) -> Config {
 
 /// The free sections of a borderline with collision intervals `collisions`: for a full turn the
 /// section across `t = ±½` is joined into one (it is one arc of the circle), with `hi > ½`.
+#[cfg(test)]
 pub fn free_sections(motion: &Motion, collisions: &IntervalList) -> Vec<Interval> {
-    let free = collisions.complement_within(motion.range);
-    let mut v: Vec<Interval> = free.iter().copied().filter(|iv| iv.hi > iv.lo).collect();
+    let mut out = Vec::new();
+    free_sections_into(motion, collisions, &mut IntervalList::new(), &mut out);
+    out
+}
+
+/// Allocation-free form of the free sections: `complement` is scratch, `out` the answer.
+pub fn free_sections_into(
+    motion: &Motion,
+    collisions: &IntervalList,
+    complement: &mut IntervalList,
+    out: &mut Vec<Interval>,
+) {
+    collisions.complement_within_into(motion.range, complement);
+    out.clear();
+    out.extend(complement.iter().copied().filter(|iv| iv.hi > iv.lo));
+    let v = out;
     if motion.sweep == Sweep::Turn && v.len() > 1 {
         let (first, last) = (v[0], v[v.len() - 1]);
         if first.lo <= motion.range.lo && last.hi >= motion.range.hi {
@@ -148,13 +232,13 @@ pub fn free_sections(motion: &Motion, collisions: &IntervalList) -> Vec<Interval
             };
         }
     }
-    v
 }
 
 /// Via points on one borderline: the centres of its bounded free sections, valued by
 /// `V_β(d, l) = d / l^β` (CHS §1.3). A turn that is free all the way round has no centre; it
 /// offers the quarter and half turns instead. `scratch` (one configuration long) saves
 /// allocating a configuration per candidate: only the via points kept become configurations.
+#[cfg(test)]
 pub fn candidates(
     space: &Space,
     motion: &Motion,
@@ -163,8 +247,22 @@ pub fn candidates(
     beta: f64,
     scratch: &mut [f64],
 ) -> Vec<Candidate> {
+    let mut out = Vec::new();
+    candidates_into(space, motion, sections, base, beta, scratch, &mut out);
+    out
+}
+
+/// [`candidates`] appended to `out` instead of a new vector (the search keeps one list).
+pub fn candidates_into(
+    space: &Space,
+    motion: &Motion,
+    sections: &[Interval],
+    base: &[f64],
+    beta: f64,
+    scratch: &mut [f64],
+    out: &mut Vec<Candidate>,
+) {
     let period = motion.range.hi - motion.range.lo;
-    let mut out = Vec::with_capacity(sections.len());
     let mut add = |t: f64, len: f64, scratch: &mut [f64]| {
         motion.write_at(t, scratch);
         space.normalize(scratch);
@@ -191,7 +289,6 @@ pub fn candidates(
         }
         add(c, s.length(), scratch);
     }
-    out
 }
 
 #[cfg(test)]

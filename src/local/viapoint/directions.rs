@@ -8,21 +8,57 @@
 //! blocked rotation's axis (CHS Lemma 2.2: perpendicular great circles ⇔ perpendicular axes).
 
 use super::options::Directions;
+use crate::space::extend_small;
 use rand::Rng;
 use rand_distr_free::standard_normal;
+
+/// Reusable buffers for [`perpendicular_into`], kept in the search (issue 11).
+#[derive(Debug, Default)]
+pub struct DirScratch {
+    axes: Vec<usize>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    b: Vec<f64>,
+}
 
 /// Unit vectors spanning the hyperplane perpendicular to the unit vector `u` (dimension
 /// `u.len() - 1`), for round `round` of the strategy (round 0 is the first basis; later rounds
 /// are the basis rotated about `u`, or fresh random directions).
+#[cfg(test)]
 pub fn perpendicular(
     u: &[f64],
     strategy: Directions,
     round: u32,
     rng: &mut impl Rng,
 ) -> Vec<Vec<f64>> {
+    let mut flat = Vec::new();
+    perpendicular_into(
+        u,
+        strategy,
+        round,
+        rng,
+        &mut DirScratch::default(),
+        &mut flat,
+    );
+    flat.chunks_exact(u.len().max(1))
+        .map(<[f64]>::to_vec)
+        .collect()
+}
+
+/// Allocation-free form of the perpendicular directions: writes them into `out`, one after
+/// the other (`u.len()` numbers each), and returns how many there are.
+pub fn perpendicular_into(
+    u: &[f64],
+    strategy: Directions,
+    round: u32,
+    rng: &mut impl Rng,
+    scratch: &mut DirScratch,
+    out: &mut Vec<f64>,
+) -> usize {
+    out.clear();
     let m = u.len();
     if m < 2 {
-        return Vec::new();
+        return 0;
     }
     match strategy {
         Directions::Basis {
@@ -30,63 +66,84 @@ pub fn perpendicular(
             rotations,
         } => {
             if round > rotations || (round > 0 && m < 3) {
-                return Vec::new();
+                return 0;
             }
-            let mut basis = orthogonal_complement(u, axis_preference);
+            let count = orthogonal_complement(u, axis_preference, scratch, out);
             if round > 0 {
                 // rotate consecutive pairs of the basis by a fraction of a right angle, so that
                 // the rounds cover the hyperplane evenly
                 let angle = std::f64::consts::FRAC_PI_2 * round as f64 / (rotations as f64 + 1.0);
                 let (c, s) = (angle.cos(), angle.sin());
-                for k in (0..basis.len().saturating_sub(1)).step_by(2) {
-                    let (a, b) = (basis[k].clone(), basis[k + 1].clone());
+                for k in (0..count.saturating_sub(1)).step_by(2) {
+                    scratch.a.clear();
+                    scratch.a.extend_from_slice(&out[k * m..(k + 1) * m]);
+                    scratch.b.clear();
+                    scratch.b.extend_from_slice(&out[(k + 1) * m..(k + 2) * m]);
+                    let (a, b) = (&scratch.a, &scratch.b);
                     for i in 0..m {
-                        basis[k][i] = c * a[i] + s * b[i];
-                        basis[k + 1][i] = -s * a[i] + c * b[i];
+                        out[k * m + i] = c * a[i] + s * b[i];
+                        out[(k + 1) * m + i] = -s * a[i] + c * b[i];
                     }
                 }
             }
-            basis
+            count
         }
         Directions::Random { count } => {
             if round > 0 {
-                return Vec::new();
+                return 0;
             }
-            (0..count)
-                .filter_map(|_| {
-                    let mut v: Vec<f64> = (0..m).map(|_| standard_normal(rng)).collect();
-                    project_out(&mut v, u);
-                    normalize(&mut v).then_some(v)
-                })
-                .collect()
+            let mut kept = 0;
+            for _ in 0..count {
+                let v = &mut scratch.v;
+                v.clear();
+                v.extend((0..m).map(|_| standard_normal(rng)));
+                project_out(v, u);
+                if normalize(v) {
+                    extend_small(out, v);
+                    kept += 1;
+                }
+            }
+            kept
         }
     }
 }
 
 /// An orthonormal basis of the complement of the unit vector `u`, by Gram–Schmidt over the world
 /// axes — least aligned with `u` first when `axis_preference`, in index order otherwise.
-fn orthogonal_complement(u: &[f64], axis_preference: bool) -> Vec<Vec<f64>> {
+/// Appends the vectors to `out` (flat) and returns their number.
+fn orthogonal_complement(
+    u: &[f64],
+    axis_preference: bool,
+    scratch: &mut DirScratch,
+    out: &mut Vec<f64>,
+) -> usize {
     let m = u.len();
-    let mut axes: Vec<usize> = (0..m).collect();
+    let axes = &mut scratch.axes;
+    axes.clear();
+    axes.extend(0..m);
     if axis_preference {
         axes.sort_by(|&i, &j| u[i].abs().total_cmp(&u[j].abs()));
     }
-    let mut basis: Vec<Vec<f64>> = Vec::with_capacity(m - 1);
-    for i in axes {
-        if basis.len() == m - 1 {
+    let start = out.len();
+    let mut count = 0;
+    for &i in axes.iter() {
+        if count == m - 1 {
             break;
         }
-        let mut v = vec![0.0; m];
+        let v = &mut scratch.v;
+        v.clear();
+        v.resize(m, 0.0);
         v[i] = 1.0;
-        project_out(&mut v, u);
-        for b in &basis {
-            project_out(&mut v, b);
+        project_out(v, u);
+        for k in 0..count {
+            project_out(v, &out[start + k * m..start + (k + 1) * m]);
         }
-        if v.iter().map(|x| x * x).sum::<f64>() > 1e-12 && normalize(&mut v) {
-            basis.push(v);
+        if v.iter().map(|x| x * x).sum::<f64>() > 1e-12 && normalize(v) {
+            extend_small(out, v);
+            count += 1;
         }
     }
-    basis
+    count
 }
 
 fn project_out(v: &mut [f64], u: &[f64]) {

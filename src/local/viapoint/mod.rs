@@ -55,10 +55,39 @@ impl LocalMethod for ViaPoint {
         z: &[f64],
         deadline: &Deadline,
     ) -> Result<Connection, OracleError> {
-        let groups = self.groups(space);
+        // the groups and the search's buffers are kept per thread between connections, so
+        // that a search in steady state allocates nothing but its answer (issue 11)
+        let (mut groups, buffers) = SCRATCH.with(|c| c.take());
+        space.groups_into(self.options.split_axes, &mut groups);
         let o = &self.options;
         let plain = o.search == Search::DepthFirst && matches!(o.depth, Depth::Deepen { .. });
-        let mut s = search::Search::new(space, oracle, o, &groups, a, z, plain, deadline);
+        let mut s = search::Search::new(space, oracle, o, &groups, a, z, plain, deadline, buffers);
+        let result = Self::run(&mut s, o, a, z);
+        let buffers = s.into_buffers();
+        SCRATCH.with(|c| c.replace((groups, buffers)));
+        result
+    }
+
+    fn groups(&self, space: &Space) -> Vec<Group> {
+        space.groups(self.options.split_axes)
+    }
+}
+
+thread_local! {
+    /// Per-thread groups and search buffers (see [`search::Buffers`]). Taken out for a
+    /// search and put back after it, so a nested search on the same thread simply starts
+    /// with empty ones.
+    static SCRATCH: std::cell::RefCell<(Vec<Group>, search::Buffers)> = Default::default();
+}
+
+impl ViaPoint {
+    /// The search proper: the depth strategy of the options run on `s` (CHS §1.3).
+    fn run(
+        s: &mut search::Search,
+        o: &ViaPointOptions,
+        a: &[f64],
+        z: &[f64],
+    ) -> Result<Connection, OracleError> {
         let mut root = s.new_root();
         let mut solved = false;
         let mut last_limit = 0;
@@ -120,11 +149,7 @@ impl LocalMethod for ViaPoint {
             depth,
             counts: s.counts,
             discoveries: s.discoveries(),
-            borderlines: s.borderlines,
+            borderlines: std::mem::take(&mut s.borderlines),
         })
-    }
-
-    fn groups(&self, space: &Space) -> Vec<Group> {
-        space.groups(self.options.split_axes)
     }
 }

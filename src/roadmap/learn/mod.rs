@@ -194,7 +194,9 @@ impl<'a> Learner<'a> {
     /// each other and their nearest nodes, then construction and expansion rounds as in
     /// [`learn`](Self::learn) until they meet ([`StopReason::Connected`]) or the budget or
     /// `deadline` ends it. Expansion favours nodes whose attempts fail (OS94), so an end that
-    /// cannot be attached soon becomes the start of random-bounce walks.
+    /// cannot be attached soon becomes the start of random-bounce walks; a share of the walks
+    /// are directed instead, pushing the two ends' components out towards uniform samples
+    /// ([`LearnParams::directed_share`]).
     ///
     /// `start` and `goal` must be free, in bounds and normalised (see
     /// [`crate::space::Space::normalize`]); the caller checks them.

@@ -1,0 +1,579 @@
+//! `viaroad serve`: load a roadmap once and answer queries as JSON lines (issue 12), on
+//! stdin/stdout or on a local TCP port, several clients at once, queries answered in parallel.
+//!
+//! One request per line: `{"id": 7, "start": [...], "goal": [...], "shorten": "fast"}`
+//! (`shorten` and `time` optional), `{"cmd": "info"}` or `{"cmd": "shutdown"}`. One reply per
+//! line, in the order answers are ready (not the order asked: `id` ties them together): the
+//! fields of `viaroad query --json` with `id` in place of `query`. A line that cannot be read
+//! as a request gets `{"id": …, "error": "…"}` and the server goes on. `shutdown` stops
+//! reading, answers every query already read, and then replies to the `shutdown` last, so a
+//! client that sees that reply has seen every answer. End of input on stdin does the same.
+//!
+//! Queries never change the roadmap (see [`viaroad::roadmap::query`]), so answers do not
+//! depend on which client asked first or how many threads answer.
+
+use super::query::Shortening;
+use anyhow::Context;
+use clap::Args;
+use serde::Deserialize;
+use serde_json::{json, Map, Value};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+use viaroad::deadline::Deadline;
+use viaroad::limits::duration_from_secs;
+use viaroad::roadmap::{QueryOptions, QueryPlanner, QueryResult, Roadmap};
+use viaroad::scene::Scene;
+
+/// Arguments of `serve`.
+#[derive(Args)]
+pub struct ServeArgs {
+    /// The roadmap file.
+    pub roadmap: PathBuf,
+    /// The scene it was learnt for (checked against the roadmap's fingerprint).
+    #[arg(long)]
+    pub scene: PathBuf,
+    /// Listen on this TCP address (e.g. `127.0.0.1:7878`; port 0 picks a free port, printed
+    /// on stderr) instead of stdin/stdout. No authentication: keep it on the loopback.
+    #[arg(long, value_name = "ADDR")]
+    pub listen: Option<SocketAddr>,
+    /// Queries answered at once (default: the machine's cores).
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Seconds each query may take at most (a request's `time` can only shorten it); where the
+    /// roadmap cannot join start and goal, the query grows a copy of it for the rest of it.
+    #[arg(long, value_name = "SECONDS", default_value_t = QueryOptions::DEFAULT_TIME.as_secs_f64())]
+    pub time: f64,
+    /// Do not grow the roadmap for a query it cannot answer (a deeper local search instead).
+    #[arg(long)]
+    pub no_grow: bool,
+}
+
+/// The longest request line read (bytes): a start and a goal of any shipped robot fit many
+/// times over; a longer line is answered with an error and skipped, not buffered.
+pub const MAX_LINE: usize = 1 << 20;
+
+/// Connections served at once over TCP; one more is told so and closed.
+pub const MAX_CONNECTIONS: usize = 256;
+
+/// Queries read but not yet answered, per server: readers wait beyond this (back-pressure).
+const QUEUE: usize = 1024;
+
+/// Where the replies of one client go; a write failure (a client gone) is ignored, as its
+/// answers have nobody to read them.
+trait Sink: Send + Sync {
+    fn send(&self, line: &str);
+}
+
+struct StdoutSink;
+
+impl Sink for StdoutSink {
+    fn send(&self, line: &str) {
+        let mut out = std::io::stdout().lock();
+        let _ = writeln!(out, "{line}").and_then(|_| out.flush());
+    }
+}
+
+struct TcpSink(Mutex<TcpStream>);
+
+impl Sink for TcpSink {
+    fn send(&self, line: &str) {
+        let mut s = self.0.lock().unwrap_or_else(|p| p.into_inner());
+        let mut bytes = Vec::with_capacity(line.len() + 1);
+        bytes.extend_from_slice(line.as_bytes());
+        bytes.push(b'\n');
+        let _ = s.write_all(&bytes).and_then(|_| s.flush());
+    }
+}
+
+/// A query read, waiting for a worker.
+struct Job {
+    id: Value,
+    start: Vec<f64>,
+    goal: Vec<f64>,
+    shorten: usize,
+    time: Option<Duration>,
+    sink: Arc<dyn Sink>,
+}
+
+/// A query request as sent (unknown fields are refused: a typo must not be silently ignored).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct QueryRequest {
+    #[allow(dead_code)]
+    id: Option<Value>,
+    start: Vec<f64>,
+    goal: Vec<f64>,
+    shorten: Option<String>,
+    time: Option<f64>,
+}
+
+/// A command request as sent.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CommandRequest {
+    #[allow(dead_code)]
+    id: Option<Value>,
+    cmd: String,
+}
+
+/// What one line asks.
+enum Request {
+    Query(Job),
+    Info(Value),
+    Shutdown(Value),
+}
+
+/// The error reply to a line that is not a request.
+fn error_reply(id: &Value, message: &str) -> String {
+    json!({ "id": id, "error": message }).to_string()
+}
+
+/// The reply to a query: the fields of `viaroad query --json`, with `id` for `query`.
+pub fn answer_reply(id: &Value, result: &Result<QueryResult, String>, ms: f64) -> String {
+    match result {
+        Ok(r) => json!({
+            "id": id,
+            "solved": r.is_solved(),
+            "path": r.raw_path,
+            "shortened": r.path,
+            "calls": r.counts.intersect_calls(),
+            "depth": r.depth,
+            "query_ms": ms,
+            "outcome": r.outcome,
+            "length": r.length,
+            "raw_length": r.raw_length,
+            "grown_nodes": r.grown_nodes,
+        })
+        .to_string(),
+        Err(e) => json!({ "id": id, "solved": false, "error": e, "query_ms": ms }).to_string(),
+    }
+}
+
+/// The roadmap, its planners (one per shortening) and the server's state, shared by every
+/// reader and worker.
+struct Server<'a> {
+    /// Fast, exact, off (the order of [`SHORTENINGS`]).
+    planners: Vec<QueryPlanner<'a>>,
+    info: Value,
+    /// Set by `shutdown`: readers stop reading.
+    stop: AtomicBool,
+    answered: AtomicU64,
+    errors: AtomicU64,
+    /// Where the `shutdown` reply goes once every query read is answered.
+    shutdown_reply: Mutex<Option<(Value, Arc<dyn Sink>)>>,
+}
+
+/// The shortenings a request may name, in [`Server::planners`]'s order.
+const SHORTENINGS: [(&str, Shortening); 3] = [
+    ("fast", Shortening::Fast),
+    ("exact", Shortening::Exact),
+    ("off", Shortening::Off),
+];
+
+impl Server<'_> {
+    /// Reads one line as a request, or the one-line reason it is none.
+    fn parse(&self, line: &[u8], sink: &Arc<dyn Sink>) -> Result<Request, (Value, String)> {
+        let text = std::str::from_utf8(line)
+            .map_err(|_| (Value::Null, "the line is not UTF-8".to_string()))?;
+        let v: Value = serde_json::from_str(text)
+            .map_err(|e| (Value::Null, format!("not a JSON request: {e}")))?;
+        let Value::Object(obj) = &v else {
+            return Err((
+                Value::Null,
+                "a request is a JSON object ({\"id\", \"start\", \"goal\"} or {\"cmd\"})".into(),
+            ));
+        };
+        let id = obj.get("id").cloned().unwrap_or(Value::Null);
+        let bad = |e: String| (id.clone(), e);
+        if obj.contains_key("cmd") {
+            let c: CommandRequest =
+                serde_json::from_value(v.clone()).map_err(|e| bad(format!("bad command: {e}")))?;
+            return match c.cmd.as_str() {
+                "info" => Ok(Request::Info(id)),
+                "shutdown" => Ok(Request::Shutdown(id)),
+                other => Err(bad(format!(
+                    "unknown command {other:?} (known: \"info\", \"shutdown\")"
+                ))),
+            };
+        }
+        let q: QueryRequest =
+            serde_json::from_value(v.clone()).map_err(|e| bad(format!("bad query: {e}")))?;
+        let shorten = match q.shorten.as_deref() {
+            None => 0,
+            Some(s) => SHORTENINGS
+                .iter()
+                .position(|(name, _)| *name == s)
+                .ok_or_else(|| {
+                    bad(format!(
+                        "unknown shorten {s:?} (known: \"fast\", \"exact\", \"off\")"
+                    ))
+                })?,
+        };
+        let time = match q.time {
+            None => None,
+            Some(t) => Some(duration_from_secs(t).ok_or_else(|| {
+                bad(format!(
+                    "time must be a positive number of seconds of at most {:e}, got {t:?}",
+                    viaroad::limits::MAX_SECONDS
+                ))
+            })?),
+        };
+        Ok(Request::Query(Job {
+            id,
+            start: q.start,
+            goal: q.goal,
+            shorten,
+            time,
+            sink: sink.clone(),
+        }))
+    }
+
+    /// Reads requests from one client until its input ends, `shutdown`, or a `shutdown` from
+    /// another client; queries go to the workers, everything else is answered here.
+    fn read_client(&self, input: impl Read, sink: Arc<dyn Sink>, jobs: &SyncSender<Job>) {
+        let mut input = BufReader::new(input);
+        let mut line = Vec::new();
+        while !self.stop.load(Ordering::SeqCst) {
+            line.clear();
+            match read_bounded_line(&mut input, &mut line, MAX_LINE) {
+                Ok(Line::End) | Err(_) => return,
+                Ok(Line::TooLong) => {
+                    self.errors.fetch_add(1, Ordering::Relaxed);
+                    sink.send(&error_reply(
+                        &Value::Null,
+                        &format!("line longer than {MAX_LINE} bytes"),
+                    ));
+                    continue;
+                }
+                Ok(Line::Complete) => {}
+            }
+            if line.iter().all(u8::is_ascii_whitespace) {
+                continue;
+            }
+            match self.parse(&line, &sink) {
+                Ok(Request::Query(job)) => {
+                    if jobs.send(job).is_err() {
+                        return;
+                    }
+                }
+                Ok(Request::Info(id)) => {
+                    let mut info = self.info.clone();
+                    if let Value::Object(m) = &mut info {
+                        m.insert("id".into(), id);
+                        m.insert(
+                            "answered".into(),
+                            self.answered.load(Ordering::Relaxed).into(),
+                        );
+                        m.insert("errors".into(), self.errors.load(Ordering::Relaxed).into());
+                    }
+                    sink.send(&info.to_string());
+                }
+                Ok(Request::Shutdown(id)) => {
+                    let mut slot = self
+                        .shutdown_reply
+                        .lock()
+                        .unwrap_or_else(|p| p.into_inner());
+                    slot.get_or_insert((id, sink.clone()));
+                    self.stop.store(true, Ordering::SeqCst);
+                    return;
+                }
+                Err((id, e)) => {
+                    self.errors.fetch_add(1, Ordering::Relaxed);
+                    sink.send(&error_reply(&id, &e));
+                }
+            }
+        }
+    }
+
+    /// Answers queries until every reader is done.
+    fn work(&self, jobs: &Mutex<Receiver<Job>>) {
+        loop {
+            let job = {
+                let rx = jobs.lock().unwrap_or_else(|p| p.into_inner());
+                rx.recv()
+            };
+            let Ok(job) = job else { return };
+            let began = Instant::now();
+            let outer = Deadline::after_opt(job.time);
+            let result = self.planners[job.shorten]
+                .query_within(&job.start, &job.goal, &outer)
+                .map_err(|e| e.to_string());
+            let ms = began.elapsed().as_secs_f64() * 1e3;
+            self.answered.fetch_add(1, Ordering::Relaxed);
+            job.sink.send(&answer_reply(&job.id, &result, ms));
+        }
+    }
+
+    /// The `shutdown` reply, once every query read has been answered.
+    fn finish(&self) {
+        let slot = self
+            .shutdown_reply
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .take();
+        if let Some((id, sink)) = slot {
+            sink.send(
+                &json!({
+                    "id": id,
+                    "shutdown": true,
+                    "answered": self.answered.load(Ordering::Relaxed),
+                    "errors": self.errors.load(Ordering::Relaxed),
+                })
+                .to_string(),
+            );
+        }
+    }
+}
+
+/// How a bounded line read ended.
+#[derive(Debug, PartialEq)]
+enum Line {
+    /// A line (without its newline) is in the buffer.
+    Complete,
+    /// The line was longer than the limit; it was skipped up to its newline.
+    TooLong,
+    /// The input ended (nothing read).
+    End,
+}
+
+/// Reads one line of at most `max` bytes into `buf` without ever holding more than that.
+fn read_bounded_line(
+    input: &mut impl BufRead,
+    buf: &mut Vec<u8>,
+    max: usize,
+) -> std::io::Result<Line> {
+    let n = input.by_ref().take(max as u64 + 1).read_until(b'\n', buf)?;
+    if n == 0 {
+        return Ok(Line::End);
+    }
+    if buf.last() == Some(&b'\n') {
+        buf.pop();
+        if buf.last() == Some(&b'\r') {
+            buf.pop();
+        }
+        return Ok(Line::Complete);
+    }
+    if buf.len() <= max {
+        // the last line of the input, without a newline
+        return Ok(Line::Complete);
+    }
+    // skip the rest of the long line, a bounded chunk at a time
+    loop {
+        let chunk = input.fill_buf()?;
+        if chunk.is_empty() {
+            return Ok(Line::TooLong);
+        }
+        match chunk.iter().position(|&b| b == b'\n') {
+            Some(i) => {
+                input.consume(i + 1);
+                return Ok(Line::TooLong);
+            }
+            None => {
+                let n = chunk.len();
+                input.consume(n);
+            }
+        }
+    }
+}
+
+/// Runs `serve`.
+pub fn run(a: ServeArgs) -> anyhow::Result<()> {
+    let scene = Scene::load(&a.scene)?;
+    let roadmap = Roadmap::load(&a.roadmap, scene.fingerprint())?;
+    let time = super::limits::parse_seconds("--time", a.time)?;
+    let threads = match a.threads {
+        Some(n) => {
+            super::limits::count_in_range("--threads", n, 1024, "each is a thread of the server")?
+        }
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    let oracle = scene.oracle();
+    let mut planners = Vec::new();
+    for (_, s) in SHORTENINGS {
+        let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
+        let mut options = planner.options().clone();
+        options.time = Some(time);
+        options.grow = !a.no_grow;
+        match s {
+            Shortening::Fast => {}
+            Shortening::Exact => options.exact_shortening_limit = usize::MAX,
+            Shortening::Off => options.shorten = false,
+        }
+        planners.push(planner.with_options(options));
+    }
+    let mut info = serde_json::to_value(roadmap.info()).context("roadmap info")?;
+    if let Value::Object(m) = &mut info {
+        let extra: Map<String, Value> = [
+            ("scene".to_string(), Value::from(scene.name.clone())),
+            ("dof".to_string(), Value::from(scene.space.dim())),
+            ("threads".to_string(), Value::from(threads)),
+        ]
+        .into_iter()
+        .collect();
+        m.extend(extra);
+    }
+    let server = Server {
+        planners,
+        info,
+        stop: AtomicBool::new(false),
+        answered: AtomicU64::new(0),
+        errors: AtomicU64::new(0),
+        shutdown_reply: Mutex::new(None),
+    };
+    let (tx, rx) = sync_channel::<Job>(QUEUE);
+    let rx = Mutex::new(rx);
+    let listener = match a.listen {
+        Some(addr) => {
+            let l = TcpListener::bind(addr).with_context(|| format!("--listen {addr}"))?;
+            if !addr.ip().is_loopback() {
+                eprintln!(
+                    "warning: serving on {addr}, not the loopback: anyone who can reach it can ask"
+                );
+            }
+            Some(l)
+        }
+        None => None,
+    };
+    eprintln!(
+        "serving {} ({} nodes, {} edges) with {threads} threads on {}",
+        a.roadmap.display(),
+        roadmap.node_count(),
+        roadmap.edge_count(),
+        match &listener {
+            Some(l) => format!("listening on {}", l.local_addr()?),
+            None => "stdin".to_string(),
+        }
+    );
+    std::thread::scope(|s| -> anyhow::Result<()> {
+        for _ in 0..threads {
+            s.spawn(|| server.work(&rx));
+        }
+        match &listener {
+            None => {
+                let sink: Arc<dyn Sink> = Arc::new(StdoutSink);
+                server.read_client(std::io::stdin().lock(), sink, &tx);
+                drop(tx);
+            }
+            Some(l) => {
+                let result = accept_loop(s, &server, l, &tx);
+                drop(tx);
+                result?;
+            }
+        }
+        Ok(())
+    })?;
+    server.finish();
+    Ok(())
+}
+
+/// Accepts clients until `shutdown`, one reader thread each; then stops every reader.
+fn accept_loop<'scope, 'env>(
+    s: &'scope std::thread::Scope<'scope, 'env>,
+    server: &'env Server<'env>,
+    listener: &TcpListener,
+    jobs: &SyncSender<Job>,
+) -> anyhow::Result<()> {
+    let addr = listener.local_addr()?;
+    // the streams of live clients, to stop their readers at `shutdown`
+    let live: Arc<Mutex<Vec<(u64, TcpStream)>>> = Arc::default();
+    let waker_addr = addr;
+    let mut next = 0u64;
+    // a reader's `shutdown` wakes the blocking accept by connecting once
+    let wake = move || {
+        let _ = TcpStream::connect_timeout(&waker_addr, Duration::from_secs(5));
+    };
+    let wake = Arc::new(wake);
+    for stream in listener.incoming() {
+        if server.stop.load(Ordering::SeqCst) {
+            break;
+        }
+        let Ok(stream) = stream else {
+            // out of descriptors or the like: let the clients finish before the next try
+            std::thread::sleep(Duration::from_millis(50));
+            continue;
+        };
+        let _ = stream.set_write_timeout(Some(Duration::from_secs(60)));
+        let Ok(writer) = stream.try_clone() else {
+            continue;
+        };
+        let Ok(closer) = stream.try_clone() else {
+            continue;
+        };
+        {
+            let mut l = live.lock().unwrap_or_else(|p| p.into_inner());
+            if l.len() >= MAX_CONNECTIONS {
+                TcpSink(Mutex::new(writer)).send(&error_reply(
+                    &Value::Null,
+                    &format!("too many clients (at most {MAX_CONNECTIONS})"),
+                ));
+                let _ = closer.shutdown(Shutdown::Both);
+                continue;
+            }
+            l.push((next, closer));
+        }
+        let me = next;
+        next += 1;
+        let jobs = jobs.clone();
+        let live = live.clone();
+        let wake = wake.clone();
+        s.spawn(move || {
+            let sink: Arc<dyn Sink> = Arc::new(TcpSink(Mutex::new(writer)));
+            server.read_client(stream, sink, &jobs);
+            live.lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .retain(|(id, _)| *id != me);
+            if server.stop.load(Ordering::SeqCst) {
+                wake();
+            }
+        });
+    }
+    // stop the other readers: their clients can still read the answers to what they sent
+    for (_, s) in live.lock().unwrap_or_else(|p| p.into_inner()).iter() {
+        let _ = s.shutdown(Shutdown::Read);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lines(input: &[u8], max: usize) -> Vec<Result<String, Line>> {
+        let mut r = BufReader::with_capacity(4, input);
+        let mut out = Vec::new();
+        loop {
+            let mut buf = Vec::new();
+            match read_bounded_line(&mut r, &mut buf, max).unwrap() {
+                Line::End => return out,
+                Line::Complete => out.push(Ok(String::from_utf8(buf).unwrap())),
+                Line::TooLong => out.push(Err(Line::TooLong)),
+            }
+        }
+    }
+
+    #[test]
+    fn bounded_lines_skip_long_ones_and_keep_the_rest() {
+        let got = lines(b"ab\r\n0123456789abc\nxyz\n\nlast", 5);
+        assert_eq!(
+            got,
+            vec![
+                Ok("ab".into()),
+                Err(Line::TooLong),
+                Ok("xyz".into()),
+                Ok(String::new()),
+                Ok("last".into())
+            ]
+        );
+        // exactly the limit is still a line; one more is not
+        assert_eq!(
+            lines(b"12345\n123456\n", 5),
+            vec![Ok("12345".into()), Err(Line::TooLong)]
+        );
+        assert_eq!(lines(b"123456", 5), vec![Err(Line::TooLong)]);
+    }
+}

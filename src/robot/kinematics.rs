@@ -1,0 +1,457 @@
+//! The kinematic tree of a URDF, forward kinematics, and planning groups.
+//!
+//! `T(child) = T(parent) · origin · motion(value)`: revolute and continuous joints rotate about
+//! their axis, prismatic joints translate along it, fixed joints do nothing, a mimic joint
+//! follows its master. A **planning group** (CHS §1.5: the DOF groups of an arm are its single
+//! joints) picks the moving joints; every other joint keeps a given value.
+
+use super::srdf::Srdf;
+use super::urdf::{JointKind, Urdf};
+use super::RobotError;
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use std::collections::HashMap;
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// The kinematic tree: links and joints of a URDF, checked to form one tree.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The parsed URDF.
+    pub urdf: Urdf,
+    /// Index of the root link (the one no joint has as child).
+    pub root: usize,
+    /// Per link: the index of the joint whose child it is (none for the root).
+    pub parent_joint: Vec<Option<usize>>,
+    /// Per joint: parent and child link indices.
+    pub joint_links: Vec<(usize, usize)>,
+    /// Joints in an order where every joint comes after the joint of its parent link
+    /// (depth first from the root, children in file order).
+    pub order: Vec<usize>,
+    /// Per joint: the index of its mimic master, if any.
+    pub mimic_master: Vec<Option<usize>>,
+    link_index: HashMap<String, usize>,
+    joint_index: HashMap<String, usize>,
+}
+
+/// A resolved planning group: the moving joints in root-to-tip order and their bounds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    /// The group's name (the SRDF's, or `"custom"`).
+    pub name: String,
+    /// Joint indices into [`Model::urdf`]`.joints`.
+    pub joints: Vec<usize>,
+    /// Lower bound per group joint (continuous joints: −π).
+    pub lower: Vec<f64>,
+    /// Upper bound per group joint (continuous joints: π).
+    pub upper: Vec<f64>,
+}
+
+impl Model {
+    /// Builds the tree and checks it: every joint names existing links, no link has two
+    /// parents, exactly one root, no cycle, mimic masters exist and are movable.
+    pub fn new(urdf: Urdf, path: &Path) -> Result<Model, RobotError> {
+        let invalid = |message: String| RobotError::Invalid {
+            path: path.to_path_buf(),
+            message,
+        };
+        let link_index: HashMap<String, usize> = urdf
+            .links
+            .iter()
+            .enumerate()
+            .map(|(i, l)| (l.name.clone(), i))
+            .collect();
+        let joint_index: HashMap<String, usize> = urdf
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(i, j)| (j.name.clone(), i))
+            .collect();
+        let mut parent_joint: Vec<Option<usize>> = vec![None; urdf.links.len()];
+        let mut joint_links = Vec::with_capacity(urdf.joints.len());
+        for (k, j) in urdf.joints.iter().enumerate() {
+            let find = |name: &str| {
+                link_index.get(name).copied().ok_or_else(|| {
+                    invalid(format!("joint {} names an unknown link {name}", j.name))
+                })
+            };
+            let (p, c) = (find(&j.parent)?, find(&j.child)?);
+            if let Some(other) = parent_joint[c] {
+                return Err(invalid(format!(
+                    "link {} is the child of two joints ({} and {})",
+                    j.child, urdf.joints[other].name, j.name
+                )));
+            }
+            parent_joint[c] = Some(k);
+            joint_links.push((p, c));
+        }
+        let roots: Vec<usize> = (0..urdf.links.len())
+            .filter(|&l| parent_joint[l].is_none())
+            .collect();
+        let [root] = roots[..] else {
+            let names: Vec<&str> = roots.iter().map(|&l| urdf.links[l].name.as_str()).collect();
+            return Err(invalid(format!(
+                "the links must form one tree; these have no parent joint: {names:?}"
+            )));
+        };
+        // depth-first order from the root; a cycle leaves joints unreached
+        let mut children: Vec<Vec<usize>> = vec![Vec::new(); urdf.links.len()];
+        for (k, &(p, _)) in joint_links.iter().enumerate() {
+            children[p].push(k);
+        }
+        let mut order = Vec::with_capacity(urdf.joints.len());
+        let mut stack: Vec<usize> = children[root].iter().rev().copied().collect();
+        while let Some(k) = stack.pop() {
+            order.push(k);
+            stack.extend(children[joint_links[k].1].iter().rev());
+        }
+        if order.len() != urdf.joints.len() {
+            return Err(invalid("the joints form a cycle".into()));
+        }
+        let mut mimic_master = vec![None; urdf.joints.len()];
+        for (k, j) in urdf.joints.iter().enumerate() {
+            // a fixed joint never moves, whatever it mimics (VAMP's Panda keeps the fingers'
+            // <mimic> on fixed joints)
+            if let Some(m) = j.mimic.as_ref().filter(|_| j.kind.is_movable()) {
+                let master = *joint_index.get(&m.joint).ok_or_else(|| {
+                    invalid(format!(
+                        "joint {} mimics an unknown joint {}",
+                        j.name, m.joint
+                    ))
+                })?;
+                if urdf.joints[master].mimic.is_some() && urdf.joints[master].kind.is_movable() {
+                    return Err(invalid(format!(
+                        "joint {} mimics {}, which is itself a mimic",
+                        j.name, m.joint
+                    )));
+                }
+                mimic_master[k] = Some(master);
+            }
+        }
+        Ok(Model {
+            urdf,
+            root,
+            parent_joint,
+            joint_links,
+            order,
+            mimic_master,
+            link_index,
+            joint_index,
+        })
+    }
+
+    /// Index of the link called `name`.
+    pub fn link(&self, name: &str) -> Option<usize> {
+        self.link_index.get(name).copied()
+    }
+
+    /// Index of the joint called `name`.
+    pub fn joint(&self, name: &str) -> Option<usize> {
+        self.joint_index.get(name).copied()
+    }
+
+    /// The motion of joint `k` at `value`: a rotation about or a translation along its axis.
+    pub fn joint_motion(&self, k: usize, value: f64) -> Isometry3<f64> {
+        let j = &self.urdf.joints[k];
+        match j.kind {
+            JointKind::Revolute { .. } | JointKind::Continuous => Isometry3::from_parts(
+                Translation3::identity(),
+                UnitQuaternion::from_axis_angle(&j.axis, value),
+            ),
+            JointKind::Prismatic { .. } => Isometry3::from_parts(
+                Translation3::from(j.axis.into_inner() * value),
+                UnitQuaternion::identity(),
+            ),
+            JointKind::Fixed => Isometry3::identity(),
+        }
+    }
+
+    /// World poses of all links for one value per joint (`values[k]` for joint `k`; fixed
+    /// joints' values are ignored, mimic joints take `multiplier · master + offset`), with
+    /// the root link at `base`.
+    pub fn link_poses(&self, base: &Isometry3<f64>, values: &[f64]) -> Vec<Isometry3<f64>> {
+        let mut poses = vec![Isometry3::identity(); self.urdf.links.len()];
+        self.link_poses_into(base, values, &mut poses);
+        poses
+    }
+
+    /// [`Model::link_poses`] into a buffer of one pose per link (no allocation).
+    pub fn link_poses_into(
+        &self,
+        base: &Isometry3<f64>,
+        values: &[f64],
+        poses: &mut [Isometry3<f64>],
+    ) {
+        poses[self.root] = *base;
+        for &k in &self.order {
+            let (p, c) = self.joint_links[k];
+            let value = match (self.mimic_master[k], &self.urdf.joints[k].mimic) {
+                // the master's own value (a fixed master stays at 0)
+                (Some(m), Some(mimic)) => {
+                    let master = if self.urdf.joints[m].kind.is_movable() {
+                        values[m]
+                    } else {
+                        0.0
+                    };
+                    mimic.multiplier * master + mimic.offset
+                }
+                _ => values[k],
+            };
+            poses[c] = poses[p] * self.urdf.joints[k].origin * self.joint_motion(k, value);
+        }
+    }
+
+    /// The joints from the root down to link `l`, root first.
+    pub fn chain_to(&self, mut l: usize) -> Vec<usize> {
+        let mut chain = Vec::new();
+        while let Some(k) = self.parent_joint[l] {
+            chain.push(k);
+            l = self.joint_links[k].0;
+        }
+        chain.reverse();
+        chain
+    }
+
+    /// Resolves the SRDF group `name` (MoveIt's rules: a chain brings the joints between its
+    /// base and tip links; a link brings its parent joint; subgroups bring theirs), keeping
+    /// the movable, non-mimic joints in tree order (root to tip for a chain).
+    pub fn resolve_group(
+        &self,
+        srdf: &Srdf,
+        name: &str,
+        srdf_path: &Path,
+    ) -> Result<Group, RobotError> {
+        let invalid = |message: String| RobotError::Invalid {
+            path: srdf_path.to_path_buf(),
+            message,
+        };
+        let mut members = vec![false; self.urdf.joints.len()];
+        let mut pending = vec![name.to_string()];
+        let mut visited: Vec<String> = Vec::new();
+        while let Some(g) = pending.pop() {
+            if visited.contains(&g) {
+                continue;
+            }
+            let spec = srdf
+                .group(&g)
+                .ok_or_else(|| invalid(format!("no group called {g}")))?;
+            visited.push(g);
+            for (base, tip) in &spec.chains {
+                let b = self
+                    .link(base)
+                    .ok_or_else(|| invalid(format!("chain base {base} is not a link")))?;
+                let t = self
+                    .link(tip)
+                    .ok_or_else(|| invalid(format!("chain tip {tip} is not a link")))?;
+                let to_tip = self.chain_to(t);
+                let to_base = self.chain_to(b);
+                if !to_tip.starts_with(&to_base) {
+                    return Err(invalid(format!(
+                        "chain tip {tip} is not below its base {base}"
+                    )));
+                }
+                to_tip[to_base.len()..]
+                    .iter()
+                    .for_each(|&k| members[k] = true);
+            }
+            for j in &spec.joints {
+                let k = self
+                    .joint(j)
+                    .ok_or_else(|| invalid(format!("group {name}: unknown joint {j}")))?;
+                members[k] = true;
+            }
+            for l in &spec.links {
+                let i = self
+                    .link(l)
+                    .ok_or_else(|| invalid(format!("group {name}: unknown link {l}")))?;
+                if let Some(k) = self.parent_joint[i] {
+                    members[k] = true;
+                }
+            }
+            pending.extend(spec.subgroups.iter().cloned());
+        }
+        let joints: Vec<usize> = self
+            .order
+            .iter()
+            .copied()
+            .filter(|&k| {
+                members[k]
+                    && self.urdf.joints[k].kind.is_movable()
+                    && self.mimic_master[k].is_none()
+            })
+            .collect();
+        if joints.is_empty() {
+            return Err(invalid(format!("group {name} has no movable joint")));
+        }
+        Ok(self.group_of(name, joints))
+    }
+
+    /// A group of the named joints, in the order given (each must be movable, not a mimic,
+    /// and named once).
+    pub fn group_from_names(&self, names: &[String], path: &Path) -> Result<Group, RobotError> {
+        let mut joints = Vec::with_capacity(names.len());
+        for n in names {
+            let k = self.joint(n).ok_or_else(|| RobotError::Invalid {
+                path: path.to_path_buf(),
+                message: format!("unknown joint {n}"),
+            })?;
+            if !self.urdf.joints[k].kind.is_movable()
+                || self.mimic_master[k].is_some()
+                || joints.contains(&k)
+            {
+                return Err(RobotError::Invalid {
+                    path: path.to_path_buf(),
+                    message: format!("joint {n} is fixed, a mimic joint or named twice"),
+                });
+            }
+            joints.push(k);
+        }
+        if joints.is_empty() {
+            return Err(RobotError::Invalid {
+                path: path.to_path_buf(),
+                message: "a group needs at least one joint".into(),
+            });
+        }
+        Ok(self.group_of("custom", joints))
+    }
+
+    fn group_of(&self, name: &str, joints: Vec<usize>) -> Group {
+        let (lower, upper) = joints
+            .iter()
+            .map(|&k| match self.urdf.joints[k].kind {
+                JointKind::Revolute { lower, upper } | JointKind::Prismatic { lower, upper } => {
+                    (lower, upper)
+                }
+                JointKind::Continuous | JointKind::Fixed => (-PI, PI),
+            })
+            .unzip();
+        Group {
+            name: name.to_string(),
+            joints,
+            lower,
+            upper,
+        }
+    }
+}
+
+impl Group {
+    /// Number of joints (degrees of freedom).
+    pub fn dof(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Whether `q` lies within the bounds (componentwise, closed).
+    pub fn in_bounds(&self, q: &[f64]) -> bool {
+        q.len() == self.dof()
+            && q.iter()
+                .zip(self.lower.iter().zip(&self.upper))
+                .all(|(v, (lo, hi))| *lo <= *v && *v <= *hi)
+    }
+
+    /// The L2 diagonal of the bounds: OMPL's `getMaximumExtent` for a real vector space, the
+    /// unit of its motion-check resolution.
+    pub fn max_extent(&self) -> f64 {
+        self.lower
+            .iter()
+            .zip(&self.upper)
+            .map(|(l, u)| (u - l).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robot::urdf::parse_urdf;
+    use nalgebra::{Point3, Vector3};
+
+    fn model(text: &str) -> Result<Model, RobotError> {
+        let p = Path::new("t.urdf");
+        Model::new(parse_urdf(text, p)?, p)
+    }
+
+    const TWO_LINK: &str = r#"<robot name="planar">
+        <link name="base"/><link name="l1"/><link name="l2"/><link name="tool"/>
+        <joint name="j1" type="continuous"><parent link="base"/><child link="l1"/><axis xyz="0 0 1"/></joint>
+        <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/><origin xyz="1 0 0"/><axis xyz="0 0 1"/><limit lower="-2" upper="2"/></joint>
+        <joint name="t" type="fixed"><parent link="l2"/><child link="tool"/><origin xyz="0.5 0 0"/></joint>
+        <joint name="p" type="prismatic"><parent link="tool"/><child link="slide"/><axis xyz="1 0 0"/><limit lower="0" upper="0.2"/></joint>
+        <link name="slide"/>
+    </robot>"#;
+
+    #[test]
+    fn planar_two_link_forward_kinematics_matches_the_closed_form() {
+        let m = model(TWO_LINK).unwrap();
+        for (a, b, s) in [(0.0, 0.0, 0.0), (0.4, -1.3, 0.1), (3.0, 2.0, 0.2)] {
+            let mut v = vec![0.0; 4];
+            v[m.joint("j1").unwrap()] = a;
+            v[m.joint("j2").unwrap()] = b;
+            v[m.joint("p").unwrap()] = s;
+            let poses = m.link_poses(&Isometry3::identity(), &v);
+            let tool = poses[m.link("tool").unwrap()] * Point3::origin();
+            let expect = Point3::new(
+                a.cos() + 0.5 * (a + b).cos(),
+                a.sin() + 0.5 * (a + b).sin(),
+                0.0,
+            );
+            assert!((tool - expect).norm() < 1e-12);
+            let slide = poses[m.link("slide").unwrap()] * Point3::origin();
+            let dir = Vector3::new((a + b).cos(), (a + b).sin(), 0.0);
+            assert!((slide - (expect + s * dir)).norm() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn malformed_trees_are_errors() {
+        for bad in [
+            // two roots
+            r#"<robot><link name="a"/><link name="b"/></robot>"#,
+            // unknown link
+            r#"<robot><link name="a"/><joint name="j" type="fixed"><parent link="a"/><child link="x"/></joint></robot>"#,
+            // two parents
+            r#"<robot><link name="a"/><link name="b"/><link name="c"/>
+               <joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>
+               <joint name="k" type="fixed"><parent link="b"/><child link="c"/></joint>
+               <joint name="m" type="fixed"><parent link="a"/><child link="b"/></joint></robot>"#,
+            // cycle (and then no root)
+            r#"<robot><link name="a"/><link name="b"/>
+               <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+               <joint name="k" type="fixed"><parent link="b"/><child link="a"/></joint></robot>"#,
+            // mimic of an unknown joint
+            r#"<robot><link name="a"/><link name="b"/><joint name="j" type="continuous"><parent link="a"/><child link="b"/><mimic joint="z"/></joint></robot>"#,
+        ] {
+            assert!(model(bad).is_err(), "accepted {bad}");
+        }
+    }
+
+    #[test]
+    fn groups_resolve_chains_joints_links_and_subgroups() {
+        let m = model(TWO_LINK).unwrap();
+        let srdf = crate::robot::srdf::parse_srdf(
+            r#"<robot><group name="arm"><chain base_link="base" tip_link="l2"/></group>
+               <group name="tool"><link name="slide"/></group>
+               <group name="all"><group name="tool"/><group name="arm"/></group>
+               <group name="bad"><chain base_link="l2" tip_link="base"/></group></robot>"#,
+            Path::new("t.srdf"),
+        )
+        .unwrap();
+        let p = Path::new("t.srdf");
+        let arm = m.resolve_group(&srdf, "arm", p).unwrap();
+        let names = |g: &Group| -> Vec<&str> {
+            g.joints
+                .iter()
+                .map(|&k| m.urdf.joints[k].name.as_str())
+                .collect()
+        };
+        assert_eq!(names(&arm), ["j1", "j2"]);
+        assert_eq!(arm.lower, [-PI, -2.0]);
+        assert_eq!(
+            names(&m.resolve_group(&srdf, "all", p).unwrap()),
+            ["j1", "j2", "p"]
+        );
+        assert!(m.resolve_group(&srdf, "bad", p).is_err());
+        assert!(m.resolve_group(&srdf, "none", p).is_err());
+        assert!(m.group_from_names(&["t".into()], p).is_err());
+        assert!(m.group_from_names(&["j2".into(), "j2".into()], p).is_err());
+    }
+}

@@ -1,0 +1,131 @@
+//! The exact single-joint arm oracle against the independent arm checker (parry, exact
+//! primitives, sharing no code with the oracle) on the shipped Panda problems.
+//!
+//! The oracle's shapes contain the true ones (circumscribed cylinders), so it may only err on
+//! the side of collision: every configuration the checker finds in collision must lie inside
+//! the oracle's intervals; free samples inside them are the circumscription margin and must
+//! be rare.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::path::{Path, PathBuf};
+use viaroad::oracle::CallCounts;
+use viaroad::robot::{Arm, ArmChecker, ArmOptions, ArmOracle};
+use viaroad::scene::moveit::load_planning_scene;
+
+fn arms_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms")
+}
+
+fn setup(scene: &str) -> (Arm, ArmChecker, ArmOracle) {
+    let dir = arms_dir().join("panda");
+    let mut arm = Arm::load(
+        &dir.join("panda.urdf"),
+        Some(&dir.join("panda.srdf")),
+        &ArmOptions::default(),
+    )
+    .unwrap();
+    let s = load_planning_scene(&arms_dir().join(scene)).unwrap();
+    s.apply_to(&mut arm).unwrap();
+    let checker = ArmChecker::new(&arm, &s.objects).unwrap();
+    let oracle = ArmOracle::new(&arm, &s.objects).unwrap();
+    (arm, checker, oracle)
+}
+
+#[test]
+fn single_joint_moves_contain_every_collision_the_checker_finds() {
+    const SAMPLES: usize = 100;
+    let (mut moves_hit, mut colliding, mut margin, mut total) = (0, 0, 0, 0);
+    for (s, scene) in [
+        "mbm/table_pick/scene0001.yaml",
+        "mbm/bookshelf_small/scene0001.yaml",
+        "mbm/cage/scene0001.yaml",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let (arm, checker, oracle) = setup(scene);
+        let mut rng = ChaCha8Rng::seed_from_u64(40 + s as u64);
+        let g = &arm.group;
+        let mut moves = 0;
+        while moves < 16 {
+            let q: Vec<f64> = (0..g.dof())
+                .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+                .collect();
+            if !checker.is_valid(&q) {
+                continue;
+            }
+            moves += 1;
+            let j = rng.random_range(0..g.dof());
+            let to = rng.random_range(g.lower[j]..=g.upper[j]);
+            let delta = to - q[j];
+            let mut counts = CallCounts::default();
+            let hits = oracle.joint_move(&q, j, delta, &mut counts).unwrap();
+            assert_eq!(counts.segment_calls, 1);
+            if !hits.is_empty() {
+                moves_hit += 1;
+            }
+            for k in 0..=SAMPLES {
+                let t = k as f64 / SAMPLES as f64;
+                let mut qt = q.clone();
+                qt[j] += t * delta;
+                let free = checker.collisions(&qt).is_empty();
+                let inside = hits.iter().any(|iv| iv.lo - 1e-9 <= t && t <= iv.hi + 1e-9);
+                total += 1;
+                if !free {
+                    colliding += 1;
+                    assert!(
+                        inside,
+                        "{scene}: joint {j} from {q:?} by {delta}: the checker finds {:?} at \
+                         t = {t}, the oracle's intervals {:?} miss it",
+                        checker.collisions(&qt),
+                        hits.as_slice()
+                    );
+                } else if inside {
+                    margin += 1;
+                }
+            }
+        }
+    }
+    // the test means something: moves that hit, colliding samples among them
+    assert_eq!(total, 3 * 16 * (SAMPLES + 1));
+    assert!(moves_hit >= 5, "{moves_hit}");
+    assert!(colliding >= 100, "{colliding}");
+    // circumscribed cylinders (2 % of the radius) and touching margins: rare
+    assert!(
+        margin * 50 <= colliding,
+        "{margin} free samples inside intervals of {colliding}"
+    );
+}
+
+#[test]
+fn static_tests_agree_with_the_checker() {
+    let (arm, checker, oracle) = setup("mbm/box/scene0001.yaml");
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let g = &arm.group;
+    let (mut both, mut margin) = (0, 0);
+    for _ in 0..60 {
+        let q: Vec<f64> = (0..g.dof())
+            .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+            .collect();
+        let ours = oracle.collides(&q, &mut CallCounts::default()).unwrap();
+        let theirs = !checker.collisions(&q).is_empty();
+        // the oracle never calls a colliding configuration free
+        assert!(ours || !theirs, "{q:?}");
+        both += usize::from(ours && theirs);
+        margin += usize::from(ours && !theirs);
+    }
+    assert!(both >= 5, "{both}");
+    assert!(margin <= 2, "{margin}");
+    // bad input is an error, not a panic
+    let q = vec![0.0; 7];
+    assert!(oracle
+        .joint_move(&q, 7, 0.1, &mut CallCounts::default())
+        .is_err());
+    assert!(oracle
+        .joint_move(&q, 0, f64::NAN, &mut CallCounts::default())
+        .is_err());
+    assert!(oracle
+        .collides(&q[..6], &mut CallCounts::default())
+        .is_err());
+}
