@@ -42,6 +42,21 @@
 //! All computations happen in one frame per call: the robot's body frame at `t = 0` (the
 //! reference point at the origin). Obstacle faces are brought into it only when the tree
 //! returns them.
+//!
+//! # Entry points for a robot arm (issue 10)
+//!
+//! The arm oracle needs, per joint, "the rotation intervals of a rigid body (a set of link
+//! meshes) about an arbitrary fixed axis against static meshes" and "translation along an
+//! axis". Both are this oracle with the body expressed in a frame whose origin lies on the
+//! joint axis: build [`Polyhedra::new`] with the distal links' meshes in that frame (their
+//! union is one robot mesh; the arm's own proximal links go with the static obstacles), place
+//! the frame with the configuration `[origin; quaternion]`, and ask
+//! [`CollisionOracle::intervals`] about a [`Motion`] with `Change::Rotation { axis, angle }`
+//! (a revolute joint: every atom is `α cos φ + β sin φ + γ`, the kernel's
+//! `geometry/kernel/trig.rs`) or `Change::Linear` with a zero quaternion part (a prismatic
+//! joint). The per-call work is allocation-free (`tests/alloc_free_rigid.rs`), so a per-joint
+//! oracle can be asked millions of times; what a per-configuration body would add is the
+//! construction of its face tree ([`Polyhedra::new`]), which is linear-logarithmic in its faces.
 
 mod body;
 mod containment;
