@@ -65,7 +65,7 @@ mod predicate;
 mod rotation;
 mod translation;
 
-use super::{CallCounts, CollisionOracle, OracleError};
+use super::{CallCounts, CollisionOracle, OracleError, Workspace};
 use crate::geometry::kernel::memo::Memo;
 use crate::geometry::kernel::{aabb, bvh, hits::Hits, spans};
 use crate::geometry::TriMesh;
@@ -536,6 +536,21 @@ impl CollisionOracle for Polyhedra {
             s.hits.reset(false);
             self.sweep(motion, s, counts)?;
             Ok(s.hits.to_list(motion.range))
+        })
+    }
+
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        _ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        with_scratch(|s| {
+            s.hits.reset(false);
+            self.sweep(motion, s, counts)?;
+            s.hits.write_into(out, motion.range);
+            Ok(())
         })
     }
 
