@@ -1,8 +1,8 @@
 //! Issue 11, part 2: the polygon and polyhedra oracles allocate nothing per call in steady
 //! state but their answer. A counting global allocator counts the allocations of the current
 //! thread; after a warm-up that lets the per-thread scratch space (pieces, per-face and
-//! per-node caches) grow, `motion_is_free` and `collides` must make none, and `intervals`
-//! at most one (the answer's list). The answers are compared with the first pass, so a
+//! per-node caches) grow, `motion_is_free`, `collides` and `intervals_into` must make none,
+//! and `intervals` at most one (the answer's list). The answers are compared with the first pass, so a
 //! scratch space that leaks state from one call into the next cannot pass either.
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -11,9 +11,10 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use viaroad::geometry::TriMesh;
+use viaroad::interval::IntervalList;
 use viaroad::oracle::polygons::Polygons;
 use viaroad::oracle::polyhedra::Polyhedra;
-use viaroad::oracle::{CallCounts, CollisionOracle};
+use viaroad::oracle::{CallCounts, CollisionOracle, Workspace};
 use viaroad::scene::{Obstacle, Robot, Scene};
 use viaroad::space::{Change, Motion};
 
@@ -152,6 +153,20 @@ fn check(oracle: &dyn CollisionOracle, ms: &[Motion]) -> usize {
             "intervals allocated more than its answer"
         );
         assert_eq!(ivs, want.0);
+    }
+    // the allocation-free twin: once its buffers have grown (two warm-up passes: a rotation
+    // swaps the answer's buffer with the scratch one), nothing at all, and the same answers
+    let (mut ws, mut out) = (Workspace::new(), IntervalList::default());
+    for _ in 0..2 {
+        for m in ms {
+            oracle.intervals_into(m, &mut out, &mut ws, &mut c).unwrap();
+        }
+    }
+    for (m, want) in ms.iter().zip(&first) {
+        let before = allocations();
+        oracle.intervals_into(m, &mut out, &mut ws, &mut c).unwrap();
+        assert_eq!(allocations(), before, "intervals_into allocated");
+        assert_eq!(out, want.0);
     }
     colliding
 }

@@ -96,6 +96,17 @@ impl Hits {
         &self.pieces
     }
 
+    /// The pieces within `range`, written into `out` (overwriting it; no allocation once `out`
+    /// has grown): the answer of `intervals_into`.
+    pub fn write_into(&self, out: &mut IntervalList, range: Interval) {
+        out.clear();
+        for p in &self.pieces {
+            if let Some(m) = p.meet(&range) {
+                out.push(m);
+            }
+        }
+    }
+
     /// The pieces within `range`, as a list (the one allocation of a call: the answer).
     pub fn to_list(&self, range: Interval) -> IntervalList {
         IntervalList::from_unsorted(self.pieces.clone()).into_clipped(range)

@@ -42,7 +42,7 @@ mod translation;
 /// the callers that import it with the oracle.
 pub use crate::geometry::footprint_polygons;
 
-use super::{CallCounts, CollisionOracle, OracleError};
+use super::{CallCounts, CollisionOracle, OracleError, Workspace};
 use crate::geometry::kernel::bvh;
 use crate::geometry::kernel::hits::{merge_in_place, Hits};
 use crate::geometry::Polygon;
@@ -457,7 +457,80 @@ impl Polygons {
 
     /// Maps intervals of turned angle `φ = omega · t` back to `t`. The ends of the angle range
     /// map exactly to the ends of `range` (a division would miss them by rounding).
+    /// The sweep behind `intervals` and `intervals_into`: a translation's pieces into
+    /// `scratch.hits` (`None`), or a rotation's pieces in turned angle, copied over every turn
+    /// and merged, into `scratch.turns` (`Some(omega)`).
+    fn collect(
+        &self,
+        motion: &Motion,
+        scratch: &mut Scratch,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        let Scratch {
+            hits,
+            turns,
+            trans,
+            rot,
+        } = scratch;
+        hits.reset(false);
+        let mut collect = |iv: Interval| hits.add(iv);
+        match Self::classify(motion)? {
+            Kind::Translation { centre, theta, m } => {
+                let _ = translation::sweep(
+                    self,
+                    centre,
+                    theta,
+                    m,
+                    motion.range,
+                    &mut counts.pairs_tested,
+                    trans,
+                    &mut collect,
+                );
+                Ok(None)
+            }
+            Kind::Rotation {
+                centre,
+                theta,
+                omega,
+            } => {
+                let (window, reach) = Self::rotation_window(motion.range, omega)?;
+                let _ = rotation::sweep(
+                    self,
+                    centre,
+                    theta,
+                    window,
+                    &mut counts.pairs_tested,
+                    rot,
+                    &mut collect,
+                );
+                // one turn computed; later turns repeat it
+                let base = hits.as_slice();
+                turns.clear();
+                turns.extend_from_slice(base);
+                let mut k = 1.0;
+                while window.lo + k * TAU <= reach {
+                    let shift = k * TAU;
+                    turns.extend(
+                        base.iter().filter_map(|iv| {
+                            Interval::new(iv.lo + shift, (iv.hi + shift).min(reach))
+                        }),
+                    );
+                    k += 1.0;
+                }
+                merge_in_place(turns);
+                Ok(Some(omega))
+            }
+        }
+    }
+
     fn angles_to_parameters(angles: &[Interval], omega: f64, range: Interval) -> IntervalList {
+        let mut ts = angles.to_vec();
+        Self::angles_to_parameters_in_place(&mut ts, omega, range);
+        IntervalList::from_unsorted(ts)
+    }
+
+    /// [`Self::angles_to_parameters`] in place, before the sort and merge.
+    fn angles_to_parameters_in_place(angles: &mut [Interval], omega: f64, range: Interval) {
         let (a, b) = (omega * range.lo, omega * range.hi);
         let to_t = |phi: f64| {
             if phi == a {
@@ -468,18 +541,13 @@ impl Polygons {
                 (phi / omega).clamp(range.lo, range.hi)
             }
         };
-        IntervalList::from_unsorted(
-            angles
-                .iter()
-                .map(|iv| {
-                    let (x, y) = (to_t(iv.lo), to_t(iv.hi));
-                    Interval {
-                        lo: x.min(y),
-                        hi: x.max(y),
-                    }
-                })
-                .collect(),
-        )
+        for iv in angles.iter_mut() {
+            let (x, y) = (to_t(iv.lo), to_t(iv.hi));
+            *iv = Interval {
+                lo: x.min(y),
+                hi: x.max(y),
+            };
+        }
     }
 
     /// The angle window of a rotation and how far the whole turn reaches beyond it.
@@ -512,60 +580,28 @@ impl CollisionOracle for Polygons {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        with_scratch(|scratch| {
-            let Scratch {
-                hits,
-                turns,
-                trans,
-                rot,
-            } = scratch;
-            hits.reset(false);
-            let mut collect = |iv: Interval| hits.add(iv);
-            match Self::classify(motion)? {
-                Kind::Translation { centre, theta, m } => {
-                    let _ = translation::sweep(
-                        self,
-                        centre,
-                        theta,
-                        m,
-                        motion.range,
-                        &mut counts.pairs_tested,
-                        trans,
-                        &mut collect,
-                    );
-                    Ok(hits.to_list(motion.range))
-                }
-                Kind::Rotation {
-                    centre,
-                    theta,
-                    omega,
-                } => {
-                    let (window, reach) = Self::rotation_window(motion.range, omega)?;
-                    let _ = rotation::sweep(
-                        self,
-                        centre,
-                        theta,
-                        window,
-                        &mut counts.pairs_tested,
-                        rot,
-                        &mut collect,
-                    );
-                    // one turn computed; later turns repeat it
-                    let base = hits.as_slice();
-                    turns.clear();
-                    turns.extend_from_slice(base);
-                    let mut k = 1.0;
-                    while window.lo + k * TAU <= reach {
-                        let shift = k * TAU;
-                        turns.extend(base.iter().filter_map(|iv| {
-                            Interval::new(iv.lo + shift, (iv.hi + shift).min(reach))
-                        }));
-                        k += 1.0;
-                    }
-                    merge_in_place(turns);
-                    Ok(Self::angles_to_parameters(turns, omega, motion.range))
+        with_scratch(|s| match self.collect(motion, s, counts)? {
+            None => Ok(s.hits.to_list(motion.range)),
+            Some(omega) => Ok(Self::angles_to_parameters(&s.turns, omega, motion.range)),
+        })
+    }
+
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        _ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        with_scratch(|s| {
+            match self.collect(motion, s, counts)? {
+                None => s.hits.write_into(out, motion.range),
+                Some(omega) => {
+                    Self::angles_to_parameters_in_place(&mut s.turns, omega, motion.range);
+                    out.set_from_unsorted(&mut s.turns);
                 }
             }
+            Ok(())
         })
     }
 

@@ -42,6 +42,21 @@
 //! All computations happen in one frame per call: the robot's body frame at `t = 0` (the
 //! reference point at the origin). Obstacle faces are brought into it only when the tree
 //! returns them.
+//!
+//! # Entry points for a robot arm (issue 10)
+//!
+//! The arm oracle needs, per joint, "the rotation intervals of a rigid body (a set of link
+//! meshes) about an arbitrary fixed axis against static meshes" and "translation along an
+//! axis". Both are this oracle with the body expressed in a frame whose origin lies on the
+//! joint axis: build [`Polyhedra::new`] with the distal links' meshes in that frame (their
+//! union is one robot mesh; the arm's own proximal links go with the static obstacles), place
+//! the frame with the configuration `[origin; quaternion]`, and ask
+//! [`CollisionOracle::intervals`] about a [`Motion`] with `Change::Rotation { axis, angle }`
+//! (a revolute joint: every atom is `α cos φ + β sin φ + γ`, the kernel's
+//! `geometry/kernel/trig.rs`) or `Change::Linear` with a zero quaternion part (a prismatic
+//! joint). The per-call work is allocation-free (`tests/alloc_free_rigid.rs`), so a per-joint
+//! oracle can be asked millions of times; what a per-configuration body would add is the
+//! construction of its face tree ([`Polyhedra::new`]), which is linear-logarithmic in its faces.
 
 mod body;
 mod containment;
@@ -50,7 +65,7 @@ mod predicate;
 mod rotation;
 mod translation;
 
-use super::{CallCounts, CollisionOracle, OracleError};
+use super::{CallCounts, CollisionOracle, OracleError, Workspace};
 use crate::geometry::kernel::memo::Memo;
 use crate::geometry::kernel::{aabb, bvh, hits::Hits, spans};
 use crate::geometry::TriMesh;
@@ -199,6 +214,8 @@ pub(crate) struct Caches {
     nodes: Memo<rotation::NodeBounds>,
     /// A robot face's world box swept over a turn.
     swept: Memo<Aabb>,
+    /// A robot vertex's arc box over a turn.
+    vertex_arcs: Memo<Aabb>,
     /// Containment along a path.
     pieces: containment::Pieces,
 }
@@ -256,8 +273,9 @@ impl Polyhedra {
         }
     }
 
-    /// Switches enveloping (bounding volumes, trees, per-face boxes) on or off. Off, every
-    /// edge–face pair is evaluated: the brute-force reference for benchmarks. On by default.
+    /// Switches enveloping (bounding volumes, trees, per-face boxes, skipping pairs whose window
+    /// already collides) on or off. Off, every edge–face pair is evaluated: the brute-force
+    /// reference for benchmarks and tests. On by default.
     pub fn with_enveloping(mut self, on: bool) -> Polyhedra {
         self.enveloping = on;
         self
@@ -518,6 +536,21 @@ impl CollisionOracle for Polyhedra {
             s.hits.reset(false);
             self.sweep(motion, s, counts)?;
             Ok(s.hits.to_list(motion.range))
+        })
+    }
+
+    fn intervals_into(
+        &self,
+        motion: &Motion,
+        out: &mut IntervalList,
+        _ws: &mut Workspace,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        with_scratch(|s| {
+            s.hits.reset(false);
+            self.sweep(motion, s, counts)?;
+            s.hits.write_into(out, motion.range);
+            Ok(())
         })
     }
 

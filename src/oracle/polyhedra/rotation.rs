@@ -18,11 +18,12 @@
 //! Each atom gives at most one arc, so at most two intervals in a window of one turn; the
 //! conjunctions are evaluated on small interval lists ([`Spans`]).
 
-use super::body::Face;
+use super::body::{Body, Face};
 use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
 use super::{containment, Caches, Hits, Polyhedra, Pose};
 use super::{Aabb, Spans};
+use crate::geometry::kernel::memo::Memo;
 use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
@@ -240,6 +241,7 @@ pub(crate) fn sweep(
         cyl_boxes: robot_boxes,
         nodes: robot_nodes,
         swept: robot_swept,
+        vertex_arcs,
         pieces,
         ..
     } = caches;
@@ -277,7 +279,7 @@ pub(crate) fn sweep(
             lo: first.lo,
             hi: last.hi,
         };
-        if sink.covers(hull) {
+        if ph.enveloping && sink.covers(hull) {
             return true;
         }
         let around = Around::new(hull);
@@ -333,6 +335,7 @@ pub(crate) fn sweep(
         let world_cyl = cyl.rotated(&pose.rot);
         robot_nodes.reset(robot.bvh.node_count());
         robot_swept.reset(robot.faces.len());
+        vertex_arcs.reset(robot.vertices.len());
         robot.bvh.visit_pairs(
             &obst.bvh,
             phis,
@@ -371,7 +374,7 @@ pub(crate) fn sweep(
                     if !ri.iter().any(|&r| {
                         robot_swept
                             .get_or_insert_with(r as usize, || {
-                                face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
+                                face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
                             })
                             .overlaps(&owbox)
                     }) {
@@ -381,7 +384,7 @@ pub(crate) fn sweep(
                     let obox = cyl.box_of(&of.v, margin);
                     for &r in ri {
                         let swept = robot_swept.get_or_insert_with(r as usize, || {
-                            face_swept(pose, &robot.corners(r), axis_w, &turning, margin)
+                            face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
                         });
                         if !swept.overlaps(&owbox) {
                             continue;
@@ -410,13 +413,24 @@ pub(crate) fn sweep(
     }
 }
 
-/// The world box around everything a robot face (body-frame corners `c`) at `pose` sweeps while
-/// turning about the world `axis` through `pose`'s position: the arcs of its corners (the face
-/// is the hull of its corners, and a turned hull is the hull of the turned corners), grown by
-/// `margin` and by a relative 1e-12 against rounding.
-fn face_swept(pose: &Pose, c: &[V3; 3], axis: &V3, turning: &AngleRange, margin: f64) -> Aabb {
-    let b = c.iter().fold(Aabb::EMPTY, |b, x| {
-        b.merge(&turning.arc_box(&(pose.rot * x), axis))
+/// The world box around everything robot face `r` at `pose` sweeps while turning about the
+/// world `axis` through `pose`'s position: the arcs of its corners (the face is the hull of its
+/// corners, and a turned hull is the hull of the turned corners), grown by `margin` and by a
+/// relative 1e-12 against rounding. A corner's arc box is computed once per call
+/// (`vertex_arcs`): a vertex is shared by about six faces.
+fn face_swept(
+    pose: &Pose,
+    robot: &Body,
+    r: u32,
+    axis: &V3,
+    turning: &AngleRange,
+    margin: f64,
+    vertex_arcs: &mut Memo<Aabb>,
+) -> Aabb {
+    let b = robot.faces[r as usize].iter().fold(Aabb::EMPTY, |b, &i| {
+        b.merge(vertex_arcs.get_or_insert_with(i as usize, || {
+            turning.arc_box(&(pose.rot * robot.vertices[i as usize]), axis)
+        }))
     });
     let size = b.lo.abs().max().max(b.hi.abs().max());
     b.grown(margin + 1e-12 * size).shifted(&pose.pos)

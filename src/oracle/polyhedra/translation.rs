@@ -184,7 +184,7 @@ pub(crate) fn sweep(
         } else {
             w
         };
-        if sink.covers(pair_window) {
+        if ph.enveloping && sink.covers(pair_window) {
             return true;
         }
         // robot edges moving by +λ·dir against the obstacle face, only while the robot face
