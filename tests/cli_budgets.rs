@@ -50,6 +50,51 @@ fn solve_roadmap_grows_from_start_and_goal_to_a_checked_path() {
 }
 
 #[test]
+fn solve_roadmap_with_a_node_budget_is_reproducible_and_shares_are_checked() {
+    let run = |share: &str| {
+        let o = viaroad(&[
+            "solve",
+            CLUTTERED,
+            "--roadmap",
+            "--nodes",
+            "400",
+            "--seed",
+            "3",
+            "--directed-share",
+            share,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        // the timing field is the only one that may differ between two runs
+        let mut v: serde_json::Value =
+            serde_json::from_str(stdout(&o).lines().next().unwrap()).unwrap();
+        v.as_object_mut().unwrap().remove("seconds");
+        v
+    };
+    let (centres, radii) = discs(CLUTTERED);
+    for share in ["0", "0.5", "1"] {
+        let a = run(share);
+        assert_eq!(a, run(share), "share {share}: two runs differ");
+        assert!(a["nodes"].as_u64().unwrap() <= 400 + 64, "{a}");
+        if a["solved"] == true {
+            for key in ["path", "shortened"] {
+                let p = path_of(&a[key]);
+                common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9)
+                    .unwrap();
+            }
+        }
+    }
+    for bad in ["-0.1", "1.5", "nan"] {
+        let bad = format!("--directed-share={bad}");
+        fails_with(&["solve", CLUTTERED, "--roadmap", &bad], "directed_share");
+    }
+    // a node budget belongs to the grown roadmap (a usage error: clap's exit status 2)
+    let o = viaroad(&["solve", CLUTTERED, "--nodes", "100"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--roadmap"), "{}", stderr(&o));
+}
+
+#[test]
 fn time_budgets_are_checked_and_answers_are_numbered() {
     let d = temp_dir("time");
     let rm = d.join("rm.bin").to_string_lossy().into_owned();
