@@ -6,6 +6,8 @@
 //! - `oracle/state`: the exact arm oracle's static test at one configuration;
 //! - `oracle/joint_move`: the exact collision intervals of one single-joint move (the distal
 //!   links turning about the joint axis);
+//! - `oracle/joint_move_rebuilt`: the same intervals the first way (one polyhedra oracle
+//!   rebuilt per call and moving link), the reference for the pivoted per-link oracles;
 //! - `sampled/joint_move`: the same move checked by the parry checker at OMPL's default
 //!   resolution (1 % of the group's extent, 0.134 rad), stopping at the first collision, as
 //!   OMPL's `DiscreteMotionValidator` would.
@@ -75,6 +77,17 @@ fn bench(c: &mut Criterion) {
                 black_box(
                     oracle
                         .joint_move(q, *j, *d, &mut CallCounts::default())
+                        .unwrap(),
+                );
+            }
+        })
+    });
+    group.bench_function("oracle/joint_move_rebuilt", |b| {
+        b.iter(|| {
+            for (q, j, d) in &moves {
+                black_box(
+                    oracle
+                        .joint_move_rebuilt(q, *j, *d, &mut CallCounts::default())
                         .unwrap(),
                 );
             }

@@ -140,6 +140,16 @@ impl Sweep {
     }
 }
 
+/// What [`ArmOracle::prepare`] hands on: link poses and balls at `q`, the distal links, the
+/// joint's child link and how the distal part sweeps.
+struct Prepared {
+    poses: Vec<Isometry3<f64>>,
+    balls: Vec<Option<Ball>>,
+    distal: Vec<bool>,
+    child: usize,
+    sweep: Sweep,
+}
+
 /// Exact collision intervals of single-joint moves of one arm in one scene.
 #[derive(Clone)]
 pub struct ArmOracle {
@@ -328,15 +338,15 @@ impl ArmOracle {
         Ok(false)
     }
 
-    /// The collision intervals, in `t ∈ [0, 1]`, of moving group joint `joint` (an index into
-    /// the group) by `delta` from `q`: `q(t) = q + t · delta · e_joint`.
-    pub fn joint_move(
+    /// What both ways of answering a joint move share: input checks, the distal links, and the
+    /// pairs the move keeps (answered statically: `Err` carries the whole of `[0, 1]`).
+    fn prepare(
         &self,
         q: &[f64],
         joint: usize,
         delta: f64,
         counts: &mut CallCounts,
-    ) -> Result<IntervalList, RobotError> {
+    ) -> Result<Result<Prepared, IntervalList>, RobotError> {
         self.arm.check_config(q, "configuration")?;
         let unsupported = |m: String| RobotError::Config {
             what: "joint move".into(),
@@ -379,41 +389,179 @@ impl ArmOracle {
             }
             if let (Some(ba), Some(bb)) = (&balls[a], &balls[b]) {
                 if ba.meets(bb) && self.pair_meets(a, b, &poses, counts) {
-                    return Ok(whole());
+                    return Ok(Err(whole()));
                 }
             }
         }
         for l in (0..balls.len()).filter(|&l| !distal[l]) {
             if let Some(b) = &balls[l] {
                 if self.in_environment(l, &poses[l], b, counts) {
-                    return Ok(whole());
+                    return Ok(Err(whole()));
                 }
             }
         }
-        // the moving part, link by link, in the joint's child frame at q
         let frame = poses[child];
         let axis = frame.rotation * model.urdf.joints[k].axis.into_inner();
-        let (change, sweep) = match model.urdf.joints[k].kind {
-            JointKind::Revolute { .. } | JointKind::Continuous => (
-                Change::Rotation {
-                    axis: [axis.x, axis.y, axis.z],
-                    angle: delta,
-                },
-                Sweep::Turn {
-                    origin: frame.translation.vector,
-                    axis,
-                    angle: delta,
-                },
-            ),
-            JointKind::Prismatic { .. } => {
-                let d = axis * delta;
-                (
-                    Change::Linear(vec![d.x, d.y, d.z, 0.0, 0.0, 0.0, 0.0]),
-                    Sweep::Slide { offset: d },
-                )
-            }
+        let sweep = match model.urdf.joints[k].kind {
+            JointKind::Revolute { .. } | JointKind::Continuous => Sweep::Turn {
+                origin: frame.translation.vector,
+                axis,
+                angle: delta,
+            },
+            JointKind::Prismatic { .. } => Sweep::Slide {
+                offset: axis * delta,
+            },
             JointKind::Fixed => return Err(unsupported("a fixed joint does not move".into())),
         };
+        Ok(Ok(Prepared {
+            poses,
+            balls,
+            distal,
+            child,
+            sweep,
+        }))
+    }
+
+    /// The collision intervals, in `t ∈ [0, 1]`, of moving group joint `joint` (an index into
+    /// the group) by `delta` from `q`: `q(t) = q + t · delta · e_joint`.
+    ///
+    /// Every moving link is asked with the oracles built once in [`ArmOracle::new`]: against
+    /// the environment in the world, against each proximal link in that link's frame (or the
+    /// proximal link turning the other way in the moving link's frame), the joint axis and its
+    /// pivot carried into that frame ([`Polyhedra::turn_about`], CHS §2.3.2). Nothing is built
+    /// per call but a shifted copy of a link's faces.
+    pub fn joint_move(
+        &self,
+        q: &[f64],
+        joint: usize,
+        delta: f64,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, RobotError> {
+        let p = match self.prepare(q, joint, delta, counts)? {
+            Ok(p) => p,
+            Err(whole) => return Ok(whole),
+        };
+        let unsupported = |m: String| RobotError::Config {
+            what: "joint move".into(),
+            message: m,
+        };
+        let Prepared {
+            poses,
+            balls,
+            distal,
+            child,
+            sweep,
+        } = p;
+        let (pivot_w, axis_w) = match &sweep {
+            Sweep::Turn { origin, axis, .. } => (*origin, *axis),
+            Sweep::Slide { offset } => (poses[child].translation.vector, *offset),
+        };
+        // link `robot` at `rel` in a frame `into` (world → frame), turning (sliding) with the
+        // distal part, or against it when the distal link is the obstacle (`sign` −1)
+        let moved = |o: &Polyhedra,
+                     rel: &Isometry3<f64>,
+                     into: &Isometry3<f64>,
+                     sign: f64,
+                     counts: &mut CallCounts|
+         -> Result<IntervalList, RobotError> {
+            let v = into.rotation * axis_w;
+            let r = match sweep {
+                Sweep::Turn { .. } => {
+                    let c = into * Point3::from(pivot_w);
+                    o.turn_about(
+                        &se3(rel),
+                        [c.x, c.y, c.z],
+                        [v.x, v.y, v.z],
+                        sign * delta,
+                        counts,
+                    )
+                }
+                Sweep::Slide { .. } => {
+                    let d = v * sign;
+                    o.intervals(
+                        &Motion::segment(
+                            se3(rel),
+                            Change::Linear(vec![d.x, d.y, d.z, 0.0, 0.0, 0.0, 0.0]),
+                        ),
+                        counts,
+                    )
+                }
+            };
+            r.map_err(|OracleError::Unsupported(m)| unsupported(m))
+        };
+        let world = Isometry3::identity();
+        let mut answer = IntervalList::new();
+        for l in (0..balls.len()).filter(|&l| distal[l]) {
+            let Some(ball) = &balls[l] else {
+                continue;
+            };
+            if self
+                .environment
+                .iter()
+                .any(|(_, b)| sweep.may_meet(ball, b))
+            {
+                if let Some(o) = &self.env_oracles[l] {
+                    answer = answer.union(&moved(o, &poses[l], &world, 1.0, counts)?);
+                }
+            }
+            for m in (0..balls.len()).filter(|&m| !distal[m] && !self.exempt(l, m)) {
+                let Some(bm) = &balls[m] else {
+                    continue;
+                };
+                if !sweep.may_meet(ball, bm) {
+                    continue;
+                }
+                let Some(o) = self.pair_oracles.get(&(l.min(m), l.max(m))) else {
+                    continue;
+                };
+                let hits = if l < m {
+                    let into = poses[m].inverse();
+                    moved(o, &(into * poses[l]), &into, 1.0, counts)?
+                } else {
+                    let into = poses[l].inverse();
+                    moved(o, &(into * poses[m]), &into, -1.0, counts)?
+                };
+                answer = answer.union(&hits);
+            }
+        }
+        Ok(answer)
+    }
+
+    /// [`ArmOracle::joint_move`] the way it was first answered: one [`Polyhedra`] built per
+    /// call and moving link, its body expressed in the joint's child frame, among the culled
+    /// environment and proximal links. Slow (milliseconds a move); kept as the reference the
+    /// tests and `benches/arm.rs` compare the pivoted answer with.
+    pub fn joint_move_rebuilt(
+        &self,
+        q: &[f64],
+        joint: usize,
+        delta: f64,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, RobotError> {
+        let p = match self.prepare(q, joint, delta, counts)? {
+            Ok(p) => p,
+            Err(whole) => return Ok(whole),
+        };
+        let unsupported = |m: String| RobotError::Config {
+            what: "joint move".into(),
+            message: m,
+        };
+        let Prepared {
+            poses,
+            balls,
+            distal,
+            child,
+            sweep,
+        } = p;
+        let frame = poses[child];
+        let change = match &sweep {
+            Sweep::Turn { axis, angle, .. } => Change::Rotation {
+                axis: [axis.x, axis.y, axis.z],
+                angle: *angle,
+            },
+            Sweep::Slide { offset: d } => Change::Linear(vec![d.x, d.y, d.z, 0.0, 0.0, 0.0, 0.0]),
+        };
+        // the moving part, link by link, in the joint's child frame at q
         let motion = Motion::segment(se3(&frame), change);
         let to_frame = frame.inverse();
         let mut answer = IntervalList::new();

@@ -93,6 +93,24 @@ impl<const D: usize> Bvh<D> {
         bvh
     }
 
+    /// The same tree over the items moved by `d` (every box shifted): a body placed with a
+    /// different reference point keeps its tree instead of rebuilding it. Rounding is
+    /// monotone, so a shifted box still holds its shifted item.
+    pub(crate) fn shifted(&self, d: &nalgebra::SVector<f64, D>) -> Bvh<D> {
+        Bvh {
+            nodes: self
+                .nodes
+                .iter()
+                .map(|n| Node {
+                    bounds: n.bounds.shifted(d),
+                    ..*n
+                })
+                .collect(),
+            items: self.items.clone(),
+            boxes: self.boxes.iter().map(|b| b.shifted(d)).collect(),
+        }
+    }
+
     /// Number of items.
     #[cfg(test)]
     pub(crate) fn len(&self) -> usize {

@@ -308,6 +308,54 @@ impl Body {
         }
     }
 
+    /// The same body with every vertex moved by `d`: what a new reference point (the pivot of
+    /// a turn, CHS §2.3.2) needs, without welding, edge listing or tree building again.
+    pub fn shifted(&self, d: &V3) -> Body {
+        let vertices: Vec<V3> = self.vertices.iter().map(|v| v + d).collect();
+        let geo = self
+            .faces
+            .iter()
+            .map(|t| Face::new(t.map(|i| vertices[i as usize])))
+            .collect();
+        let radius = self
+            .faces
+            .iter()
+            .flatten()
+            .map(|&i| vertices[i as usize].norm())
+            .fold(0.0, f64::max);
+        let parts = self
+            .parts
+            .iter()
+            .map(|p| Part {
+                solid: p.solid,
+                parity: p.parity.clone(),
+                parity_bvh: p.parity_bvh.shifted(d),
+                aabb: p.aabb.shifted(d),
+                sphere: (p.sphere.0 + d, p.sphere.1),
+                components: p
+                    .components
+                    .iter()
+                    .map(|c| Component {
+                        faces: c.faces.clone(),
+                        aabb: c.aabb.shifted(d),
+                    })
+                    .collect(),
+            })
+            .collect();
+        Body {
+            vertices,
+            faces: self.faces.clone(),
+            geo,
+            edges: self.edges.clone(),
+            owned_start: self.owned_start.clone(),
+            owned: self.owned.clone(),
+            bvh: self.bvh.shifted(d),
+            parts,
+            aabb: self.aabb.shifted(d),
+            radius,
+        }
+    }
+
     /// The corners of face `f`.
     pub fn corners(&self, f: u32) -> [V3; 3] {
         self.faces[f as usize].map(|i| self.vertices[i as usize])

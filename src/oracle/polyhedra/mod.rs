@@ -78,6 +78,7 @@ use nalgebra::{Matrix3, Vector3};
 use predicate::Tolerance;
 use std::cell::RefCell;
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
 /// A box in space (the kernel's).
 pub(crate) type Aabb = aabb::Aabb<3>;
@@ -118,10 +119,11 @@ pub const MAX_TURNS: f64 = 1000.0;
 /// assert!((iv.lo - 0.35).abs() < 1e-9 && (iv.hi - 0.65).abs() < 1e-9);
 /// ```
 pub struct Polyhedra {
-    robot_mesh: TriMesh,
-    obstacle_meshes: Vec<TriMesh>,
+    robot_mesh: Arc<TriMesh>,
+    obstacle_meshes: Arc<Vec<TriMesh>>,
     robot: Body,
-    obstacles: Body,
+    /// Shared with the pivoted views of [`Polyhedra::turn_about`].
+    obstacles: Arc<Body>,
     tol: Tolerance,
     enveloping: bool,
 }
@@ -264,10 +266,10 @@ impl Polyhedra {
             1.0
         };
         Polyhedra {
-            robot_mesh: robot,
-            obstacle_meshes: obstacles,
+            robot_mesh: Arc::new(robot),
+            obstacle_meshes: Arc::new(obstacles),
             robot: r,
-            obstacles: o,
+            obstacles: Arc::new(o),
             tol: Tolerance::for_scale(scale),
             enveloping: true,
         }
@@ -315,6 +317,47 @@ impl Polyhedra {
             self.robot.parts.first().is_some_and(|p| p.solid),
             self.obstacles.parts.iter().map(|p| p.solid).collect(),
         )
+    }
+
+    /// The collision intervals, in `t ∈ [0, 1]`, of the robot placed at the SE(3)
+    /// configuration `pose` (`[x, y, z, qx, qy, qz, qw]`) turning by `t · angle` about the
+    /// world `axis` through the world point `pivot`, which need not be the robot's reference
+    /// point (CHS §2.3.2's rotation about a fixed axis, for a body that is not built about the
+    /// axis: a link of a robot arm turned by a joint above it, issue 10). The robot's faces and
+    /// tree are reused, moved so that the pivot becomes the reference point, instead of being
+    /// built again; the obstacles are shared. With the pivot at the reference point this is
+    /// [`CollisionOracle::intervals`] of `Change::Rotation { axis, angle }`.
+    pub fn turn_about(
+        &self,
+        pose: &[f64],
+        pivot: [f64; 3],
+        axis: [f64; 3],
+        angle: f64,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        let at = Pose::from_config(pose)?;
+        if !pivot.iter().all(|c| c.is_finite()) {
+            return Err(OracleError::Unsupported(
+                "polyhedra: a pivot with a coordinate that is not finite".into(),
+            ));
+        }
+        let mut origin = pose.to_vec();
+        origin[..3].copy_from_slice(&pivot);
+        let motion = Motion::segment(origin, Change::Rotation { axis, angle });
+        // body point v sits at rot · v + pos = rot · (v + s) + pivot with s = rotᵀ (pos − pivot)
+        let s = at.rot.tr_mul(&(at.pos - V3::from(pivot)));
+        if s == V3::zeros() {
+            return self.intervals(&motion, counts);
+        }
+        let view = Polyhedra {
+            robot_mesh: Arc::clone(&self.robot_mesh),
+            obstacle_meshes: Arc::clone(&self.obstacle_meshes),
+            robot: self.robot.shifted(&s),
+            obstacles: Arc::clone(&self.obstacles),
+            tol: self.tol,
+            enveloping: self.enveloping,
+        };
+        view.intervals(&motion, counts)
     }
 
     fn classify(motion: &Motion) -> Result<(Pose, Kind), OracleError> {
