@@ -57,6 +57,9 @@
 //! joint). The per-call work is allocation-free (`tests/alloc_free_rigid.rs`), so a per-joint
 //! oracle can be asked millions of times; what a per-configuration body would add is the
 //! construction of its face tree ([`Polyhedra::new`]), which is linear-logarithmic in its faces.
+//! [`Polyhedra::turn_about`] avoids it: a link built once in its own frame turns about an axis
+//! through any pivot, its faces and tree shifted (linear, no welding or tree building) so that
+//! the pivot becomes the reference point, the obstacles shared.
 
 mod body;
 mod containment;
