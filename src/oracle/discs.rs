@@ -108,6 +108,19 @@ impl Discs {
             let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / a, e / q) };
             hit(t1.min(t2), t1.max(t2))
         };
+        // the roots of gathered discs met (b² ≥ a e), overwriting (b, e) with (lo, hi): the
+        // arithmetic of `solve` without its branches, so the compiler vectorises it
+        let roots = |bs: &mut [f64], es: &mut [f64], hit: &mut dyn FnMut(f64, f64) -> bool| {
+            for (b, e) in bs.iter_mut().zip(es.iter_mut()) {
+                let disc = (*b * *b - a * *e).max(0.0);
+                let q = -(*b + disc.sqrt().copysign(*b));
+                let (t1, t2) = (q / a, *e / q);
+                let zero = q == 0.0;
+                *b = if zero { 0.0 } else { t1.min(t2) };
+                *e = if zero { 0.0 } else { t1.max(t2) };
+            }
+            bs.iter().zip(es.iter()).all(|(lo, hi)| hit(*lo, *hi))
+        };
         if let Some(blocks) = &self.planar {
             // the seed's planar case: the discriminants of a block of discs at once, without
             // branches (so the compiler vectorises them); the (b, e) of the discs met are
@@ -130,19 +143,13 @@ impl Discs {
                     n += usize::from(meets[k]);
                 }
                 if n > BATCH - LANES {
-                    for i in 0..n {
-                        if !solve(bs[i], es[i]) {
-                            return;
-                        }
+                    if !roots(&mut bs[..n], &mut es[..n], &mut hit) {
+                        return;
                     }
                     n = 0;
                 }
             }
-            for i in 0..n {
-                if !solve(bs[i], es[i]) {
-                    return;
-                }
-            }
+            roots(&mut bs[..n], &mut es[..n], &mut hit);
             return;
         }
         let n = self.dim;
