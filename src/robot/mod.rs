@@ -32,7 +32,7 @@ pub use oracle::ArmOracle;
 pub use shapes::Primitive;
 
 use crate::scene::SceneError;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Everything that can be wrong with a robot description or a configuration asked of it.
 #[derive(Debug, thiserror::Error)]
@@ -82,4 +82,27 @@ pub(crate) fn parse_numbers<const N: usize>(text: &str) -> Option<[f64; N]> {
         *slot = parse_number(it.next()?)?;
     }
     it.next().is_none().then_some(out)
+}
+
+/// Parses URDF or SRDF text and checks that its root is `<robot>` (both formats share it);
+/// `path` names the file in errors.
+pub(crate) fn robot_xml<'t>(
+    text: &'t str,
+    path: &Path,
+) -> Result<roxmltree::Document<'t>, RobotError> {
+    let doc = roxmltree::Document::parse(text).map_err(|e| RobotError::Xml {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    let root = doc.root_element();
+    if !root.has_tag_name("robot") {
+        return Err(RobotError::Invalid {
+            path: path.to_path_buf(),
+            message: format!(
+                "the root element is <{}>, not <robot>",
+                root.tag_name().name()
+            ),
+        });
+    }
+    Ok(doc)
 }

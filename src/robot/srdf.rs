@@ -44,21 +44,12 @@ pub fn load_srdf(path: &Path) -> Result<Srdf, RobotError> {
 
 /// Parses SRDF text; `path` names the file in errors.
 pub fn parse_srdf(text: &str, path: &Path) -> Result<Srdf, RobotError> {
-    let doc = roxmltree::Document::parse(text).map_err(|e| RobotError::Xml {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })?;
+    let doc = super::robot_xml(text, path)?;
     let invalid = |message: String| RobotError::Invalid {
         path: path.to_path_buf(),
         message,
     };
     let root = doc.root_element();
-    if !root.has_tag_name("robot") {
-        return Err(invalid(format!(
-            "the root element is <{}>, not <robot>",
-            root.tag_name().name()
-        )));
-    }
     let attr = |n: roxmltree::Node, a: &str| -> Result<String, RobotError> {
         n.attribute(a).map(str::to_string).ok_or_else(|| {
             invalid(format!(

@@ -126,21 +126,12 @@ pub fn load_urdf(path: &Path) -> Result<Urdf, RobotError> {
 
 /// Parses URDF text; `path` names the file in errors.
 pub fn parse_urdf(text: &str, path: &Path) -> Result<Urdf, RobotError> {
-    let doc = roxmltree::Document::parse(text).map_err(|e| RobotError::Xml {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })?;
+    let doc = super::robot_xml(text, path)?;
     let invalid = |message: String| RobotError::Invalid {
         path: path.to_path_buf(),
         message,
     };
     let root = doc.root_element();
-    if !root.has_tag_name("robot") {
-        return Err(invalid(format!(
-            "the root element is <{}>, not <robot>",
-            root.tag_name().name()
-        )));
-    }
     let name = root.attribute("name").unwrap_or("").to_string();
     let mut links = Vec::new();
     let mut joints = Vec::new();
