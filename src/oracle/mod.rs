@@ -287,25 +287,10 @@ impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
             // the common case of a segment within the bounds: nothing to add, nothing to clip
             return self.inner.intervals(motion, counts);
         }
-        let hits = if self.inner.prefers_unclipped() {
-            self.inner.intervals(motion, counts)?.into_clipped(inside)
-        } else {
-            self.inner.intervals(&motion.with_range(inside), counts)?
-        };
+        // partly out of bounds: the workspace path adds the out-of-bounds ends around the
+        // inner answer (one copy of that logic)
         let mut out = IntervalList::new();
-        if inside.lo > motion.range.lo {
-            out.push(Interval {
-                lo: motion.range.lo,
-                hi: inside.lo,
-            });
-        }
-        hits.iter().for_each(|iv| out.push(*iv));
-        if inside.hi < motion.range.hi {
-            out.push(Interval {
-                lo: inside.hi,
-                hi: motion.range.hi,
-            });
-        }
+        self.intervals_into(motion, &mut out, &mut Workspace::new(), counts)?;
         Ok(out)
     }
 
