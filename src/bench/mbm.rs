@@ -500,12 +500,13 @@ pub struct WorkcellResult {
 
 /// Learns a roadmap of the family's first scene within `budget`, saves it to `save_to`, loads
 /// it back, and answers the start/goal pairs of every request of the family that are valid in
-/// that scene, re-checking each path.
+/// that scene (each within `query_time`), re-checking each path.
 pub fn run_workcell(
     robot: &Arm,
     problems: &[Problem],
     budget: &Budget,
     seed: u64,
+    query_time: Duration,
     save_to: &Path,
 ) -> Result<WorkcellResult, Box<dyn std::error::Error + Send + Sync>> {
     let first = problems.first().ok_or("no problems")?;
@@ -537,7 +538,10 @@ pub fn run_workcell(
         requests: problems.len(),
         ..WorkcellResult::default()
     };
-    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?;
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?.with_options(QueryOptions {
+        time: Some(query_time),
+        ..QueryOptions::default()
+    });
     let arm = &check.arm().clone();
     let mut times = Vec::new();
     for p in problems {

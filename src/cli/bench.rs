@@ -201,6 +201,9 @@ pub struct MbmArgs {
     /// Nodes of each workcell roadmap.
     #[arg(long, default_value_t = 1000)]
     pub nodes: usize,
+    /// Seconds one workcell query may take (it may grow the roadmap meanwhile).
+    #[arg(long, default_value_t = 5.0)]
+    pub query_time: f64,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
     #[arg(long)]
     pub out: PathBuf,
@@ -233,6 +236,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
                 &ps,
                 &viaroad::roadmap::Budget::nodes(a.nodes),
                 a.seed,
+                super::limits::parse_seconds("--query-time", a.query_time)?,
                 &save,
             )
             .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
