@@ -192,6 +192,43 @@ mod pivoted {
         }
     }
 
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+        /// The shared sweep (windows one link oracle found colliding skipped by the others,
+        /// early stops) answers exactly what the link oracles answer on their own: the same
+        /// intervals (within 1e-9), the same yes/no, the same first hit.
+        #[test]
+        fn shared_sweep_equals_separate_oracles(
+            scene in 0usize..3,
+            u in prop::array::uniform7(0.0f64..=1.0),
+            j in 0usize..7,
+            to in 0.0f64..=1.0,
+        ) {
+            let (arm, _, oracle) = &setups()[scene];
+            let alone = oracle.clone().with_culling(false);
+            let g = &arm.group;
+            let q: Vec<f64> = (0..g.dof()).map(|i| g.lower[i] + u[i] * (g.upper[i] - g.lower[i])).collect();
+            let delta = g.lower[j] + to * (g.upper[j] - g.lower[j]) - q[j];
+            let c = &mut CallCounts::default();
+            let (shared, separate) = (oracle.joint_move(&q, j, delta, c).unwrap(), alone.joint_move(&q, j, delta, c).unwrap());
+            prop_assert_eq!(shared.len(), separate.len(), "{:?} vs {:?}", shared.as_slice(), separate.as_slice());
+            for (a, b) in shared.iter().zip(separate.iter()) {
+                prop_assert!(
+                    (a.lo - b.lo).abs() <= 1e-9 && (a.hi - b.hi).abs() <= 1e-9,
+                    "{:?} vs {:?}", shared.as_slice(), separate.as_slice()
+                );
+            }
+            prop_assert_eq!(oracle.joint_move_free(&q, j, delta, c).unwrap(), separate.is_empty());
+            let first = oracle.joint_move_first_hit(&q, j, delta, c).unwrap();
+            let want = separate.iter().next().map(|iv| iv.lo);
+            prop_assert_eq!(first.is_some(), want.is_some());
+            if let (Some(a), Some(b)) = (first, want) {
+                prop_assert!((a - b).abs() <= 1e-9, "{} vs {}", a, b);
+            }
+        }
+    }
+
     /// The proptest above is not vacuous: over a fixed batch of moves, most of them with
     /// intervals, the two answers agree and the moving links are really off the joint frame.
     #[test]
@@ -222,6 +259,23 @@ mod pivoted {
                 );
                 for (a, b) in new.iter().zip(old.iter()) {
                     assert!((a.lo - b.lo).abs() <= 1e-9 && (a.hi - b.hi).abs() <= 1e-9);
+                }
+                // the shared sweep, the yes/no and first-hit questions on the same moves
+                let alone = oracle.clone().with_culling(false);
+                let c = &mut CallCounts::default();
+                let separate = alone.joint_move(&q, j, delta, c).unwrap();
+                assert_eq!(separate.as_slice().len(), new.len());
+                for (a, b) in new.iter().zip(separate.iter()) {
+                    assert!((a.lo - b.lo).abs() <= 1e-9 && (a.hi - b.hi).abs() <= 1e-9);
+                }
+                assert_eq!(
+                    oracle.joint_move_free(&q, j, delta, c).unwrap(),
+                    new.is_empty()
+                );
+                let first = oracle.joint_move_first_hit(&q, j, delta, c).unwrap();
+                assert_eq!(first.is_some(), !new.is_empty());
+                if let (Some(a), Some(b)) = (first, new.iter().next()) {
+                    assert!((a - b.lo).abs() <= 1e-9, "{a} vs {b:?}");
                 }
                 if !new.is_empty() && new.as_slice() != [viaroad::interval::Interval::UNIT] {
                     hit += 1;

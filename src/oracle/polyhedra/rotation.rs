@@ -59,15 +59,19 @@ pub(crate) fn turn(x: &V3, axis: &V3, phi: f64) -> V3 {
     axis * ((1.0 - c) * axis.dot(x)) + x * c + axis.cross(x) * s
 }
 
-/// A window of angles summarised for cheap bounds: `a cos φ + b sin φ + c` over the window
-/// lies within `amp · chord` of its value at the middle (`|f(φ) − f(m)| ≤ amp · 2 sin(|φ − m|/2)`),
-/// which rules most atoms in or out without solving for their zeros.
+/// A window of angles summarised for cheap bounds: with `m` the window's middle and `h` its half
+/// width, `a cos φ + b sin φ + c = P cos(φ − m) + Q sin(φ − m) + c` with `P = a cos m + b sin m`,
+/// `Q = b cos m − a sin m`; over `|φ − m| ≤ h` it peaks at `c + √(P² + Q²)` if its crest lies in
+/// the window (`P ≥ √(P² + Q²) cos h`), else at an end (`c + P cos h + |Q| sin h`), and likewise
+/// for the trough. Exact extremes for a few products, which rule most atoms in or out without
+/// solving for their zeros.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Around {
     hull: Interval,
     cos: f64,
     sin: f64,
-    chord: f64,
+    cos_half: f64,
+    sin_half: f64,
 }
 
 impl Around {
@@ -75,21 +79,29 @@ impl Around {
     pub fn new(hull: Interval) -> Around {
         let half = (0.5 * (hull.hi - hull.lo)).min(PI);
         let (sin, cos) = (0.5 * (hull.lo + hull.hi)).sin_cos();
+        let (sin_half, cos_half) = half.sin_cos();
         Around {
             hull,
             cos,
             sin,
-            // a relative 1e-9 and an absolute 1e-12 on top for the rounding of the sines
-            chord: 2.0 * (0.5 * half).sin() * (1.0 + 1e-9) + 1e-12,
+            cos_half,
+            sin_half,
         }
     }
 
-    /// Bounds of `f` over the window (conservative, with a relative 1e-12 for rounding).
+    /// Bounds of `f` over the window (conservative: a relative 1e-12 of its coefficients, and
+    /// 1e-9 of its amplitude for the rounding of the middle and half width, on either side).
     pub fn bounds(&self, f: &Trig) -> (f64, f64) {
-        let mid = f.alpha * self.cos + f.beta * self.sin + f.gamma;
-        let amp = (f.alpha * f.alpha + f.beta * f.beta).sqrt();
-        let spread = amp * self.chord + 1e-12 * (f.alpha.abs() + f.beta.abs() + f.gamma.abs());
-        (mid - spread, mid + spread)
+        let p = f.alpha * self.cos + f.beta * self.sin;
+        let q = f.beta * self.cos - f.alpha * self.sin;
+        let amp = (p * p + q * q).sqrt();
+        let crest = amp * self.cos_half;
+        let ends = self.cos_half * p;
+        let side = self.sin_half * q.abs();
+        let hi = if p >= crest { amp } else { ends + side };
+        let lo = if -p >= crest { -amp } else { ends - side };
+        let spread = 1e-12 * (f.alpha.abs() + f.beta.abs() + f.gamma.abs()) + 1e-9 * amp;
+        (f.gamma + lo - spread, f.gamma + hi + spread)
     }
 
     /// `{φ ∈ hull : f(φ) + slack ≥ 0}`, solved only when the bounds cannot tell.
@@ -501,6 +513,29 @@ mod tests {
     }
 
     proptest! {
+        /// The window's bounds hold every sampled value and are tight: the sampled extremes
+        /// come within the sampling error (amplitude × step) of them.
+        #[test]
+        fn window_bounds_are_exact(
+            f in prop::array::uniform3(-3.0f64..3.0),
+            lo in -7.0f64..7.0,
+            len in 0.0f64..6.3,
+        ) {
+            let f = Trig { alpha: f[0], beta: f[1], gamma: f[2] };
+            let around = Around::new(Interval { lo, hi: lo + len });
+            let (b_lo, b_hi) = around.bounds(&f);
+            let (mut s_lo, mut s_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            const N: usize = 4000;
+            for k in 0..=N {
+                let v = f.eval(lo + len * k as f64 / N as f64);
+                prop_assert!(b_lo <= v && v <= b_hi, "{} outside [{}, {}]", v, b_lo, b_hi);
+                s_lo = s_lo.min(v);
+                s_hi = s_hi.max(v);
+            }
+            let slack = f.amplitude() * len / N as f64 + 1e-8;
+            prop_assert!(s_lo - b_lo <= slack && b_hi - s_hi <= slack, "[{}, {}] vs sampled [{}, {}]", b_lo, b_hi, s_lo, s_hi);
+        }
+
         /// The arcs agree with the static predicate at sampled φ.
         #[test]
         fn arcs_match_static_predicate(
