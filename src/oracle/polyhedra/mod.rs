@@ -221,6 +221,10 @@ pub(crate) struct Caches {
     swept: Memo<Aabb>,
     /// A robot vertex's arc box over a turn.
     vertex_arcs: Memo<Aabb>,
+    /// A robot edge's cylindrical box about the axis of a turn.
+    robot_edges: Memo<CylBox>,
+    /// An obstacle edge's cylindrical box about the axis of a turn, in the robot's frame.
+    obst_edges: Memo<CylBox>,
     /// Containment along a path.
     pieces: containment::Pieces,
 }

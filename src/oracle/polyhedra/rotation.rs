@@ -42,6 +42,13 @@ const DEGENERATE_SPAN: f64 = 1e-7;
 /// degenerate instant of Lemma 2.1, not a collision of this pair.
 const DEGENERATE_PARALLEL: f64 = 1e-7;
 
+/// A face whose corners stay more than this many times the predicate's slack on one side of
+/// another face's plane over a window has no edge that meets that face (its first atoms fail).
+const OFF_NEAR: f64 = 2.0;
+/// … more than this many times: the two faces do not meet at all (no edge of the other face,
+/// which lies in that plane, reaches it either; the margin covers the determinants' slack).
+const OFF_FAR: f64 = 16.0;
+
 /// `s·x_φ` for fixed `s` and `x` turning about the unit `axis` (formula 2.1).
 pub(crate) fn lin(s: &V3, x: &V3, axis: &V3) -> Trig {
     let sr = s.dot(axis);
@@ -254,10 +261,14 @@ pub(crate) fn sweep(
         nodes: robot_nodes,
         swept: robot_swept,
         vertex_arcs,
+        robot_edges,
+        obst_edges,
         pieces,
         ..
     } = caches;
     robot_boxes.reset(robot.faces.len());
+    robot_edges.reset(robot.edges.len());
+    obst_edges.reset(obst.edges.len());
     // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
     // cylindrical box) for φ in `w`; returns whether to go on
     let mut pair = |r: u32,
@@ -269,12 +280,14 @@ pub(crate) fn sweep(
                     counts: &mut CallCounts|
      -> bool {
         let rc = robot.corners(r);
+        let mut rbox = None;
         let pair_window = if ph.enveloping {
-            let rbox = robot_boxes.get_or_insert_with(r as usize, || cyl.box_of(&rc, margin));
-            if !rbox.fixed_overlap(obox) {
+            let b = *robot_boxes.get_or_insert_with(r as usize, || cyl.box_of(&rc, margin));
+            if !b.fixed_overlap(obox) {
                 return true;
             }
-            match rbox.turn_window(obox) {
+            rbox = Some(b);
+            match b.turn_window(obox) {
                 Some((start, length)) => arc_in_window(Arc { start, length }, w),
                 None => Spans::single(w),
             }
@@ -298,15 +311,55 @@ pub(crate) fn sweep(
         // an edge meets a face only where its ends are not both strictly on one side of the
         // face's plane (the predicate's first atoms, with their slack doubled): if all three
         // corners of a face stay on one side for the whole window, its edges are skipped
-        let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
-            let th = 2.0 * tol.dist * face.n_norm;
+        // how far a face's corners stay on one side of the other face's plane over the window,
+        // in units of the predicate's slack (0: they may reach it)
+        let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> f64 {
+            let th = tol.dist * face.n_norm;
             let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
-            b.iter().all(|(lo, _)| *lo > th) || b.iter().all(|(_, hi)| *hi < -th)
+            let above = b.iter().map(|(lo, _)| *lo).fold(f64::INFINITY, f64::min);
+            let below = b.iter().map(|(_, hi)| -*hi).fold(f64::INFINITY, f64::min);
+            (above.max(below) / th).max(0.0)
         };
+        // the robot face off the obstacle face's plane: no robot edge reaches that face, and
+        // (well off, beyond the in-plane slack of the determinants too) no obstacle edge, which
+        // lies in that plane, reaches the robot face
         let rf = robot.face(r);
-        if !ph.enveloping || !one_side(&rc, of, &axis) {
+        let robot_off = if ph.enveloping {
+            one_side(&rc, of, &axis)
+        } else {
+            0.0
+        };
+        if ph.enveloping && robot_off > OFF_FAR {
+            return true;
+        }
+        // a face whose corners all stay outside the prism over the other face (beyond the plane
+        // through one of its edges, perpendicular to it) cannot meet it either
+        let outside = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
+            let e = face.edges();
+            (0..3).any(|i| {
+                let m = face.n.cross(&e[i]);
+                let th = OFF_FAR * tol.dist * face.n_norm * face.e_len[i];
+                let c = m.dot(&face.v[i]);
+                corners
+                    .iter()
+                    .all(|x| around.bounds(&lin(&m, x, axis).plus(-c)).1 < -th)
+            })
+        };
+        if ph.enveloping && (outside(&rc, of, &axis) || outside(&of.v, rf, &-axis)) {
+            return true;
+        }
+        if robot_off <= OFF_NEAR {
             for &e in robot.owned_edges(r) {
                 let (p, q) = robot.edge(e);
+                // the edge's own cylindrical box against the obstacle face's: a narrower
+                // window than the face's, or none
+                if ph.enveloping {
+                    let eb = robot_edges
+                        .get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
+                    if !edge_reaches(eb, obox, &pair_window, w) {
+                        continue;
+                    }
+                }
                 counts.pairs_tested += 1;
                 for iv in
                     edge_face_around(&p, &q, of, &axis, &pair_window, &around, &tol).as_slice()
@@ -317,7 +370,7 @@ pub(crate) fn sweep(
                 }
             }
         }
-        if ph.enveloping && one_side(&of.v, rf, &-axis) {
+        if ph.enveloping && one_side(&of.v, rf, &-axis) > OFF_NEAR {
             return true;
         }
         let ids = obst.faces[o as usize];
@@ -325,6 +378,14 @@ pub(crate) fn sweep(
             let [a, b] = obst.edges[e as usize];
             let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
             let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
+            // the obstacle edge's cylindrical box: the robot face turned by +φ must reach it
+            if let Some(rb) = &rbox {
+                let eb =
+                    obst_edges.get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
+                if !edge_reaches(rb, eb, &pair_window, w) {
+                    continue;
+                }
+            }
             counts.pairs_tested += 1;
             for iv in edge_face_around(&p, &q, rf, &-axis, &pair_window, &around, &tol).as_slice() {
                 if sink.add(*iv).is_break() {
@@ -423,6 +484,22 @@ pub(crate) fn sweep(
     if !sink.done() {
         containment::rotation(ph, pose, axis_w, phis, sink, pieces, counts);
     }
+}
+
+/// Whether a box `m` turning by `+φ` can meet the fixed box `f` (one of them an edge's, the
+/// other a face's) within the faces' window `pair` (part of the node window `w`): the same tests
+/// as for the faces, on the edge's smaller box. (The pair is then solved in the faces' window:
+/// a narrower one would change nothing but the rounding of the answer.)
+fn edge_reaches(m: &CylBox, f: &CylBox, pair: &Spans, w: Interval) -> bool {
+    if !m.fixed_overlap(f) {
+        return false;
+    }
+    let Some((start, length)) = m.turn_window(f) else {
+        return true;
+    };
+    !pair
+        .intersect(&arc_in_window(Arc { start, length }, w))
+        .is_empty()
 }
 
 /// The world box around everything robot face `r` at `pose` sweeps while turning about the
