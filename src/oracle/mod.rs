@@ -92,6 +92,9 @@ pub struct Workspace {
     pub inner: IntervalList,
     /// A motion a wrapper narrows before it asks its inner oracle.
     pub motion: Option<Motion>,
+    /// Numbers an oracle lays out as it likes (the planar disc loop gathers the discs a line
+    /// meets here); only ever grown, so that no call pays for zeroing it.
+    pub numbers: Vec<f64>,
 }
 
 impl Workspace {
