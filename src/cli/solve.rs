@@ -61,6 +61,9 @@ pub struct SolveArgs {
         requires = "tree"
     )]
     pub tree_prefix: viaroad::roadmap::tree::Prefix,
+    /// `--tree`: extend the smaller tree each time instead of alternating.
+    #[arg(long, requires = "tree")]
+    pub tree_balance: bool,
     /// Seed of the grown roadmap (`--roadmap`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -321,6 +324,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         range: a.tree_range,
         stair: a.tree_stair,
         prefix: a.tree_prefix,
+        balance: a.tree_balance,
         max_nodes: a.nodes,
     };
     params.validate().map_err(anyhow::Error::msg)?;

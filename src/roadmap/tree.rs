@@ -61,6 +61,9 @@ pub struct TreeParams {
     pub stair: f64,
     /// How a stair's free prefix is found.
     pub prefix: Prefix,
+    /// Extend the smaller tree each time (Kuffner–LaValle's balanced variant) instead of
+    /// alternating: an entangled end whose extends are mostly trapped gets the effort.
+    pub balance: bool,
     /// Most nodes of both trees together (a budget that gives the same answer on any machine).
     pub max_nodes: Option<usize>,
 }
@@ -71,6 +74,7 @@ impl Default for TreeParams {
             range: 0.2,
             stair: 0.01,
             prefix: Prefix::Intervals,
+            balance: false,
             max_nodes: None,
         }
     }
@@ -349,7 +353,10 @@ pub fn rrt_connect(
         if let Some(n) = new {
             let q_new = ta.nodes[n as usize].clone();
             loop {
-                if deadline.expired() {
+                let full = params
+                    .max_nodes
+                    .is_some_and(|m| ta.nodes.len() + tb.nodes.len() >= m);
+                if deadline.expired() || full {
                     break;
                 }
                 match g.extend(tb, &q_new)? {
@@ -366,7 +373,11 @@ pub fn rrt_connect(
                 }
             }
         }
-        a = 1 - a;
+        a = if params.balance {
+            usize::from(trees[1].nodes.len() < trees[0].nodes.len())
+        } else {
+            1 - a
+        };
     }
 }
 
