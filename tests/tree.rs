@@ -4,6 +4,9 @@
 //! the same seed and node budget give the same answer, the node budget holds, and the
 //! shortcut path is checked the same way.
 
+mod common;
+
+use common::cli::{fails_with, stderr, stdout, viaroad};
 use std::path::PathBuf;
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
@@ -158,4 +161,81 @@ fn free_space_connects_in_one_straight_staircase() {
     check(&s, &path);
     // the first extend aims at the goal itself and, within range, reaches it
     assert_eq!(out.nodes[1], 1, "the goal tree grew: {:?}", out.nodes);
+}
+
+#[test]
+fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
+    let s = scene("scenes/discs-cluttered.toml");
+    let (centres, radii): (Vec<Vec<f64>>, Vec<f64>) = s
+        .obstacles
+        .iter()
+        .map(|o| match o {
+            viaroad::scene::Obstacle::Disc { centre, radius } => (centre.clone(), *radius),
+            _ => panic!("a disc scene"),
+        })
+        .unzip();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "solve",
+            "scenes/discs-cluttered.toml",
+            "--tree",
+            "--nodes",
+            "3000",
+            "--seed",
+            "4",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let o = viaroad(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+            .lines()
+            .map(|l| {
+                let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
+                // the timings are the only fields that may differ between two runs
+                let m = v.as_object_mut().unwrap();
+                m.remove("seconds");
+                m.remove("grow_seconds");
+                v
+            })
+            .collect::<Vec<_>>()
+    };
+    for extra in [&[][..], &["--tree-coarse", "--tree-stair", "0.05"][..]] {
+        let a = run(extra);
+        assert_eq!(a, run(extra), "{extra:?}: two runs differ");
+        assert!(!a.is_empty());
+        let solved = a.iter().filter(|v| v["solved"] == true).count();
+        assert!(
+            solved * 2 >= a.len(),
+            "{extra:?}: only {solved} of {} solved",
+            a.len()
+        );
+        for v in a.iter().filter(|v| v["solved"] == true) {
+            assert_eq!(v["stop"], "Connected");
+            for key in ["path", "shortened"] {
+                let p: Vec<Vec<f64>> = serde_json::from_value(v[key].clone()).unwrap();
+                common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9)
+                    .unwrap();
+            }
+        }
+    }
+    fails_with(
+        &[
+            "solve",
+            "scenes/discs-cluttered.toml",
+            "--tree",
+            "--tree-stair",
+            "0",
+        ],
+        "stair",
+    );
+    fails_with(
+        &[
+            "solve",
+            "scenes/discs-cluttered.toml",
+            "--tree",
+            "--roadmap",
+        ],
+        "--roadmap",
+    );
 }

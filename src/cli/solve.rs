@@ -33,17 +33,17 @@ pub struct SolveArgs {
     /// Single-query roadmap (OMPL's PRM `solve`): grow a roadmap from start and goal with the
     /// roadmap's local method (`--local` picks another) until they meet or the time is up,
     /// then answer through it. Without it the local method alone connects start and goal.
-    #[arg(long)]
+    #[arg(long, group = "single_query")]
     pub roadmap: bool,
     /// Most nodes of the grown roadmap (`--roadmap`) or of both trees (`--tree`): a budget
     /// that gives the same answer on any machine. With `--nodes` and no `--time` there is no
     /// time limit.
-    #[arg(long)]
+    #[arg(long, requires = "single_query")]
     pub nodes: Option<usize>,
     /// Single-query trees (OMPL's RRTConnect `solve`): two trees grown from start and goal
     /// whose extends are staircases of single-group motions, each as far as it is free
     /// (`roadmap::tree`). Default time 60 s, like `--roadmap`.
-    #[arg(long, conflicts_with = "roadmap")]
+    #[arg(long, group = "single_query")]
     pub tree: bool,
     /// Longest extend of `--tree`, as a share of the space's extent (OMPL's RRTConnect: 0.2).
     #[arg(long, value_name = "SHARE", default_value_t = 0.2, requires = "tree")]
@@ -61,6 +61,9 @@ pub struct SolveArgs {
         requires = "tree"
     )]
     pub tree_prefix: viaroad::roadmap::tree::Prefix,
+    /// `--tree`: try each extend as one stair first (yes/no), the staircase only when blocked.
+    #[arg(long, requires = "tree")]
+    pub tree_coarse: bool,
     /// `--tree`: extend the smaller tree each time instead of alternating.
     #[arg(long, requires = "tree")]
     pub tree_balance: bool,
@@ -118,9 +121,6 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     }
     if a.tree {
         return run_tree(a);
-    }
-    if a.nodes.is_some() {
-        anyhow::bail!("--nodes needs --roadmap or --tree");
     }
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::default())?;
@@ -325,6 +325,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         stair: a.tree_stair,
         prefix: a.tree_prefix,
         balance: a.tree_balance,
+        coarse: a.tree_coarse,
         max_nodes: a.nodes,
     };
     params.validate().map_err(anyhow::Error::msg)?;
@@ -357,11 +358,8 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         .context("growing trees")?;
         let grow_secs = began.elapsed().as_secs_f64();
         let mut counts = found.counts;
-        // shortcutting gets what is left of the budget, at least a second
-        let short_deadline = match deadline.remaining() {
-            Some(r) => Deadline::none().within(Some(r.max(std::time::Duration::from_secs(1)))),
-            None => Deadline::none(),
-        };
+        // shortcutting gets what is left of the budget (none left: the raw path, also free)
+        let short_deadline = deadline.clone();
         let shortened = match &found.path {
             Some(p) => Some(
                 shortcut(

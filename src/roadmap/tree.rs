@@ -61,6 +61,9 @@ pub struct TreeParams {
     pub stair: f64,
     /// How a stair's free prefix is found.
     pub prefix: Prefix,
+    /// Try each extend as one stair first (a yes/no call per group), the staircase only when
+    /// that is blocked.
+    pub coarse: bool,
     /// Extend the smaller tree each time (Kuffner–LaValle's balanced variant) instead of
     /// alternating: an entangled end whose extends are mostly trapped gets the effort.
     pub balance: bool,
@@ -74,6 +77,7 @@ impl Default for TreeParams {
             range: 0.2,
             stair: 0.01,
             prefix: Prefix::Intervals,
+            coarse: false,
             balance: false,
             max_nodes: None,
         }
@@ -231,6 +235,27 @@ impl Grower<'_> {
         };
         let stair = self.params.stair * self.space.extent();
         let stairs = (d.min(range) / stair).ceil().clamp(1.0, 1e6) as usize;
+        if self.params.coarse && stairs > 1 {
+            // one stair all the way, yes/no: in open space the staircase buys nothing
+            if let Some(corners) = crate::local::check_direct(
+                self.space,
+                self.oracle,
+                self.groups,
+                &from,
+                &aim,
+                &mut self.counts,
+            )? {
+                let mut parent = near;
+                for c in corners {
+                    parent = tree.add(c, parent);
+                }
+                return Ok(if full {
+                    Extend::Reached(parent)
+                } else {
+                    Extend::Advanced(parent)
+                });
+            }
+        }
         let mut current = from.clone();
         let mut parent = near;
         let mut moved = false;
