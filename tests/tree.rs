@@ -239,3 +239,74 @@ fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--roadmap"), "{}", stderr(&o));
 }
+
+#[test]
+fn first_collision_is_the_start_of_the_first_interval() {
+    use rand::SeedableRng;
+    use viaroad::oracle::{CollisionOracle, CountedOracle};
+    for rel in [
+        "scenes/ompl/3D/Twistycool.cfg",
+        "scenes/ompl/3D/alpha-1.5.cfg",
+        "scenes/se2-corridor.toml",
+    ] {
+        let s = scene(rel);
+        let oracle = s.oracle();
+        let groups = s.space.groups(false);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let mut counts = CallCounts::default();
+        let (mut blocked, mut partial, mut free) = (0, 0, 0);
+        let q0 = &s.checked_queries().unwrap()[0].start;
+        for i in 0..300 {
+            // from the query's start (alpha's is entangled) or a random free configuration,
+            // a stair of random length towards a uniform sample
+            let from = if i % 2 == 0 {
+                q0.clone()
+            } else {
+                loop {
+                    let q = s.space.sample_uniform(&mut rng);
+                    if oracle.is_free(&q, &mut counts) {
+                        break q;
+                    }
+                }
+            };
+            let to = s.space.sample_uniform(&mut rng);
+            let t: f64 = rand::Rng::random_range(&mut rng, 0.001..1.0);
+            let aim = s.space.interpolate(&from, &to, t);
+            let g = &groups[i % groups.len()];
+            let motion = s
+                .space
+                .group_motion(&from, &s.space.with_group_of(&from, &aim, g), g);
+            let all = oracle.intervals(&motion, &mut counts).unwrap();
+            let first = oracle.first_collision(&motion, &mut counts).unwrap();
+            assert_eq!(
+                first,
+                all.first().map(|iv| iv.lo),
+                "{rel}: motion {i}: first collision differs from the intervals {all:?}"
+            );
+            match first {
+                None => free += 1,
+                Some(x) if x <= 0.0 => blocked += 1,
+                Some(_) => partial += 1,
+            }
+        }
+        // the comparison covered all three cases
+        assert!(
+            free > 0 && partial > 0,
+            "{rel}: free {free}, partial {partial}, blocked {blocked}"
+        );
+    }
+}
+
+#[test]
+fn first_hit_prefixes_grow_the_same_trees_as_intervals() {
+    let s = scene("scenes/ompl/3D/alpha-1.5.cfg");
+    let grow_with = |prefix| {
+        let p = TreeParams {
+            prefix,
+            ..params(1500)
+        };
+        let o = grow(&s, &p, 3);
+        (o.path, o.nodes, o.counts.intersect_calls())
+    };
+    assert_eq!(grow_with(Prefix::Intervals), grow_with(Prefix::FirstHit));
+}

@@ -52,8 +52,9 @@ pub struct SolveArgs {
     /// the extent: shorter stairs follow coupled motions more closely, for more calls.
     #[arg(long, value_name = "SHARE", default_value_t = 0.01, requires = "tree")]
     pub tree_stair: f64,
-    /// How a `--tree` stair finds its free prefix: `intervals` (one interval call) or `yesno`
-    /// (a yes/no call first, intervals only when blocked).
+    /// How a `--tree` stair finds its free prefix: `intervals` (one interval call), `yesno`
+    /// (a yes/no call first, intervals only when blocked) or `first` (one first-collision
+    /// call: the same prefix, without the collisions beyond it).
     #[arg(
         long,
         value_name = "MODE",

@@ -37,6 +37,9 @@ pub enum Prefix {
     /// A yes/no call first (it stops at the first collision found, cheaper on big meshes),
     /// the interval call only when the stair is blocked.
     YesNoFirst,
+    /// One first-collision call ([`CollisionOracle::first_collision`]): the same free prefix
+    /// as `Intervals`, without the collisions beyond it.
+    FirstHit,
 }
 
 impl std::str::FromStr for Prefix {
@@ -45,7 +48,10 @@ impl std::str::FromStr for Prefix {
         match s {
             "intervals" => Ok(Prefix::Intervals),
             "yesno" => Ok(Prefix::YesNoFirst),
-            _ => Err(format!("unknown prefix mode {s:?} (intervals | yesno)")),
+            "first" => Ok(Prefix::FirstHit),
+            _ => Err(format!(
+                "unknown prefix mode {s:?} (intervals | yesno | first)"
+            )),
         }
     }
 }
@@ -192,6 +198,22 @@ struct Grower<'a> {
 
 impl Grower<'_> {
     fn reach(&mut self, motion: &crate::space::Motion) -> Result<Reach, OracleError> {
+        if self.params.prefix == Prefix::FirstHit {
+            // the free section containing the start is [range.lo, first collision]
+            let lo = motion.range.lo;
+            return Ok(match self.oracle.first_hit(motion, &mut self.counts)? {
+                None => Reach::Full,
+                Some(hit) if hit <= lo => Reach::Blocked,
+                Some(hit) => {
+                    let t = hit - SECTION_MARGIN * (hit - lo);
+                    if t > 0.0 {
+                        Reach::Partial(t)
+                    } else {
+                        Reach::Blocked
+                    }
+                }
+            });
+        }
         if self.params.prefix == Prefix::YesNoFirst
             && self.oracle.check_motion(motion, &mut self.counts)?
         {
