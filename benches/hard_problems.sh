@@ -152,7 +152,7 @@ L.append("| problem | T s | viaroad solved | viaroad median time to solve s | me
 L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for p in order:
     vr = [r for r in V if r["problem"] == p and r.get("kind") == "build+query"]
-    T = (vr or [r for r in P if r["problem"] == p])[0]["T"]
+    T = (vr or [r for r in P + SQ + ST if r["problem"] == p])[0]["T"]
     sol = [r for r in vr if r.get("solved")]
     def peer(pl):
         rs = [r for r in P if r["problem"] == p and r["planner"] == pl and "solved" in r]
@@ -311,7 +311,7 @@ run_solve_roadmap() { # NAME T SEED [MODE]: the one-command form, only when the 
   local start load_s t0; start=$(cfg_state "$cfg" start); t0=$(now)
   "$VIAROAD" probe "$cfg" --from "$start" --to "$start" >/dev/null 2>&1
   load_s=$(since "$t0")
-  echo "[$(date -u +%T)] viaroad solve --roadmap $tag (load $(load1))" >&2
+  echo "[$(date -u +%T)] viaroad solve --$mode $tag (load $(load1))" >&2
   local rc wall out
   t0=$(now)
   out=$(timeout -k 5 $((2 * T + 30)) "${cmd[@]}" 2>"$WORK/$tag.err" | tail -n 1)
