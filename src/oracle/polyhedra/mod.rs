@@ -468,6 +468,9 @@ impl Polyhedra {
                     hi: p1.min(p0 + TAU),
                 };
                 local.reset(sink.is_first_only());
+                if sink.is_prefix() {
+                    local.reset_prefix();
+                }
                 if p1 - p0 <= TAU {
                     // what other oracles found for this motion (a gathered sweep): windows it
                     // covers are skipped (the answer repeats every turn, so only within one)
@@ -733,6 +736,22 @@ impl CollisionOracle for Polyhedra {
             // not a configuration of this space: nothing sensible to place, report collision
             Err(_) => true,
         }
+    }
+
+    fn first_collision(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        with_scratch(|s| {
+            s.hits.reset_prefix();
+            self.sweep(motion, s, counts)?;
+            Ok(s.hits
+                .as_slice()
+                .iter()
+                .find_map(|iv| iv.meet(&motion.range))
+                .map(|iv| iv.lo))
+        })
     }
 
     fn motion_is_free(
