@@ -75,11 +75,12 @@
     };
     const text = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
     row(text(l.space || '') + (l.source ? ' · ' + text(l.source) : ''));
-    row('<span class="swatch" style="background:#0967d2"></span>shortened path, length ' + fmt(l.length, 3));
-    if (typeof l.raw_length === 'number') {
+    const raw = typeof l.raw_length === 'number';
+    row('<span class="swatch" style="background:#0967d2"></span>' + (raw ? 'shortened path' : 'path') + ', length ' + fmt(l.length, 3));
+    if (raw) {
       row('<span class="swatch" style="background:#e12d39"></span>raw path, length ' + fmt(l.raw_length, 3));
     }
-    row('<span class="swatch" style="background:#3ebd93"></span>robot · oracle calls ' + (l.calls ?? '–'));
+    row('<span class="swatch" style="background:#3ebd93"></span>robot' + (typeof l.calls === 'number' ? ' · oracle calls ' + l.calls : ''));
   }
 
   function frame(root) {

@@ -5,13 +5,16 @@ use super::local_args::LocalArgs;
 use super::query::Shortening;
 use anyhow::Context;
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::export::{Legend, Plan};
 use viaroad::local::{path_length, shorten, LocalSpec};
 use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
+use viaroad::robot::arm::GroupChoice;
+use viaroad::robot::{Arm, ArmChecker, ArmOptions};
+use viaroad::scene::moveit::{load_motion_plan_request, load_planning_scene};
 use viaroad::scene::{ompl_cfg, Scene};
-use viaroad::space::Group;
+use viaroad::space::{Group, Space};
 
 /// What to draw and how to find the path: shared by `export` and `view`.
 #[derive(Args)]
@@ -44,6 +47,121 @@ pub struct PlanArgs {
     pub seed: u64,
     #[command(flatten)]
     pub local: LocalArgs,
+    /// A MoveIt MotionPlanRequest: SCENE is then a MoveIt PlanningScene (YAML) and the robot
+    /// the arm of `--urdf` (and `--srdf`). The arm follows `--path` (joint vectors of the
+    /// request's group, one per line, as OMPL writes them) or, without it, the straight joint
+    /// motion from the request's start to its goal; either is checked by the independent arm
+    /// checker and drawn even where it collides (the legend says so).
+    #[arg(long, requires = "urdf", conflicts_with = "roadmap")]
+    pub request: Option<PathBuf>,
+    /// The arm's URDF (with `--request`).
+    #[arg(long, requires = "request")]
+    pub urdf: Option<PathBuf>,
+    /// The arm's SRDF (with `--request`): planning groups, self-collision exemptions.
+    #[arg(long, requires = "request")]
+    pub srdf: Option<PathBuf>,
+}
+
+/// What `export` writes and `view` embeds.
+pub struct Exported {
+    /// The scene's name.
+    pub name: String,
+    /// The glTF binary.
+    pub glb: Vec<u8>,
+    /// One line on what it shows.
+    pub summary: String,
+}
+
+/// Plans (or reads) the path and builds the `.glb`: a rigid-body scene, or an arm in a MoveIt
+/// scene with `--request`.
+pub fn export(a: &PlanArgs) -> anyhow::Result<Exported> {
+    match (&a.request, &a.urdf) {
+        (Some(request), Some(urdf)) => export_arm(a, request, urdf),
+        _ => {
+            let p = plan(a)?;
+            let (glb, summary) = glb(&p)?;
+            Ok(Exported {
+                name: p.scene.name.clone(),
+                glb,
+                summary,
+            })
+        }
+    }
+}
+
+/// The arm of `--urdf` in the MoveIt scene, following `--path` or the request's start → goal.
+fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Exported> {
+    let scene = load_planning_scene(&a.scene)?;
+    let req = load_motion_plan_request(request)?;
+    let mut arm = Arm::load(
+        urdf,
+        a.srdf.as_deref(),
+        &ArmOptions {
+            group: GroupChoice::Srdf(req.group.clone()),
+        },
+    )?;
+    scene.apply_to(&mut arm)?;
+    let (start, goal) = req.start_goal(&mut arm)?;
+    let (path, source) = match &a.path {
+        Some(file) => {
+            let space = Space::euclidean(arm.group.lower.clone(), arm.group.upper.clone())?;
+            let path = ompl_cfg::read_states(file, &space)?;
+            (path, format!("path file {}", file.display()))
+        }
+        None => (vec![start, goal], "start → goal".to_string()),
+    };
+    let checker = ArmChecker::new(&arm, &scene.objects)?;
+    // the checker's own sampling step in joint space (radians): about 0.6° per joint
+    let report = checker.check_path(&path, 0.01)?;
+    let verdict = match &report.first_invalid {
+        None => "free".to_string(),
+        Some((seg, t, c)) => {
+            let what: Vec<String> = c.iter().map(|c| format!("{}–{}", c.a, c.b)).collect();
+            format!(
+                "COLLIDES in segment {} at t = {t:.3} {}",
+                seg + 1,
+                what.join(", ")
+            )
+        }
+    };
+    let name = if scene.name.is_empty() {
+        a.scene
+            .file_stem()
+            .map_or_else(|| "arm".into(), |s| s.to_string_lossy().into_owned())
+    } else {
+        scene.name.clone()
+    };
+    let length: f64 = path
+        .windows(2)
+        .map(|w| {
+            w[0].iter()
+                .zip(&w[1])
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .sum();
+    let legend = Legend {
+        scene: name.clone(),
+        space: format!("arm, {} joints ({})", arm.group.dof(), arm.group.name),
+        source: format!("{source}; arm checker: {verdict}"),
+        raw_length: None,
+        length: Some(length),
+        calls: None,
+    };
+    let g = viaroad::export::arm::arm_gltf(&arm, &scene.objects, &path, &legend)?;
+    if report.first_invalid.is_some() {
+        eprintln!("warning: the drawn path collides ({verdict})");
+    }
+    Ok(Exported {
+        summary: format!(
+            "{name}: {} corners, joint-space length {length:.4}; {}",
+            path.len(),
+            legend.source
+        ),
+        name,
+        glb: g.to_glb(),
+    })
 }
 
 /// A scene with the plan to draw, the roadmap that found it and the legend.
@@ -208,10 +326,9 @@ pub fn glb(p: &Planned) -> anyhow::Result<(Vec<u8>, String)> {
 pub fn run(a: ExportArgs) -> anyhow::Result<()> {
     // refused before the planning, not after it
     viaroad::safe_file::resolve_target(&a.output)?;
-    let planned = plan(&a.plan)?;
-    let (bytes, summary) = glb(&planned)?;
-    super::output::save(&a.output, &bytes)?;
-    eprintln!("{summary}");
-    eprintln!("wrote {} ({} bytes)", a.output.display(), bytes.len());
+    let e = export(&a.plan)?;
+    super::output::save(&a.output, &e.glb)?;
+    eprintln!("{}", e.summary);
+    eprintln!("wrote {} ({} bytes)", a.output.display(), e.glb.len());
     Ok(())
 }

@@ -1,6 +1,6 @@
 //! `viaroad view`: the glTF of `export` in one self-contained HTML page (issue 13).
 
-use super::export::{glb, plan, PlanArgs};
+use super::export::{export, PlanArgs};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -17,11 +17,10 @@ pub struct ViewArgs {
 /// Runs `view`.
 pub fn run(a: ViewArgs) -> anyhow::Result<()> {
     viaroad::safe_file::resolve_target(&a.output)?;
-    let planned = plan(&a.plan)?;
-    let (bytes, summary) = glb(&planned)?;
-    let page = viaroad::export::html::page(&planned.scene.name, &bytes);
+    let e = export(&a.plan)?;
+    let page = viaroad::export::html::page(&e.name, &e.glb);
     super::output::save(&a.output, page.as_bytes())?;
-    eprintln!("{summary}");
+    eprintln!("{}", e.summary);
     eprintln!("wrote {} ({} bytes)", a.output.display(), page.len());
     Ok(())
 }
