@@ -89,26 +89,28 @@
     const size = box.getSize(new T.Vector3()).length() || 1;
     camera.near = size / 1000;
     camera.far = size * 20;
-    camera.position.copy(centre).add(new T.Vector3(0.6, 0.7, 0.9).multiplyScalar(size * 0.85));
+    camera.position.copy(centre).add(new T.Vector3(0.45, 1.0, 0.75).multiplyScalar(size * 0.8));
     camera.updateProjectionMatrix();
     controls.target.copy(centre);
     controls.update();
   }
 
-  // draws only the objects under a node named in `names` (all with null)
-  api.only = function (names) {
+  // draws the objects under a node named in `names` (all with null), or all but them
+  function select(names, keep) {
     scene.traverse((o) => {
       if (!(o.isMesh || o.isLine || o.isPoints)) return;
       if (!names) {
         o.visible = true;
         return;
       }
-      let v = false;
-      for (let p = o; p; p = p.parent) if (names.includes(p.name)) v = true;
-      o.visible = v;
+      let under = false;
+      for (let p = o; p; p = p.parent) if (names.includes(p.name)) under = true;
+      o.visible = under === keep;
     });
     render();
-  };
+  }
+  api.only = (names) => select(names, true);
+  api.hide = (names) => select(names, false);
   api.setTime = function (f) {
     setPlaying(false);
     show(f * duration);

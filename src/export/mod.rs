@@ -8,10 +8,9 @@
 //! | [`arm`] | a robot arm's links animated by forward kinematics |
 //! | [`html`] | the viewer page: three.js (vendored, pinned) and the `.glb`, both inline |
 //!
-//! The glTF frame is Y-up. OMPL.app's 3D problems already are (their `.dae` files are
-//! converted from SketchUp's Z-up by assimp, README of the OMPL scenes), so they are written
-//! as they are; every other scene (viaroad's TOML, planar problems, MoveIt) is Z-up and sits
-//! under a root node turned by −90° about x. The robot's node is placed at the reference point
+//! The glTF frame is Y-up. Z-up scenes (viaroad's TOML, planar problems, MoveIt, and those
+//! of OMPL.app's 3D problems that stand on z = 0, see `is_z_up`) sit under a root node turned
+//! by −90° about x; the others are written as they are. The robot's node is placed at the reference point
 //! with the state's quaternion, which glTF and OMPL both order `[x, y, z, w]`.
 
 pub mod animation;
@@ -244,14 +243,21 @@ pub(crate) fn world_node(g: &mut Gltf, z_up: bool) -> usize {
     g.node(names::WORLD, None, trs, None)
 }
 
-/// Whether the scene's coordinates are Z-up (everything but OMPL.app's 3D problems).
+/// Whether the scene's coordinates are Z-up. viaroad's own scenes and planar problems are;
+/// OMPL.app's 3D problems state no up axis (assimp turns SketchUp's Z-up into Y-up, yet Home
+/// and Apartment stand on z = 0): the one of y and z along which the volume is flatter is
+/// taken as up (z for Home, Apartment, cubicles; y for Easy, Twistycool).
 fn is_z_up(scene: &Scene) -> bool {
     let from_cfg = scene
         .source
         .as_ref()
         .and_then(|p| p.extension())
         .is_some_and(|e| e == "cfg");
-    !(from_cfg && scene.space.kind() == SpaceKind::Se3)
+    if !(from_cfg && scene.space.kind() == SpaceKind::Se3) {
+        return true;
+    }
+    let (lo, hi) = (scene.space.lower(), scene.space.upper());
+    hi[2] - lo[2] < hi[1] - lo[1]
 }
 
 /// The box `lower..upper` (z from `z` where the space is planar) as 12 line segments.
@@ -322,7 +328,10 @@ pub fn scene_gltf(
 
     let mut g = Gltf::new();
     let world = world_node(&mut g, is_z_up(scene));
-    let m_obstacle = g.material("obstacle", colour::linear(colour::OBSTACLE, 1.0), false);
+    // in 3D the robot passes behind walls and into rooms: translucent obstacles keep it in
+    // sight; planar obstacles are low prisms seen from above, opaque
+    let opacity = if planar { 1.0 } else { 0.55 };
+    let m_obstacle = g.material("obstacle", colour::linear(colour::OBSTACLE, opacity), false);
     let m_robot = g.material("robot", colour::linear(colour::ROBOT, 1.0), false);
 
     let mut env = Soup::default();

@@ -45,18 +45,17 @@ function count(m) {
   return n;
 }
 
-// share of the mask's pixels where the full render shows the robot-only render's colour
-function seen(full, alone, m) {
-  let same = 0;
-  let all = 0;
+// pixels of the mask where the robot changes the full render (the render without it differs):
+// the robot is drawn there, in front of everything or seen through a translucent wall
+function drawn(full, without, m) {
+  let n = 0;
   for (let i = 0; i < m.length; i++) {
     if (!m[i]) continue;
-    all++;
     const o = 4 * i;
-    const d = Math.abs(full.rgba[o] - alone.rgba[o]) + Math.abs(full.rgba[o + 1] - alone.rgba[o + 1]) + Math.abs(full.rgba[o + 2] - alone.rgba[o + 2]);
-    if (d <= 12) same++;
+    const d = Math.abs(full.rgba[o] - without.rgba[o]) + Math.abs(full.rgba[o + 1] - without.rgba[o + 1]) + Math.abs(full.rgba[o + 2] - without.rgba[o + 2]);
+    if (d > 12) n++;
   }
-  return all ? same / all : 0;
+  return n;
 }
 
 // how many pixels of mask a are not in mask b
@@ -102,8 +101,12 @@ async function main() {
     await page.waitForFunction(() => window.viaroad && (window.viaroad.ready || window.viaroad.error), null, { timeout: 120000 });
     const state = await page.evaluate(() => ({ ready: window.viaroad.ready, error: window.viaroad.error, legend: document.getElementById('legend').innerText }));
     if (!state.ready) throw new Error('the page did not load its model: ' + state.error);
-    const at = async (t, only) => {
-      await page.evaluate(([t, only]) => { window.viaroad.only(only); window.viaroad.setTime(t); }, [t, only]);
+    const at = async (t, only, hide) => {
+      await page.evaluate(([t, only, hide]) => {
+        if (hide) window.viaroad.hide(hide);
+        else window.viaroad.only(only);
+        window.viaroad.setTime(t);
+      }, [t, only, hide]);
       return decode(await page.evaluate(() => window.viaroad.pixels()));
     };
     const full0 = await at(0, null);
@@ -112,6 +115,8 @@ async function main() {
     await page.screenshot({ path: path.join(out_dir, 't1.png') });
     const robot0 = await at(0, ['robot']);
     const robot1 = await at(1, ['robot']);
+    const without0 = await at(0, null, ['robot']);
+    const without1 = await at(1, null, ['robot']);
     // the background of the robot-only render: the corner pixel (the robot never fills it)
     const bg = [robot0.rgba[0], robot0.rgba[1], robot0.rgba[2]];
     const m0 = mask(robot0, bg);
@@ -123,8 +128,8 @@ async function main() {
       legend: state.legend,
       robot_pixels_t0: count(m0),
       robot_pixels_t1: count(m1),
-      robot_seen_t0: seen(full0, robot0, m0),
-      robot_seen_t1: seen(full1, robot1, m1),
+      robot_drawn_t0: drawn(full0, without0, m0),
+      robot_drawn_t1: drawn(full1, without1, m1),
       moved_pixels: outside(m0, m1) + outside(m1, m0),
       changed_where_robot_was: changed(full0, full1, m0),
       console_errors: errors,
