@@ -17,6 +17,16 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+/// Says why a test is skipped; fails it instead where `VIAROAD_REQUIRE_JS` is set (`.ci/run`
+/// installs the tools, so a skip there would hide a broken install).
+fn skip(test: &str, why: &str) {
+    assert!(
+        std::env::var_os("VIAROAD_REQUIRE_JS").is_none(),
+        "{test}: {why}, and VIAROAD_REQUIRE_JS is set"
+    );
+    eprintln!("SKIPPED {test}: {why}");
+}
+
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
@@ -50,7 +60,7 @@ fn check_page(name: &str, args: &[&str]) -> Option<Value> {
     let (chromium, script) = match browser() {
         Ok(b) => b,
         Err(why) => {
-            eprintln!("SKIPPED view_browser {name}: {why}");
+            skip(&format!("view_browser {name}"), &why);
             return None;
         }
     };

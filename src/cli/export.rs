@@ -124,10 +124,14 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
             )
         }
     };
+    // MotionBenchMaker scenes have no name: their family folder and file say which they are
     let name = if scene.name.is_empty() {
-        a.scene
-            .file_stem()
-            .map_or_else(|| "arm".into(), |s| s.to_string_lossy().into_owned())
+        let part = |p: Option<&std::ffi::OsStr>| p.map(|s| s.to_string_lossy().into_owned());
+        let stem = part(a.scene.file_stem()).unwrap_or_else(|| "arm".into());
+        match part(a.scene.parent().and_then(Path::file_name)) {
+            Some(dir) => format!("{dir}/{stem}"),
+            None => stem,
+        }
     } else {
         scene.name.clone()
     };
