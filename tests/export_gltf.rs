@@ -357,9 +357,13 @@ fn panda_table_pick() -> (Arm, viaroad::scene::moveit::PlanningScene, Vec<Vec<f6
 #[test]
 fn arm_links_follow_forward_kinematics_at_every_corner() {
     let (arm, scene, path) = panda_table_pick();
-    let g = export::arm::arm_gltf(&arm, &scene.objects, &path, &Legend::default()).unwrap();
+    let plan = Plan {
+        raw: Vec::new(),
+        shortened: path.clone(),
+    };
+    let g = export::arm::arm_gltf(&arm, &scene.objects, &plan, 0, &Legend::default()).unwrap();
     let glb = Glb::parse(&g.to_glb());
-    let keys = export::arm::joint_keyframes(&path);
+    let keys = export::arm::joint_keyframes(&path, 0);
     for (i, shape) in arm.shapes.iter().enumerate() {
         let name = format!("{} {}", arm.model.urdf.links[shape.link].name, i);
         let node_keys = glb.keys(glb.node(&name));
@@ -421,7 +425,11 @@ fn khronos_validator_finds_no_errors() {
         files.push(f);
     }
     let (arm, scene, path) = panda_table_pick();
-    let g = export::arm::arm_gltf(&arm, &scene.objects, &path, &Legend::default()).unwrap();
+    let plan = Plan {
+        raw: path,
+        shortened: Vec::new(),
+    };
+    let g = export::arm::arm_gltf(&arm, &scene.objects, &plan, 0, &Legend::default()).unwrap();
     let f = dir.join("panda.glb");
     std::fs::write(&f, g.to_glb()).unwrap();
     files.push(f);
@@ -444,6 +452,23 @@ fn khronos_validator_finds_no_errors() {
         "OMPL 3D is Y-up"
     );
     glb.node("roadmap edges");
+    files.push(f);
+    // an arm scene planned in its joint space: a node per collision element, both hand traces
+    let f = dir.join("panda-toml.glb");
+    let o = viaroad(&[
+        "export",
+        "scenes/arms/panda-table_pick-1.toml",
+        "-o",
+        f.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", common::cli::stderr(&o));
+    let glb = Glb::parse(&std::fs::read(&f).unwrap());
+    let links = glb.doc["nodes"][glb.node("robot")]["children"]
+        .as_array()
+        .unwrap()
+        .len();
+    assert_eq!(links, panda_table_pick().0.shapes.len());
+    glb.node("shortened path");
     files.push(f);
     let out = Command::new("node")
         .arg(&script)

@@ -153,7 +153,11 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
         length: Some(length),
         calls: None,
     };
-    let g = viaroad::export::arm::arm_gltf(&arm, &scene.objects, &path, &legend)?;
+    let plan = Plan {
+        raw: path.clone(),
+        shortened: Vec::new(),
+    };
+    let g = viaroad::export::arm::arm_gltf(&arm, &scene.objects, &plan, 0, &legend)?;
     if report.first_invalid.is_some() {
         eprintln!("warning: the drawn path collides ({verdict})");
     }

@@ -109,6 +109,8 @@ pub fn pose(space: &Space, q: &[f64]) -> ([f64; 3], [f64; 4]) {
             let h = q[2] / 2.0;
             ([q[0], q[1], 0.0], [0.0, 0.0, h.sin(), h.cos()])
         }
+        // an arm's joints place no single body: its links are placed by forward kinematics
+        SpaceKind::Joints { .. } => ([0.0; 3], [0.0, 0.0, 0.0, 1.0]),
         SpaceKind::Se3 => {
             let r =
                 UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[6], q[3], q[4], q[5]));

@@ -308,12 +308,14 @@ pub fn scene_gltf(
 ) -> Result<Gltf, ExportError> {
     let space = &scene.space;
     let kind = space.kind();
-    if let SpaceKind::Euclidean(n) = kind {
-        if !(2..=3).contains(&n) {
-            return Err(ExportError::Unsupported(kind.to_string()));
-        }
-    }
     check_plan(space, plan)?;
+    match (&scene.robot, kind) {
+        (Robot::Arm(a), SpaceKind::Joints { continuous, .. }) => {
+            return arm::arm_gltf(&a.arm, &a.objects, plan, continuous, legend);
+        }
+        (_, SpaceKind::Euclidean(2..=3) | SpaceKind::Se2 | SpaceKind::Se3) => {}
+        _ => return Err(ExportError::Unsupported(kind.to_string())),
+    }
     let planar = space.position_dim() == 2;
     let (lo, hi) = (space.lower(), space.upper());
     let span = (0..space.position_dim())
@@ -381,6 +383,7 @@ pub fn scene_gltf(
             }
         }
         Robot::Mesh(m) => body.mesh(m, |v| v),
+        Robot::Arm(_) => unreachable!("arms are drawn by arm::arm_gltf"),
     }
     let path = plan.animated();
     let start = path.first().map_or(Trs::IDENTITY, |q| {
