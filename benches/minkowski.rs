@@ -104,7 +104,9 @@ fn bench(c: &mut Criterion) {
     }
     group.finish();
     let mut build = c.benchmark_group("build");
-    build.sample_size(10).measurement_time(Duration::from_secs(2));
+    build
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(2));
     for path in SCENES {
         let Some((robot, obstacles)) = Scene::load(Path::new(path)).ok().as_ref().and_then(parts)
         else {

@@ -27,6 +27,7 @@
 pub mod bench;
 pub mod deadline;
 pub mod geometry;
+pub mod global;
 pub mod interval;
 pub mod limits;
 pub mod local;

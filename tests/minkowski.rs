@@ -18,7 +18,12 @@ use viaroad::space::{Change, Motion};
 const EPS: f64 = 1e-9;
 
 fn polygon(v: &[[f64; 2]]) -> Polygon {
-    Polygon::new(v.iter().map(|p| nalgebra::Point2::new(p[0], p[1])).collect()).unwrap()
+    Polygon::new(
+        v.iter()
+            .map(|p| nalgebra::Point2::new(p[0], p[1]))
+            .collect(),
+    )
+    .unwrap()
 }
 
 /// A random convex polygon: the hull of 3–8 points within `r` of `centre`, at least a

@@ -463,7 +463,10 @@ impl Minkowski {
             }
         };
         let tol = super::polygons::TOLERANCE
-            * (self.scale + far(range.lo).max(far(range.hi)).max(p[0].abs().max(p[1].abs())));
+            * (self.scale
+                + far(range.lo)
+                    .max(far(range.hi))
+                    .max(p[0].abs().max(p[1].abs())));
         let (o, dir) = (nalgebra::Vector2::from(p), nalgebra::Vector2::from(d));
         let mut tested = 0u64;
         self.tree.visit(
