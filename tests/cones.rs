@@ -59,3 +59,26 @@ fn explore() {
         }
     }
 }
+
+#[test]
+#[ignore]
+fn dump() {
+    let scene = Scene::load(Path::new("scenes/se2-translate.toml")).unwrap();
+    let fw = Freeways::build(&scene).unwrap();
+    for (i, c) in fw.cones().iter().enumerate() {
+        let [a, b] = c.spine();
+        println!(
+            "{i}: {:?} spine ({:.2},{:.2})-({:.2},{:.2}) r {:.2}..{:.2}",
+            c.edges,
+            a[0],
+            a[1],
+            b[0],
+            b[1],
+            c.radius(c.lo),
+            c.radius(c.hi)
+        );
+    }
+    for c in fw.crossings() {
+        println!("{c:?}");
+    }
+}

@@ -4,6 +4,7 @@ mod bench;
 mod build;
 mod config_arg;
 mod demo;
+mod global;
 mod info;
 mod interrupt;
 mod learn_args;

@@ -40,6 +40,7 @@
 pub mod cone;
 pub mod radius;
 mod search;
+pub mod seeds;
 
 use crate::oracle::{CollisionOracle, OracleError};
 use crate::scene::{Obstacle, Robot, Scene};
