@@ -195,7 +195,8 @@ pub fn candidate(edges: &[Edge], i: usize, j: usize) -> Option<(Cone, [(f64, f64
 /// clipped against the cone (shrunk by `margin` so that the defining edges and their
 /// neighbours at the shared vertices do not count) and the clipped part projected on the
 /// spine; what is left of `[lo, hi]` are the slices, and those that include part of both
-/// defining edges are kept.
+/// defining edges (and are longer than `100 × margin`: slivers between two cuts carry no
+/// path) are kept.
 pub fn prune(
     cone: &Cone,
     own: [(f64, f64); 2],
@@ -215,8 +216,11 @@ pub fn prune(
         -perp[1] - cone.slope * rho * cone.dir[1],
     ];
     let planes = [
-        (cone.dir, dot(cone.dir, x0) + cone.hi),
-        ([-cone.dir[0], -cone.dir[1]], -dot(cone.dir, x0) - cone.lo),
+        (cone.dir, dot(cone.dir, x0) + cone.hi - margin),
+        (
+            [-cone.dir[0], -cone.dir[1]],
+            -dot(cone.dir, x0) - cone.lo - margin,
+        ),
         (g3, dot(g3, x0) + cone.r0 * rho - margin),
         (g4, dot(g4, x0) + cone.r0 * rho - margin),
     ];
@@ -286,7 +290,7 @@ pub fn prune(
     let meets = |s: (f64, f64), o: (f64, f64)| s.0 < o.1 && o.0 < s.1;
     slices
         .into_iter()
-        .filter(|&s| s.1 - s.0 > margin && meets(s, own[0]) && meets(s, own[1]))
+        .filter(|&s| s.1 - s.0 > 100.0 * margin && meets(s, own[0]) && meets(s, own[1]))
         .map(|(lo, hi)| Cone { lo, hi, ..*cone })
         .collect()
 }

@@ -268,10 +268,23 @@ impl Freeways {
                 cones.extend(
                     cone::prune(&cone, own, &edges, &boxes, margin)
                         .into_iter()
-                        .filter(|c| c.radius(c.lo).max(c.radius(c.hi)) > narrowest + margin),
+                        .filter(|c| c.radius(c.lo).max(c.radius(c.hi)) > narrowest + margin)
+                        // no edge crosses a slice, so an obstacle that holds one of its points
+                        // holds all of it (a cone between two faces of one block)
+                        .filter(|c| {
+                            let m = c.point((c.lo + c.hi) / 2.0);
+                            !polygons.iter().any(|v| contains(v, m))
+                        }),
                 );
             }
         }
+        // coinciding edges (a wall of the bounds on an obstacle's face) give the same cone twice
+        let mut seen: HashSet<[u64; 5]> = HashSet::new();
+        cones.retain(|c| {
+            let [a, b] = c.spine();
+            let r = |v: f64| (v / margin).round().to_bits();
+            seen.insert([r(a[0]), r(a[1]), r(b[0]), r(b[1]), r(c.radius(c.lo))])
+        });
         let crossings = spine_crossings(&cones);
         Ok(Freeways {
             edges,
@@ -355,6 +368,25 @@ impl Freeways {
         }
         search::solve(self, scene, oracle, start, goal)
     }
+}
+
+/// Whether `p` lies in the closed polygon `v` (crossing number; a point on an edge counts).
+fn contains(v: &[P], p: P) -> bool {
+    let n = v.len();
+    if n < 3 {
+        return false;
+    }
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) {
+            let x = a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+            if p[0] <= x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
 }
 
 /// Where the spines of two cones cross (`O(c²)` over the cones, boxes first).
