@@ -75,6 +75,14 @@ pub struct SolveArgs {
     /// (`--roadmap`; 0: random bounces only). Default: the learner's.
     #[arg(long, value_name = "SHARE")]
     pub directed_share: Option<f64>,
+    /// Answer with a global method instead: `cones`, Brooks's freeways (generalized cones
+    /// searched with A*; planar scenes; incomplete by design, see the README).
+    #[arg(long, value_name = "METHOD", conflicts_with = "roadmap")]
+    pub global: Option<String>,
+    /// Collision oracle: `minkowski` answers through the C-obstacles of a robot that keeps
+    /// each query's orientation and only translates (se2 scenes whose queries do not turn).
+    #[arg(long, value_name = "ORACLE", conflicts_with_all = ["roadmap", "global"])]
+    pub oracle: Option<String>,
 }
 
 /// One solved query, as printed.
@@ -122,6 +130,17 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     }
     if a.tree {
         return run_tree(a);
+    }
+    if let Some(g) = &a.global {
+        return super::global::run_global(&a, g);
+    }
+    match a.oracle.as_deref() {
+        None | Some("exact") => {}
+        Some("minkowski") => {
+            let spec = a.local.spec_or(LocalSpec::default())?;
+            return super::global::run_minkowski(&a, &spec);
+        }
+        Some(o) => anyhow::bail!("--oracle {o}: expected `exact` (the default) or `minkowski`"),
     }
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::default())?;

@@ -11,11 +11,13 @@
 //! - [`discs::Discs`]: a point among discs (balls in R^n), analytic (CHS Appendix A.1);
 //! - [`polygons`]: a polygonal robot among polygons in SE(2);
 //! - [`polyhedra`]: a polyhedral robot among polyhedra in SE(3) (CHS Chapter 2);
+//! - [`minkowski::Minkowski`]: a translating polygon through its C-obstacles (LaValle 3.3.2);
 //! - [`sampled::Sampled`]: checks states at a resolution like OMPL's `DiscreteMotionValidator`
 //!   — the baseline the benchmarks compare against, never the default;
 //! - [`Bounded`]: adds "outside the bounds is obstacle" to any of them.
 
 pub mod discs;
+pub mod minkowski;
 pub mod polygons;
 pub mod polyhedra;
 pub mod sampled;
