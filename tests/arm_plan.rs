@@ -200,3 +200,46 @@ fn bad_arm_scenes_are_refused() {
         assert!(r.is_err(), "{why}: accepted");
     }
 }
+
+#[test]
+fn yes_no_and_first_hit_agree_with_the_intervals() {
+    let scene = Scene::load(&arms("panda-bookshelf_small-1.toml")).unwrap();
+    let oracle = scene.oracle();
+    let c = checker(&scene);
+    let g = &c.arm().group;
+    let groups = scene.space.groups(false);
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let (mut free, mut blocked) = (0, 0);
+    while free + blocked < 24 {
+        let q: Vec<f64> = (0..g.dof())
+            .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+            .collect();
+        if !c.is_valid(&q) {
+            continue;
+        }
+        let j = rng.random_range(0..g.dof());
+        let mut z = q.clone();
+        z[j] = rng.random_range(g.lower[j]..=g.upper[j]);
+        let mut m = scene.space.group_motion(&q, &z, &groups[j]);
+        // every other one a borderline: the unbounded line along the joint, clipped to its limits
+        if (free + blocked) % 2 == 1 {
+            m = scene.space.line_through(&q, &groups[j], &[1.0]);
+        }
+        let mut counts = viaroad::oracle::CallCounts::default();
+        let all = oracle.intervals(&m, &mut counts).unwrap();
+        let yes = oracle.motion_is_free(&m, &mut counts).unwrap();
+        let first = oracle.first_collision(&m, &mut counts).unwrap();
+        if m.range.is_bounded() {
+            assert_eq!(yes, all.is_empty(), "{m:?}");
+        }
+        match (first, all.first()) {
+            (None, None) => free += 1,
+            (Some(t), Some(iv)) => {
+                assert!(t == iv.lo || (t - iv.lo).abs() < 1e-9, "{t} vs {iv:?}");
+                blocked += 1;
+            }
+            other => panic!("first collision {other:?} for {m:?}"),
+        }
+    }
+    assert!(free > 0 && blocked > 0, "{free} free, {blocked} blocked");
+}

@@ -210,11 +210,9 @@ impl ArmCollision {
         OracleError::Unsupported(e.to_string())
     }
 
-    fn answer(
-        &self,
-        motion: &Motion,
-        counts: &mut CallCounts,
-    ) -> Result<IntervalList, OracleError> {
+    /// What a motion asks of the arm: a static check, or one joint moving from a
+    /// configuration by an amount over the parameter range.
+    fn resolve(motion: &Motion) -> Result<Move, OracleError> {
         let Change::Linear(delta) = &motion.change else {
             return Err(OracleError::Unsupported(
                 "an arm moves its joints, not a rigid-body rotation".into(),
@@ -228,16 +226,8 @@ impl ArmCollision {
             ));
         }
         let range = motion.range;
-        let static_answer = |q: &[f64], counts: &mut CallCounts| {
-            let hit = self.oracle.collides(q, counts).map_err(Self::unsupported)?;
-            Ok(if hit {
-                IntervalList::single(range)
-            } else {
-                IntervalList::new()
-            })
-        };
         let Some((j, &d)) = first else {
-            return static_answer(&motion.origin, counts);
+            return Ok(Move::Static(motion.origin.clone()));
         };
         if !(range.lo.is_finite() && range.hi.is_finite()) {
             return Err(OracleError::Unsupported(
@@ -249,21 +239,62 @@ impl ArmCollision {
         q0[j] += range.lo * d;
         let span = range.hi - range.lo;
         if span == 0.0 {
-            return static_answer(&q0, counts);
+            return Ok(Move::Static(q0));
         }
-        let hits = self
-            .oracle
-            .joint_move(&q0, j, span * d, counts)
-            .map_err(Self::unsupported)?;
-        let mapped: Vec<Interval> = hits
-            .iter()
-            .map(|iv| Interval {
-                lo: range.lo + iv.lo * span,
-                hi: range.lo + iv.hi * span,
-            })
-            .collect();
-        Ok(IntervalList::from_unsorted(mapped).into_clipped(range))
+        Ok(Move::Joint {
+            q0,
+            joint: j,
+            amount: span * d,
+        })
     }
+
+    fn answer(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        let range = motion.range;
+        match Self::resolve(motion)? {
+            Move::Static(q) => {
+                let hit = self
+                    .oracle
+                    .collides(&q, counts)
+                    .map_err(Self::unsupported)?;
+                Ok(if hit {
+                    IntervalList::single(range)
+                } else {
+                    IntervalList::new()
+                })
+            }
+            Move::Joint { q0, joint, amount } => {
+                let hits = self
+                    .oracle
+                    .joint_move(&q0, joint, amount, counts)
+                    .map_err(Self::unsupported)?;
+                let span = range.hi - range.lo;
+                let mapped: Vec<Interval> = hits
+                    .iter()
+                    .map(|iv| Interval {
+                        lo: range.lo + iv.lo * span,
+                        hi: range.lo + iv.hi * span,
+                    })
+                    .collect();
+                Ok(IntervalList::from_unsorted(mapped).into_clipped(range))
+            }
+        }
+    }
+}
+
+/// A motion as the arm sees it.
+enum Move {
+    /// Nothing moves: a static check of this configuration.
+    Static(Vec<f64>),
+    /// Group joint `joint` moves by `amount` from `q0` over the whole parameter range.
+    Joint {
+        q0: Vec<f64>,
+        joint: usize,
+        amount: f64,
+    },
 }
 
 impl CollisionOracle for ArmCollision {
@@ -276,6 +307,58 @@ impl CollisionOracle for ArmCollision {
         // (CountedOracle) counts the call
         let mut own = CallCounts::default();
         let r = self.answer(motion, &mut own);
+        counts.pairs_tested += own.pairs_tested;
+        r
+    }
+
+    /// The yes/no question stops at the first collision any link finds
+    /// ([`ArmOracle::joint_move_free`]).
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        let mut own = CallCounts::default();
+        let r = match Self::resolve(motion) {
+            Ok(Move::Joint { q0, joint, amount }) => self
+                .oracle
+                .joint_move_free(&q0, joint, amount, &mut own)
+                .map_err(Self::unsupported),
+            Ok(Move::Static(q)) => self
+                .oracle
+                .collides(&q, &mut own)
+                .map(|hit| !hit)
+                .map_err(Self::unsupported),
+            Err(e) => Err(e),
+        };
+        counts.pairs_tested += own.pairs_tested;
+        r
+    }
+
+    /// Only the window before the earliest piece found is searched further
+    /// ([`ArmOracle::joint_move_first_hit`]).
+    fn first_collision(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        let mut own = CallCounts::default();
+        let range = motion.range;
+        let r = match Self::resolve(motion) {
+            Ok(Move::Joint { q0, joint, amount }) => self
+                .oracle
+                .joint_move_first_hit(&q0, joint, amount, &mut own)
+                .map(|t| {
+                    t.map(|t| (range.lo + t * (range.hi - range.lo)).clamp(range.lo, range.hi))
+                })
+                .map_err(Self::unsupported),
+            Ok(Move::Static(q)) => self
+                .oracle
+                .collides(&q, &mut own)
+                .map(|hit| hit.then_some(range.lo))
+                .map_err(Self::unsupported),
+            Err(e) => Err(e),
+        };
         counts.pairs_tested += own.pairs_tested;
         r
     }
