@@ -4,7 +4,7 @@
 //! Between two corners the joints move linearly (an arm path's corners differ in one joint
 //! at a time where the planner made them, CHS §1.5: the distal links then turn rigidly about
 //! a fixed axis). Each move is sampled so that no joint turns more than
-//! [`MAX_TURN_PER_KEY`](super::animation::MAX_TURN_PER_KEY) between keys; the links' poses at
+//! [`MAX_TURN_PER_KEY`] between keys; the links' poses at
 //! the keys come from [`Arm::link_poses`], so slerp between them follows the arcs the links
 //! sweep.
 
