@@ -29,6 +29,7 @@ pub mod bench;
 pub mod deadline;
 pub mod export;
 pub mod geometry;
+pub mod global;
 pub mod interval;
 pub mod limits;
 pub mod local;

@@ -294,6 +294,45 @@ impl Picture {
     }
 }
 
+/// Brooks's freeways (issue 14), kept apart from the local method's layers.
+impl Picture {
+    /// Draws generalized cones: each as a faint trapezoid about its spine, the spine as a line
+    /// (`viaroad render --freeways`).
+    pub fn freeways(&mut self, fw: &crate::global::cones::Freeways) -> &mut Self {
+        const CONE: &str = "#f9703e";
+        const SPINE: &str = "#cb4e35";
+        for c in fw.cones() {
+            let perp = [-c.dir[1], c.dir[0]];
+            let side = |s: f64, k: f64| {
+                let p = c.point(s);
+                let r = c.radius(s) * k;
+                Point2::new(p[0] + perp[0] * r, p[1] + perp[1] * r)
+            };
+            let pts = [
+                side(c.lo, 1.0),
+                side(c.hi, 1.0),
+                side(c.hi, -1.0),
+                side(c.lo, -1.0),
+            ];
+            let pts = self.polygon_points(&pts);
+            let _ = writeln!(
+                self.body,
+                r#"<polygon points="{pts}" fill="{CONE}" fill-opacity="0.06" stroke="none"/>"#
+            );
+            let [a, b] = c.spine();
+            let _ = writeln!(
+                self.body,
+                r#"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" stroke="{SPINE}" stroke-width="0.8"/>"#,
+                self.x(a[0]),
+                self.y(a[1]),
+                self.x(b[0]),
+                self.y(b[1]),
+            );
+        }
+        self
+    }
+}
+
 /// Most triangles drawn per footprint of an SE(3) robot: beyond it (the alpha puzzle's tube)
 /// the footprint is drawn as the convex hull of the projected vertices, so that the SVG stays
 /// small.

@@ -173,10 +173,16 @@ fn the_arm_checker_refuses_what_the_exact_oracle_calls_colliding() {
         // checker's exact shapes do not (never among these 200 seeded samples)
         if oracle.is_free(&q, &mut counts) {
             free += 1;
-            assert!(checker.check_path(&[q.clone()]).is_ok(), "{q:?}");
+            assert!(
+                checker.check_path(std::slice::from_ref(&q)).is_ok(),
+                "{q:?}"
+            );
         } else {
             colliding += 1;
-            assert!(checker.check_path(&[q.clone()]).is_err(), "{q:?}");
+            assert!(
+                checker.check_path(std::slice::from_ref(&q)).is_err(),
+                "{q:?}"
+            );
         }
     }
     assert!(

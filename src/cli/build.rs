@@ -22,6 +22,10 @@ pub struct BuildArgs {
     pub learn: LearnArgs,
     #[command(flatten)]
     pub local: LocalArgs,
+    /// Start the roadmap from a global method's output: `cones`, the spine points of
+    /// Brooks's freeways with their legal orientations (planar scenes; issue 14).
+    #[arg(long, value_name = "METHOD")]
+    pub seed_from: Option<String>,
 }
 
 /// Learns a roadmap of `scene` with a progress bar; `what` names it on the bar.
@@ -100,7 +104,11 @@ pub fn run(a: BuildArgs) -> anyhow::Result<()> {
     }
     // a target that cannot be saved to is refused before the learning, not after it
     viaroad::safe_file::resolve_target(&a.output)?;
-    let learnt = learn(&scene, &a.local, &a.learn, 1000)?;
+    let learnt = match a.seed_from.as_deref() {
+        None => learn(&scene, &a.local, &a.learn, 1000)?,
+        Some("cones") => super::global::learn_seeded(&scene, &a.local, &a.learn, 1000)?,
+        Some(m) => anyhow::bail!("--seed-from {m}: the seeding methods are `cones`"),
+    };
     super::output::create_parent(&a.output)?;
     learnt.roadmap.save(&a.output)?;
     report(&learnt, &a.output);

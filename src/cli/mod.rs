@@ -5,6 +5,7 @@ mod build;
 mod config_arg;
 mod demo;
 mod export;
+mod global;
 mod info;
 mod interrupt;
 mod learn_args;

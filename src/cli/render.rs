@@ -25,6 +25,10 @@ pub struct RenderArgs {
     pub query: usize,
     #[command(flatten)]
     pub local: LocalArgs,
+    /// Draw Brooks's freeways (generalized cones and their spines) and solve the query along
+    /// them instead of with the local method (issue 14).
+    #[arg(long)]
+    pub freeways: bool,
 }
 
 /// Runs `render`.
@@ -42,7 +46,30 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
     let mut status = None;
     let mut picture = Picture::new(&scene);
     picture.obstacles(&scene);
-    if a.query > 0 {
+    if a.freeways {
+        let fw = viaroad::global::cones::Freeways::build(&scene).context("generalized cones")?;
+        picture.freeways(&fw);
+        if let Some(q) = a.query.checked_sub(1).and_then(|i| scene.queries.get(i)) {
+            let oracle = scene.oracle();
+            let start = scene.check_config(oracle.as_ref(), "start", &q.start)?;
+            let goal = scene.check_config(oracle.as_ref(), "goal", &q.goal)?;
+            match fw.solve(&scene, oracle.as_ref(), &start, &goal)? {
+                viaroad::global::cones::ConeOutcome::Solved(p) => {
+                    picture.path(&scene, &p.path, false);
+                    status = Some(format!(
+                        "query {}: solved along the freeways, length {:.4}",
+                        a.query, p.length
+                    ));
+                }
+                viaroad::global::cones::ConeOutcome::NotFound(why) => {
+                    status = Some(format!(
+                        "query {}: not solved along the freeways: {why}",
+                        a.query
+                    ));
+                }
+            }
+        }
+    } else if a.query > 0 {
         let q = scene.queries.get(a.query - 1).with_context(|| {
             format!(
                 "{} has {} queries, not {}",

@@ -383,21 +383,37 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         }
         arm.set_joint_values(&names, &values).map_err(robot_err)?;
     }
-    let space = joint_space(&arm).map_err(|e| invalid(format!("the planning group: {e}")))?;
+    let name = file
+        .name
+        .unwrap_or_else(|| super::toml_format::default_name(path));
     let robot = ArmRobot::new(arm, objects, urdf, srdf, moveit_scene).map_err(robot_err)?;
-    let mut scene = Scene {
-        name: file
-            .name
-            .unwrap_or_else(|| super::toml_format::default_name(path)),
+    let mut scene = arm_scene(name, robot, queries, path)?;
+    scene.warnings.extend(warnings);
+    super::toml_format::check_queries_on_load(&mut scene)?;
+    Ok(scene)
+}
+
+/// A scene of `robot` with these queries (unchecked: [`Scene::checked_queries`] checks them);
+/// `source` names it in errors. What `bench mbm` builds for each MotionBenchMaker problem.
+pub fn arm_scene(
+    name: String,
+    robot: ArmRobot,
+    queries: Vec<Query>,
+    source: &Path,
+) -> Result<Scene, SceneError> {
+    let space = joint_space(&robot.arm).map_err(|e| SceneError::Invalid {
+        path: source.to_path_buf(),
+        message: format!("the planning group: {e}"),
+    })?;
+    Ok(Scene {
+        name,
         space,
         robot: Robot::Arm(Box::new(robot)),
         obstacles: Vec::new(),
         queries,
-        source: Some(path.to_path_buf()),
-        warnings,
-    };
-    super::toml_format::check_queries_on_load(&mut scene)?;
-    Ok(scene)
+        source: Some(source.to_path_buf()),
+        warnings: Vec::new(),
+    })
 }
 
 /// The joint space of the arm's planning group: its limits as bounds, continuous joints

@@ -281,3 +281,36 @@ impl<'a> Learner<'a> {
         Ok(learnt)
     }
 }
+
+impl Learner<'_> {
+    /// [`learn_within`](Self::learn_within) starting from `base` instead of nothing: its nodes
+    /// and edges are copied with their indices and learning continues until the budget (which
+    /// counts the copied nodes too). For roadmaps seeded by a global method (issue 14: the
+    /// spine points of Brooks's freeways, `build --seed-from cones`).
+    pub fn learn_from(
+        &self,
+        base: &Roadmap,
+        params: &LearnParams,
+        budget: &Budget,
+        seed: u64,
+        deadline: &Deadline,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Result<Learnt, LearnError> {
+        check_budget(params, budget, deadline)?;
+        let seeds = Seeds {
+            base: Some(base),
+            pair: None,
+        };
+        let (learnt, _) = self.grow(
+            params,
+            seeds,
+            &[budget.nodes],
+            budget.time,
+            seed,
+            deadline,
+            progress,
+            &mut |_| ControlFlow::Continue(()),
+        )?;
+        Ok(learnt)
+    }
+}

@@ -1,0 +1,428 @@
+//! Brooks's freeways: free space as overlapping generalized cones, searched with A*
+//! (Brooks 1982, *Solving the find-path problem by good representation of free space*,
+//! `seeds/001_…`).
+//!
+//! 1. **Cones** (§2.1, [`cone`]): every pair of obstacle edges whose free sides face each other
+//!    (`n₁ · n₂ < 0`, each with a vertex on the free side of the other) spans a cone whose
+//!    spine bisects them; the radius is the distance to the edges' lines, linear along the
+//!    spine. Where another obstacle's edges enter the cone, their projection on the spine is
+//!    cut out; the slices that still include part of both defining edges are the freeways.
+//!    The bounds of the space are walls.
+//! 2. **Legal orientations** (§3, [`radius`]): the robot's radius function
+//!    `R(ξ) = max d_i cos(ξ − η_i)` bounds it by a rectangle aligned with the spine; its
+//!    inverse `R⁻¹(r)` turns "the rectangle fits in the cone" into sets of orientations.
+//! 3. **Graph and A*** (§4): nodes are spine intersections with one orientation interval each;
+//!    arcs move along a spine at one orientation legal over the whole stretch, or change cone
+//!    at an intersection where the two intervals meet. Paths are moves along spines at fixed
+//!    orientation with rotations at the nodes, as in the paper's Figs 9–10 (the orientation
+//!    of a stretch is the middle of its legal interval).
+//!
+//! Where this departs from the paper, on purpose:
+//! - Legal orientations along a stretch `[s_a, s_b]` of a spine come from the robot's
+//!   spine-aligned bounding rectangle swept over that stretch: ahead `R(ψ − φ) ≤ hi − s_max`,
+//!   behind `R(ψ + π − φ) ≤ s_min − lo`, sideways `R(ψ ± π/2 − φ) ≤ min r` over
+//!   `[s_min − d, s_max + d]`, `d` the robot's reach. This is the paper's rectangle (§3.2)
+//!   checked per stretch instead of through `V(t)` and its lemma; it is at least as permissive
+//!   and as safe. Radii are shrunk by a small margin, since touching is collision here.
+//! - Start and goal are joined to the freeways by straight moves to the foot of the nearest
+//!   spines (and a rotation there), each checked by the scene's exact oracle: the paper leaves
+//!   this step open.
+//! - A non-convex robot is represented by its convex hull (the paper restricts to convex
+//!   robots). Disc obstacles (R² scenes) are replaced by circumscribed 16-gons.
+//! - The finished path is re-checked by the exact oracle, motion by motion, before it is
+//!   reported (the cone argument makes that check pass; it guards the numerics).
+//!
+//! Limits (the paper's own, §5): paths follow spines only, so in tight spaces — where the
+//! robot must leave the middle of a passage, or where a turn needs more room than a spine
+//! intersection offers — the method finds nothing although a path exists. It is incomplete by
+//! design; README "Brooks's freeways" lists the shipped queries it fails.
+
+pub mod cone;
+pub mod radius;
+mod search;
+pub mod seeds;
+
+use crate::oracle::{CollisionOracle, OracleError};
+use crate::scene::{Obstacle, Robot, Scene};
+use crate::space::{Config, SpaceKind};
+pub use cone::{Cone, Edge};
+pub use radius::{AngleSet, Arc, RadiusFunction};
+use std::collections::HashSet;
+
+/// A point of the plane.
+pub type P = [f64; 2];
+
+/// Sides of the circumscribed polygon that stands in for a disc obstacle.
+pub const DISC_SIDES: usize = 16;
+
+/// What the freeway method cannot do.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConeError {
+    /// The scene is not planar (SE(3), R³ …) or its robot is not a polygon or a point.
+    #[error("generalized cones need a planar scene (se2 or r2): {0}")]
+    Unsupported(String),
+    /// The oracle refused a motion while start or goal were joined or the path re-checked.
+    #[error("oracle: {0}")]
+    Oracle(#[from] OracleError),
+    /// A configuration of the wrong dimension.
+    #[error("configuration of {got} coordinates; the scene has {expected}")]
+    Dimension {
+        /// Coordinates given.
+        got: usize,
+        /// Coordinates expected.
+        expected: usize,
+    },
+}
+
+/// A spine intersection: cone `a` at parameter `sa` meets cone `b` at `sb`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// First cone.
+    pub a: usize,
+    /// Its spine parameter.
+    pub sa: f64,
+    /// Second cone.
+    pub b: usize,
+    /// Its spine parameter.
+    pub sb: f64,
+}
+
+/// A scene's free space as generalized cones: what does not depend on the query (Brooks §4:
+/// "up to this stage the algorithm is independent of the object").
+#[derive(Clone, Debug)]
+pub struct Freeways {
+    edges: Vec<Edge>,
+    cones: Vec<Cone>,
+    crossings: Vec<Crossing>,
+    radius: RadiusFunction,
+    /// Length that counts as touching (a millionth of the scene's extent).
+    margin: f64,
+    /// Whether configurations carry an orientation (SE(2)) or not (R²).
+    oriented: bool,
+    /// Cone candidates examined before pruning.
+    candidates: usize,
+}
+
+/// A path found along the freeways.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConePath {
+    /// Configurations; consecutive ones differ by a pure translation or a pure rotation of at
+    /// most a quarter turn.
+    pub path: Vec<Config>,
+    /// Length in the space's metric.
+    pub length: f64,
+    /// Cones the path follows (in order, repeats removed).
+    pub cones: Vec<usize>,
+    /// A* states expanded.
+    pub expanded: usize,
+}
+
+/// How a query ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ConeOutcome {
+    /// A path along the freeways, re-checked by the oracle.
+    Solved(ConePath),
+    /// No path: why (start or goal cannot reach a freeway, or the graph does not join them).
+    NotFound(String),
+}
+
+impl ConeOutcome {
+    /// The path, if solved.
+    pub fn path(&self) -> Option<&ConePath> {
+        match self {
+            ConeOutcome::Solved(p) => Some(p),
+            ConeOutcome::NotFound(_) => None,
+        }
+    }
+}
+
+/// Cleaned vertices of a polygon, counter-clockwise (so that the right of every edge is
+/// outside).
+fn ccw(vertices: impl Iterator<Item = P>) -> Vec<P> {
+    let mut v: Vec<P> = vertices
+        .filter(|p| p[0].is_finite() && p[1].is_finite())
+        .map(|p| [p[0] + 0.0, p[1] + 0.0])
+        .collect();
+    v.dedup();
+    while v.len() > 1 && v.first() == v.last() {
+        v.pop();
+    }
+    let n = v.len();
+    let area2: f64 = (0..n)
+        .map(|i| v[i][0] * v[(i + 1) % n][1] - v[i][1] * v[(i + 1) % n][0])
+        .sum();
+    if area2 < 0.0 {
+        v.reverse();
+    }
+    v
+}
+
+impl Freeways {
+    /// The cones of a planar scene (SE(2) with a polygonal robot, or R² with a point among
+    /// discs or polygons), pruned, and their spine intersections. `O(n³)` in the number of
+    /// obstacle edges `n` (Brooks §2.1), less in practice: edges far from a cone are rejected
+    /// by their boxes.
+    pub fn build(scene: &Scene) -> Result<Freeways, ConeError> {
+        let oriented = match scene.space.kind() {
+            SpaceKind::Se2 => true,
+            SpaceKind::Euclidean(2) => false,
+            k => return Err(ConeError::Unsupported(format!("a {k} scene"))),
+        };
+        let robot_vertices: Vec<P> = match &scene.robot {
+            Robot::Point => Vec::new(),
+            Robot::Polygons(parts) => parts
+                .iter()
+                .flat_map(|p| p.vertices.iter().map(|v| [v.x, v.y]))
+                .collect(),
+            Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
+            Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
+        };
+        let mut polygons: Vec<Vec<P>> = Vec::new();
+        for o in &scene.obstacles {
+            match o {
+                Obstacle::Polygon(p) => polygons.push(ccw(p.vertices.iter().map(|v| [v.x, v.y]))),
+                Obstacle::Disc { centre, radius } if centre.len() == 2 => {
+                    let r = radius / (std::f64::consts::PI / DISC_SIDES as f64).cos();
+                    polygons.push(
+                        (0..DISC_SIDES)
+                            .map(|k| {
+                                let a = std::f64::consts::TAU * k as f64 / DISC_SIDES as f64;
+                                [centre[0] + r * a.cos(), centre[1] + r * a.sin()]
+                            })
+                            .collect(),
+                    );
+                }
+                _ => return Err(ConeError::Unsupported("a 3D obstacle".into())),
+            }
+        }
+        // obstacle edges; an edge two polygons share in opposite directions lies inside their
+        // union (the triangles of OMPL.app's footprints) and bounds no free space
+        let mut directed: HashSet<[u64; 4]> = HashSet::new();
+        let key = |a: P, b: P| {
+            [
+                a[0].to_bits(),
+                a[1].to_bits(),
+                b[0].to_bits(),
+                b[1].to_bits(),
+            ]
+        };
+        for v in &polygons {
+            for i in 0..v.len() {
+                directed.insert(key(v[i], v[(i + 1) % v.len()]));
+            }
+        }
+        let mut edges = Vec::new();
+        for v in &polygons {
+            if v.len() < 3 {
+                continue;
+            }
+            for i in 0..v.len() {
+                let (a, b) = (v[i], v[(i + 1) % v.len()]);
+                if directed.contains(&key(b, a)) {
+                    continue;
+                }
+                edges.extend(Edge::new(a, b));
+            }
+        }
+        let (lo, hi) = (scene.space.lower(), scene.space.upper());
+        let walls = [
+            ([hi[0], lo[1]], [lo[0], lo[1]]),
+            ([hi[0], hi[1]], [hi[0], lo[1]]),
+            ([lo[0], hi[1]], [hi[0], hi[1]]),
+            ([lo[0], lo[1]], [lo[0], hi[1]]),
+        ];
+        edges.extend(walls.iter().filter_map(|&(a, b)| Edge::new(a, b)));
+        let margin = 1e-6 * scene.space.extent().max(1e-9);
+        let radius = RadiusFunction::new(&robot_vertices);
+        let boxes: Vec<[f64; 4]> = edges
+            .iter()
+            .map(|e| {
+                [
+                    e.a[0].min(e.b[0]),
+                    e.a[1].min(e.b[1]),
+                    e.a[0].max(e.b[0]),
+                    e.a[1].max(e.b[1]),
+                ]
+            })
+            .collect();
+        // the narrowest the robot can be sideways: a cone never wider than that is no freeway
+        let narrowest = (0..720)
+            .map(|k| {
+                let xi = std::f64::consts::TAU * k as f64 / 720.0;
+                radius
+                    .at(xi + std::f64::consts::FRAC_PI_2)
+                    .max(radius.at(xi - std::f64::consts::FRAC_PI_2))
+            })
+            .fold(f64::INFINITY, f64::min)
+            * 0.99;
+        let mut cones = Vec::new();
+        let mut candidates = 0;
+        for i in 0..edges.len() {
+            for j in i + 1..edges.len() {
+                let Some((cone, own)) = cone::candidate(&edges, i, j) else {
+                    continue;
+                };
+                candidates += 1;
+                if cone.radius(cone.lo).max(cone.radius(cone.hi)) <= narrowest + margin {
+                    continue;
+                }
+                cones.extend(
+                    cone::prune(&cone, own, &edges, &boxes, margin)
+                        .into_iter()
+                        .filter(|c| c.radius(c.lo).max(c.radius(c.hi)) > narrowest + margin)
+                        // no edge crosses a slice, so an obstacle that holds one of its points
+                        // holds all of it (a cone between two faces of one block)
+                        .filter(|c| {
+                            let m = c.point((c.lo + c.hi) / 2.0);
+                            !polygons.iter().any(|v| contains(v, m))
+                        }),
+                );
+            }
+        }
+        // coinciding edges (a wall of the bounds on an obstacle's face) give the same cone twice
+        let mut seen: HashSet<[u64; 5]> = HashSet::new();
+        cones.retain(|c| {
+            let [a, b] = c.spine();
+            let r = |v: f64| (v / margin).round().to_bits();
+            seen.insert([r(a[0]), r(a[1]), r(b[0]), r(b[1]), r(c.radius(c.lo))])
+        });
+        let crossings = spine_crossings(&cones);
+        Ok(Freeways {
+            edges,
+            cones,
+            crossings,
+            radius,
+            margin,
+            oriented,
+            candidates,
+        })
+    }
+
+    /// The cones (freeways).
+    pub fn cones(&self) -> &[Cone] {
+        &self.cones
+    }
+
+    /// The obstacle edges and walls the cones were built from.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+
+    /// The spine intersections (the graph's nodes before orientations).
+    pub fn crossings(&self) -> &[Crossing] {
+        &self.crossings
+    }
+
+    /// Edge pairs that passed Brooks's two tests (before pruning).
+    pub fn candidates(&self) -> usize {
+        self.candidates
+    }
+
+    /// The robot's radius function.
+    pub fn radius_function(&self) -> &RadiusFunction {
+        &self.radius
+    }
+
+    /// Orientations at which the robot, its reference point moving along the spine of `cone`
+    /// from parameter `a` to `b`, stays inside the cone (Brooks §3.2, per stretch: see the
+    /// module notes). For a point robot every orientation, wherever the spine is.
+    pub fn legal(&self, cone: &Cone, a: f64, b: f64) -> AngleSet {
+        let (smin, smax) = (a.min(b), a.max(b));
+        let d = self.radius.reach();
+        let ahead = cone.hi - smax - self.margin;
+        let behind = smin - cone.lo - self.margin;
+        let side = cone.min_radius((smin - d).max(cone.lo), (smax + d).min(cone.hi)) - self.margin;
+        if smin < cone.lo || smax > cone.hi || side < 0.0 {
+            return AngleSet::empty();
+        }
+        let psi = cone.dir[1].atan2(cone.dir[0]);
+        let h = std::f64::consts::FRAC_PI_2;
+        self.radius
+            .orientations_within(psi, ahead)
+            .intersection(
+                &self
+                    .radius
+                    .orientations_within(psi + std::f64::consts::PI, behind),
+            )
+            .intersection(&self.radius.orientations_within(psi + h, side))
+            .intersection(&self.radius.orientations_within(psi - h, side))
+    }
+
+    /// A path from `start` to `goal` along the freeways (Brooks §4), or why there is none.
+    /// `oracle` (the scene's exact one) checks the moves that join start and goal to the
+    /// spines and re-checks the finished path.
+    pub fn solve(
+        &self,
+        scene: &Scene,
+        oracle: &dyn CollisionOracle,
+        start: &[f64],
+        goal: &[f64],
+    ) -> Result<ConeOutcome, ConeError> {
+        let dim = scene.space.dim();
+        for q in [start, goal] {
+            if q.len() != dim {
+                return Err(ConeError::Dimension {
+                    got: q.len(),
+                    expected: dim,
+                });
+            }
+        }
+        search::solve(self, scene, oracle, start, goal)
+    }
+}
+
+/// Whether `p` lies in the closed polygon `v` (crossing number; a point on an edge counts).
+fn contains(v: &[P], p: P) -> bool {
+    let n = v.len();
+    if n < 3 {
+        return false;
+    }
+    let mut inside = false;
+    for i in 0..n {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) {
+            let x = a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+            if p[0] <= x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Where the spines of two cones cross (`O(c²)` over the cones, boxes first).
+fn spine_crossings(cones: &[Cone]) -> Vec<Crossing> {
+    let boxes: Vec<[f64; 4]> = cones
+        .iter()
+        .map(|c| {
+            let [a, b] = c.spine();
+            [
+                a[0].min(b[0]),
+                a[1].min(b[1]),
+                a[0].max(b[0]),
+                a[1].max(b[1]),
+            ]
+        })
+        .collect();
+    let mut out = Vec::new();
+    for i in 0..cones.len() {
+        for j in i + 1..cones.len() {
+            let (bi, bj) = (boxes[i], boxes[j]);
+            if bi[0] > bj[2] || bj[0] > bi[2] || bi[1] > bj[3] || bj[1] > bi[3] {
+                continue;
+            }
+            let (ci, cj) = (&cones[i], &cones[j]);
+            let den = ci.dir[0] * cj.dir[1] - ci.dir[1] * cj.dir[0];
+            if den.abs() < 1e-9 {
+                continue;
+            }
+            let w = [cj.origin[0] - ci.origin[0], cj.origin[1] - ci.origin[1]];
+            let sa = (w[0] * cj.dir[1] - w[1] * cj.dir[0]) / den;
+            let sb = (w[0] * ci.dir[1] - w[1] * ci.dir[0]) / den;
+            if sa >= ci.lo && sa <= ci.hi && sb >= cj.lo && sb <= cj.hi {
+                out.push(Crossing { a: i, sa, b: j, sb });
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,5 @@
+//! Global methods beside the roadmap, from the project's other seeds: Brooks's freeways
+//! ([`cones`], `seeds/001_…`). They work on the same planar scenes and queries as the
+//! roadmap, so that a user can compare them (`viaroad solve SCENE --global cones`).
+
+pub mod cones;
