@@ -4,7 +4,7 @@
 //! Between two corners the joints move linearly (an arm path's corners differ in one joint
 //! at a time where the planner made them, CHS §1.5: the distal links then turn rigidly about
 //! a fixed axis). Each move is sampled so that no joint turns more than
-//! [`MAX_TURN_PER_KEY`](super::animation::MAX_TURN_PER_KEY) between keys; the links' poses at
+//! [`MAX_TURN_PER_KEY`] between keys; the links' poses at
 //! the keys come from [`Arm::link_poses`], so slerp between them follows the arcs the links
 //! sweep.
 
@@ -55,11 +55,12 @@ pub fn joint_keyframes(path: &[Vec<f64>], continuous: u64) -> Vec<(f64, Vec<f64>
         let dt = DURATION * d / total;
         for s in 1..=steps {
             let f = s as f64 / steps as f64;
-            let q: Vec<f64> = w[0]
-                .iter()
-                .zip(&w[1])
-                .map(|(a, b)| a + f * (b - a))
-                .collect();
+            // the corner itself at the end (a continuous joint may have gone round through ±π)
+            let q: Vec<f64> = if s == steps {
+                w[1].clone()
+            } else {
+                w[0].iter().zip(&d_joints).map(|(a, d)| a + f * d).collect()
+            };
             keys.push((t + f * dt, q, s == steps));
         }
         t += dt;
@@ -226,8 +227,17 @@ mod tests {
         // joint 1 continuous: from 3 to -3 is 0.283 rad through ±π, not 6 rad back
         let path = vec![vec![0.0, 3.0], vec![0.0, -3.0]];
         let keys = joint_keyframes(&path, 0b10);
-        let turned: f64 = keys.windows(2).map(|w| (w[1].1[1] - w[0].1[1]).abs()).sum();
-        assert!((turned - (std::f64::consts::TAU - 6.0)).abs() < 1e-12);
+        // every step the short way round (the last lands on the corner, -3, one turn away)
+        let turned: f64 = keys
+            .windows(2)
+            .map(|w| crate::space::rotation::wrap_angle(w[1].1[1] - w[0].1[1]).abs())
+            .sum();
+        assert!(
+            (turned - (std::f64::consts::TAU - 6.0)).abs() < 1e-12,
+            "{turned} {keys:?}"
+        );
+        assert!(keys[1..4].iter().all(|k| k.1[1] > 3.0), "{keys:?}");
+        assert_eq!(keys.last().unwrap().1, path[1]);
         assert_eq!(keys.len(), 1 + 4);
         let limited = joint_keyframes(&path, 0);
         assert!(limited.len() > 60);
