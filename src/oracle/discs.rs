@@ -204,6 +204,15 @@ impl Discs {
         debug_assert_eq!(centres.len(), radii.len());
         debug_assert!(centres.iter().all(|c| c.len() == dim));
         let planar = (dim == 2).then(|| {
+            // blocks in order of the centres' x: a line then meets the discs roughly in the
+            // order of its parameter (reversed when it runs towards −x), so that the hits come
+            // nearly sorted and the insertion sort that merges them rarely moves one (issue
+            // 11: its mispredictions were a tenth of `bench discs`); the union does not depend
+            // on the order
+            let mut order: Vec<usize> = (0..centres.len()).collect();
+            order.sort_by(|&i, &j| centres[i][0].total_cmp(&centres[j][0]));
+            let centres: Vec<&Vec<f64>> = order.iter().map(|&i| &centres[i]).collect();
+            let radii: Vec<f64> = order.iter().map(|&i| radii[i]).collect();
             centres
                 .chunks(LANES)
                 .zip(radii.chunks(LANES))
@@ -399,6 +408,9 @@ impl CollisionOracle for Discs {
                     .zip(&es[..n])
                     .filter_map(|(&lo, &hi)| (Interval { lo, hi }).meet(&range)),
             );
+            if d[0] < 0.0 {
+                hits.reverse();
+            }
             out.set_from_unsorted(hits);
             return Ok(());
         }
