@@ -6,6 +6,11 @@
 //! - `oracle/state`: the exact arm oracle's static test at one configuration;
 //! - `oracle/joint_move`: the exact collision intervals of one single-joint move (the distal
 //!   links turning about the joint axis);
+//! - `oracle/joint_move_unshared`: the same intervals with every link oracle answering the
+//!   whole move on its own (`ArmOracle::with_culling(false)`), the reference for the shared
+//!   sweep (windows one link already found colliding skipped by the others);
+//! - `oracle/joint_move_free`, `oracle/joint_move_first_hit`: the yes/no and first-hit
+//!   questions, which stop early;
 //! - `oracle/joint_move_rebuilt`: the same intervals the first way (one polyhedra oracle
 //!   rebuilt per call and moving link), the reference for the pivoted per-link oracles;
 //! - `sampled/joint_move`: the same move checked by the parry checker at OMPL's default
@@ -14,8 +19,16 @@
 //!
 //! Configurations and moves come from a seeded RNG and start collision-free; one iteration
 //! handles the whole batch (16 items). Inputs are built outside the timed loops.
+//!
+//! Two more modes, chosen by the environment variable `ARM_MOVES`, for figures per move:
+//! - `ARM_MOVES=table`: 64 moves (the batch's 16 first), each timed alone, the variants
+//!   interleaved (A/B in one run on a noisy machine); prints mean, median and p95 per variant,
+//!   for light and heavy moves (heavy: ≥ 10 000 exact pairs unshared) and in all;
+//! - `ARM_MOVES=shared|unshared|free|first|rebuilt`: the 64 moves once with that variant and
+//!   nothing else, for `valgrind --tool=callgrind` (instruction counts repeat whatever the
+//!   load): `ARM_MOVES=shared valgrind --tool=callgrind target/release/deps/arm-*`.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
@@ -27,7 +40,16 @@ use viaroad::scene::moveit::load_planning_scene;
 
 const BATCH: usize = 16;
 
-fn bench(c: &mut Criterion) {
+/// The moves of the per-move table (the criterion batch comes first).
+const MOVES: usize = 64;
+
+/// An exact pair count above which a move is heavy (a long turn through clutter).
+const HEAVY: u64 = 10_000;
+
+type Move = (Vec<f64>, usize, f64);
+
+/// The Panda in table_pick 1: checker, oracle, and `n` collision-free starts with a move each.
+fn setup(n: usize) -> (ArmChecker, ArmOracle, f64, Vec<Move>) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
     let dir = root.join("panda");
     let mut arm = Arm::load(
@@ -43,7 +65,7 @@ fn bench(c: &mut Criterion) {
     let g = arm.group.clone();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let mut moves = Vec::new();
-    while moves.len() < BATCH {
+    while moves.len() < n {
         let q: Vec<f64> = (0..g.dof())
             .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
             .collect();
@@ -53,7 +75,100 @@ fn bench(c: &mut Criterion) {
             moves.push((q, j, delta));
         }
     }
-    let step = 0.01 * g.max_extent();
+    (checker, oracle, 0.01 * g.max_extent(), moves)
+}
+
+/// One variant of the oracle on one move.
+fn run(variant: &str, oracle: &ArmOracle, unshared: &ArmOracle, m: &Move, counts: &mut CallCounts) {
+    let (q, j, d) = (&m.0, m.1, m.2);
+    match variant {
+        "shared" => drop(black_box(oracle.joint_move(q, j, d, counts).unwrap())),
+        "unshared" => drop(black_box(unshared.joint_move(q, j, d, counts).unwrap())),
+        "free" => drop(black_box(oracle.joint_move_free(q, j, d, counts).unwrap())),
+        "first" => drop(black_box(
+            oracle.joint_move_first_hit(q, j, d, counts).unwrap(),
+        )),
+        "rebuilt" => drop(black_box(
+            oracle.joint_move_rebuilt(q, j, d, counts).unwrap(),
+        )),
+        other => panic!("ARM_MOVES={other}: shared, unshared, free, first, rebuilt or table"),
+    }
+}
+
+/// Mean, median and p95 (microseconds) of some per-move times.
+fn stats(t: &mut [f64]) -> String {
+    if t.is_empty() {
+        return "-".into();
+    }
+    t.sort_by(f64::total_cmp);
+    let mean = t.iter().sum::<f64>() / t.len() as f64;
+    let at = |p: f64| t[((p * (t.len() - 1) as f64).round() as usize).min(t.len() - 1)];
+    format!("{:>9.1} {:>9.1} {:>9.1}", mean, at(0.5), at(0.95))
+}
+
+/// `ARM_MOVES=table`: per-move times of every variant, interleaved.
+fn table() {
+    let (_, oracle, _, moves) = setup(MOVES);
+    let unshared = oracle.clone().with_culling(false);
+    let variants = ["unshared", "shared", "free", "first"];
+    const REPS: usize = 5;
+    let mut times = vec![vec![0.0; moves.len()]; variants.len()];
+    let mut pairs = vec![vec![0u64; moves.len()]; variants.len()];
+    for (i, m) in moves.iter().enumerate() {
+        let mut best = vec![Vec::new(); variants.len()];
+        for _ in 0..REPS {
+            for (v, name) in variants.iter().enumerate() {
+                let mut counts = CallCounts::default();
+                let t = std::time::Instant::now();
+                run(name, &oracle, &unshared, m, &mut counts);
+                best[v].push(t.elapsed().as_secs_f64() * 1e6);
+                pairs[v][i] = counts.pairs_tested;
+            }
+        }
+        for (v, b) in best.iter_mut().enumerate() {
+            b.sort_by(f64::total_cmp);
+            times[v][i] = b[REPS / 2];
+        }
+    }
+    let heavy: Vec<bool> = pairs[0].iter().map(|&p| p >= HEAVY).collect();
+    println!(
+        "{} moves ({} heavy: ≥ {HEAVY} exact pairs unshared), median of {REPS} runs each, µs",
+        moves.len(),
+        heavy.iter().filter(|&&h| h).count()
+    );
+    println!(
+        "{:<9} {:<6} {:>9} {:>9} {:>9} {:>12}",
+        "variant", "moves", "mean", "median", "p95", "pairs/move"
+    );
+    for (v, name) in variants.iter().enumerate() {
+        for (class, keep) in [("light", Some(false)), ("heavy", Some(true)), ("all", None)] {
+            let pick = |i: &usize| keep.is_none_or(|h| heavy[*i] == h);
+            let mut t: Vec<f64> = (0..moves.len()).filter(pick).map(|i| times[v][i]).collect();
+            let n = t.len().max(1) as u64;
+            let p: u64 = (0..moves.len()).filter(pick).map(|i| pairs[v][i]).sum();
+            println!("{name:<9} {class:<6} {} {:>12}", stats(&mut t), p / n);
+        }
+    }
+}
+
+/// `ARM_MOVES=<variant>`: the moves once, for callgrind.
+fn once(variant: &str) {
+    let (_, oracle, _, moves) = setup(MOVES);
+    let unshared = oracle.clone().with_culling(false);
+    let mut counts = CallCounts::default();
+    for m in &moves {
+        run(variant, &oracle, &unshared, m, &mut counts);
+    }
+    println!(
+        "{variant}: {} moves, {} exact pairs",
+        moves.len(),
+        counts.pairs_tested
+    );
+}
+
+fn bench(c: &mut Criterion) {
+    let (checker, oracle, step, moves) = setup(BATCH);
+    let unshared = oracle.clone().with_culling(false);
     let mut group = c.benchmark_group("arm");
     group.measurement_time(Duration::from_secs(5));
     group.sample_size(10);
@@ -77,6 +192,39 @@ fn bench(c: &mut Criterion) {
                 black_box(
                     oracle
                         .joint_move(q, *j, *d, &mut CallCounts::default())
+                        .unwrap(),
+                );
+            }
+        })
+    });
+    group.bench_function("oracle/joint_move_unshared", |b| {
+        b.iter(|| {
+            for (q, j, d) in &moves {
+                black_box(
+                    unshared
+                        .joint_move(q, *j, *d, &mut CallCounts::default())
+                        .unwrap(),
+                );
+            }
+        })
+    });
+    group.bench_function("oracle/joint_move_free", |b| {
+        b.iter(|| {
+            for (q, j, d) in &moves {
+                black_box(
+                    oracle
+                        .joint_move_free(q, *j, *d, &mut CallCounts::default())
+                        .unwrap(),
+                );
+            }
+        })
+    });
+    group.bench_function("oracle/joint_move_first_hit", |b| {
+        b.iter(|| {
+            for (q, j, d) in &moves {
+                black_box(
+                    oracle
+                        .joint_move_first_hit(q, *j, *d, &mut CallCounts::default())
                         .unwrap(),
                 );
             }
@@ -111,4 +259,14 @@ fn bench(c: &mut Criterion) {
 }
 
 criterion_group!(benches, bench);
-criterion_main!(benches);
+
+fn main() {
+    match std::env::var("ARM_MOVES").as_deref() {
+        Ok("table") => table(),
+        Ok(v) => once(v),
+        Err(_) => {
+            benches();
+            Criterion::default().configure_from_args().final_summary();
+        }
+    }
+}

@@ -19,6 +19,9 @@ usage: benches/hard_problems.sh [options]
   --threads N        RAYON_NUM_THREADS for viaroad (default: 1, as in the issue)
   --peer-runs N      runs per peer planner (default: 3)
   --planners "P Q"   peer planners (default: prm rrtconnect)
+  --kinds "K …"      viaroad forms to run: build (build + query), roadmap (solve --roadmap),
+                     tree (solve --tree) (default: build roadmap tree)
+  --tree-args "A B"  extra options of `solve --tree` (default: none, the binary's defaults)
   --summarize        only (re)write DIR/summary.md from DIR/*.jsonl
 EOF
 }
@@ -33,6 +36,8 @@ SIDE=both
 THREADS=1
 PEER_RUNS=3
 PLANNERS="prm rrtconnect"
+TREE_ARGS=""
+KINDS="build roadmap tree"
 SUMMARIZE_ONLY=0
 SCENES=scenes/ompl/3D
 
@@ -48,6 +53,8 @@ while [ $# -gt 0 ]; do
     --threads) THREADS=$2; shift 2 ;;
     --peer-runs) PEER_RUNS=$2; shift 2 ;;
     --planners) PLANNERS=$2; shift 2 ;;
+    --tree-args) TREE_ARGS=$2; shift 2 ;;
+    --kinds) KINDS=$2; shift 2 ;;
     --summarize) SUMMARIZE_ONLY=1; shift ;;
     -h|--help) usage; exit 0 ;;
     *) echo "unknown option $1" >&2; usage >&2; exit 2 ;;
@@ -116,11 +123,13 @@ for p in order:
             r.get("path_states", "–"),
             "–" if chk is None else ("valid" if chk else "**INVALID**")))
 SQ = [r for r in V if r.get("kind") == "solve-roadmap"]
-if SQ:
-    L.append("\n### viaroad: one command, `solve CFG --roadmap --time T`\n")
+ST = [r for r in V if r.get("kind") == "solve-tree"]
+for rows, flag in ((SQ, "--roadmap"), (ST, "--tree")):
+    if not rows: continue
+    L.append(f"\n### viaroad: one command, `solve CFG {flag} --time T`\n")
     L.append("| problem | T s | seed | load | wall s | ≤ 1.05 T + load? | outcome | solved | `ompl_peer check` |")
     L.append("|---|---|---|---|---|---|---|---|---|")
-    for r in SQ:
+    for r in rows:
         chk = r.get("check_valid")
         held = r.get('wall_s') is not None and not r.get('timed_out') and r['wall_s'] <= 1.05 * r['T'] + (r.get('load_s') or 0)
         L.append(f"| {r['problem']} | {r['T']} | {r['seed']} | {r['load1']:.2f} | {f(r.get('wall_s'))}{' (killed)' if r.get('timed_out') else ''} | "
@@ -139,11 +148,11 @@ for p in order:
             ", ".join(str(r.get("vertices", "–")) for r in rs),
             ", ".join(("yes" if r.get("simplified_valid") else "no") if r["solved"] else "–" for r in rs)))
 L.append("\n### Per problem\n")
-L.append("| problem | T s | viaroad solved | viaroad median time to solve s | median nodes | build wall max / T | query wall max s | paths valid | `solve --roadmap` solved | PRM solved | PRM median time_s | RRTConnect solved | RRTConnect median time_s |")
-L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+L.append("| problem | T s | viaroad solved | viaroad median time to solve s | median nodes | build wall max / T | query wall max s | paths valid | `solve --roadmap` solved | `solve --tree` solved (median s) | PRM solved | PRM median time_s | RRTConnect solved | RRTConnect median time_s |")
+L.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for p in order:
     vr = [r for r in V if r["problem"] == p and r.get("kind") == "build+query"]
-    T = (vr or [r for r in P if r["problem"] == p])[0]["T"]
+    T = (vr or [r for r in P + SQ + ST if r["problem"] == p])[0]["T"]
     sol = [r for r in vr if r.get("solved")]
     def peer(pl):
         rs = [r for r in P if r["problem"] == p and r["planner"] == pl and "solved" in r]
@@ -157,11 +166,15 @@ for p in order:
     sq = [r for r in SQ if r["problem"] == p]
     sq_txt = "{}/{} ({} valid)".format(sum(1 for r in sq if r.get("solved")), len(sq),
         sum(1 for r in sq if r.get("check_valid"))) if sq else "–"
-    L.append("| {} | {} | {}/{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
+    st = [r for r in ST if r["problem"] == p]
+    st_txt = "{}/{} ({} valid; {})".format(sum(1 for r in st if r.get("solved")), len(st),
+        sum(1 for r in st if r.get("check_valid")),
+        f(med([r.get("wall_s") for r in st if r.get("solved")]))) if st else "–"
+    L.append("| {} | {} | {}/{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
         p, T, len(sol), len(vr), f(med([r.get("time_to_solve_s") for r in sol])) if sol else "–",
         f(med([r.get("nodes") for r in vr]), 0) if vr else "–",
         f(max(bw) / T, 2) if bw else "–", f(max(qw)) if qw else "–",
-        f"{sum(1 for r in checked if r['check_valid'])}/{len(sol)}" if sol else "–", sq_txt,
+        f"{sum(1 for r in checked if r['check_valid'])}/{len(sol)}" if sol else "–", sq_txt, st_txt,
         pr[0], pr[1], rr[0], rr[1]))
 text = "\n".join(L) + "\n"
 open(os.path.join(out, "summary.md"), "w").write(text)
@@ -286,16 +299,19 @@ run_viaroad() { # NAME T SEED
   tail -n 1 "$VJSON" | jq -c '{problem, seed, build_wall_s, nodes, components, query_wall_s, outcome, solved, check_valid}' >&2
 }
 
-run_solve_roadmap() { # NAME T SEED: the one-command form, only when the binary has `solve --roadmap`
-  local name=$1 T=$2 seed=$3 cfg=$SCENES/$1.cfg
-  local tag="${name}_s${seed}_solve" path="$OUT/paths/${1}_s${3}_solve.path"
-  local cmd=("$VIAROAD" solve "$cfg" --roadmap --time "$T" --json --path-out "$path")
+run_solve_roadmap() { # NAME T SEED [MODE]: the one-command form, only when the binary has `solve --roadmap`
+  # (MODE roadmap, the default) or `solve --tree` (MODE tree: RRT-Connect with exact extends)
+  local name=$1 T=$2 seed=$3 mode=${4:-roadmap} cfg=$SCENES/$1.cfg
+  local sfx=solve; [ "$mode" = tree ] && sfx=tree
+  local tag="${name}_s${seed}_$sfx" path="$OUT/paths/${1}_s${3}_$sfx.path"
+  local cmd=("$VIAROAD" solve "$cfg" "--$mode" --time "$T" --json --path-out "$path")
+  [ "$mode" = tree ] && [ -n "$TREE_ARGS" ] && read -ra extra <<<"$TREE_ARGS" && cmd+=("${extra[@]}")
   has_flag solve --seed && cmd+=(--seed "$seed")
   local m; m=$(meta); rm -f "$path"
   local start load_s t0; start=$(cfg_state "$cfg" start); t0=$(now)
   "$VIAROAD" probe "$cfg" --from "$start" --to "$start" >/dev/null 2>&1
   load_s=$(since "$t0")
-  echo "[$(date -u +%T)] viaroad solve --roadmap $tag (load $(load1))" >&2
+  echo "[$(date -u +%T)] viaroad solve --$mode $tag (load $(load1))" >&2
   local rc wall out
   t0=$(now)
   out=$(timeout -k 5 $((2 * T + 30)) "${cmd[@]}" 2>"$WORK/$tag.err" | tail -n 1)
@@ -306,8 +322,8 @@ run_solve_roadmap() { # NAME T SEED: the one-command form, only when the binary 
     chk=$(timeout 600 "$PEER" check "$cfg" "$path" 2>/dev/null | tail -n 1 | jq -c '{check_valid: .valid, path_states: .states}' 2>/dev/null || echo '{"check_valid": null}')
   fi
   jq -cn --argjson m "$m" --arg problem "$name" --argjson T "$T" --argjson seed "$seed" --arg commit "$VCOMMIT" \
-    --argjson threads "$THREADS" --argjson load_s "$load_s" --argjson rc "$rc" --argjson wall "$wall" --argjson q "$q" --argjson chk "$chk" '
-    $m + {side: "viaroad", kind: "solve-roadmap", problem: $problem, T: $T, seed: $seed, viaroad_commit: $commit,
+    --arg mode "$mode" --argjson threads "$THREADS" --argjson load_s "$load_s" --argjson rc "$rc" --argjson wall "$wall" --argjson q "$q" --argjson chk "$chk" '
+    $m + {side: "viaroad", kind: ("solve-" + $mode), problem: $problem, T: $T, seed: $seed, viaroad_commit: $commit,
       threads: $threads, load_s: $load_s, rc: $rc, timed_out: ($rc == 124 or $rc == 137), wall_s: $wall} + $q +
      {solved: ($q.solved // false)} + $chk' >>"$VJSON"
 }
@@ -339,8 +355,9 @@ for spec in $PROBLEMS; do
   [ -f "$SCENES/$name.cfg" ] || { echo "no $SCENES/$name.cfg" >&2; continue; }
   if [ "$SIDE" != peer ]; then
     for s in $SEEDS; do
-      run_viaroad "$name" "$T" "$s"
-      if has_flag solve --roadmap; then run_solve_roadmap "$name" "$T" "$s"; fi
+      [[ " $KINDS " == *" build "* ]] && run_viaroad "$name" "$T" "$s"
+      if [[ " $KINDS " == *" roadmap "* ]] && has_flag solve --roadmap; then run_solve_roadmap "$name" "$T" "$s"; fi
+      if [[ " $KINDS " == *" tree "* ]] && has_flag solve --tree; then run_solve_roadmap "$name" "$T" "$s" tree; fi
     done
   fi
   if [ "$SIDE" != viaroad ]; then

@@ -18,6 +18,7 @@
 //! | [`deadline`] | budgets that hold: one deadline checked before every oracle call |
 //! | [`roadmap`] | learning, persistence, queries |
 //! | [`robot`] | robot arms: URDF + SRDF, forward kinematics, the independent arm checker |
+//! | [`export`] | glTF export and the HTML viewer (seeing a plan in 3D) |
 //! | [`scene`] | TOML scenes, OMPL.app problems, MoveIt scenes and requests, meshes |
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
 //! | [`limits`] | the largest numbers accepted from users |
@@ -26,6 +27,7 @@
 
 pub mod bench;
 pub mod deadline;
+pub mod export;
 pub mod geometry;
 pub mod global;
 pub mod interval;

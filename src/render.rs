@@ -2,7 +2,8 @@
 //!
 //! Draws the position plane (x, y) of any scene: discs and polygons as they are, a rigid robot
 //! as its footprint at the corners of a path; SE(3) scenes are drawn from above (obstacle
-//! meshes projected to the xy-plane, as outlines).
+//! meshes projected to the xy-plane, as outlines, and the robot's footprint — the outline of
+//! its projection — at the corners of a path, issue 13).
 
 use crate::geometry::{Polygon, TriMesh};
 use crate::local::Borderline;
@@ -129,12 +130,21 @@ impl Picture {
         if path.is_empty() {
             return self;
         }
-        if let (Robot::Polygons(parts), SpaceKind::Se2) = (&scene.robot, scene.space.kind()) {
-            for q in path {
-                for part in parts {
-                    self.robot_at(part, q);
+        match (&scene.robot, scene.space.kind()) {
+            (Robot::Polygons(parts), SpaceKind::Se2) => {
+                for q in path {
+                    for part in parts {
+                        self.robot_at(part, q);
+                    }
                 }
             }
+            (Robot::Mesh(mesh), SpaceKind::Se3) => {
+                let shadow = Shadow::of(mesh);
+                for q in path {
+                    self.shadow_at(&shadow, q);
+                }
+            }
+            _ => {}
         }
         let (colour, width, dash) = if shortened {
             (style::SHORT_PATH, 2.5, "")
@@ -172,6 +182,39 @@ impl Picture {
             style::ROBOT,
             style::ROBOT
         );
+    }
+
+    /// Draws the projection of an SE(3) robot placed at `q` onto the xy-plane: its triangles
+    /// filled inside one group whose opacity applies to the union, so the drawing is the
+    /// footprint's exact outline, evenly tinted.
+    fn shadow_at(&mut self, shadow: &Shadow, q: &[f64]) {
+        let r = crate::space::rotation::quat_from_slice(&q[3..7]);
+        let placed: Vec<Point2<f64>> = shadow
+            .points
+            .iter()
+            .map(|v| {
+                let w = r * v;
+                Point2::new(w.x + q[0], w.y + q[1])
+            })
+            .collect();
+        let _ = writeln!(
+            self.body,
+            r#"<g opacity="0.3" fill="{0}" stroke="{0}" stroke-width="0.6" stroke-linejoin="round">"#,
+            style::ROBOT
+        );
+        match &shadow.triangles {
+            Some(tris) => {
+                for t in tris {
+                    let pts = self.polygon_points(&t.map(|i| placed[i]));
+                    let _ = writeln!(self.body, r#"<polygon points="{pts}"/>"#);
+                }
+            }
+            None => {
+                let pts = self.polygon_points(&convex_hull(&placed));
+                let _ = writeln!(self.body, r#"<polygon points="{pts}"/>"#);
+            }
+        }
+        let _ = writeln!(self.body, "</g>");
     }
 
     /// Draws the free sections of borderlines the planner asked about (straight lines in the
@@ -287,5 +330,149 @@ impl Picture {
             );
         }
         self
+    }
+}
+
+/// Most triangles drawn per footprint of an SE(3) robot: beyond it (the alpha puzzle's tube)
+/// the footprint is drawn as the convex hull of the projected vertices, so that the SVG stays
+/// small.
+const MAX_SHADOW_TRIANGLES: usize = 1500;
+
+/// What an SE(3) robot's footprint is drawn from: its vertices (body frame) and the triangles
+/// whose projection can have area whatever the orientation (`None`: draw the hull).
+struct Shadow {
+    points: Vec<nalgebra::Point3<f64>>,
+    triangles: Option<Vec<[usize; 3]>>,
+}
+
+impl Shadow {
+    fn of(mesh: &TriMesh) -> Shadow {
+        // a triangle of zero area projects to nothing in any direction
+        let tris: Vec<[usize; 3]> = mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| i as usize))
+            .filter(|t| {
+                let [a, b, c] = t.map(|i| mesh.vertices[i]);
+                (b - a).cross(&(c - a)).norm() > 0.0
+            })
+            .collect();
+        Shadow {
+            points: mesh.vertices.clone(),
+            triangles: (tris.len() <= MAX_SHADOW_TRIANGLES).then_some(tris),
+        }
+    }
+}
+
+/// The convex hull of points, counter-clockwise (Andrew's monotone chain).
+fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
+    let mut p: Vec<Point2<f64>> = points.to_vec();
+    p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: Point2<f64>, a: Point2<f64>, b: Point2<f64>| {
+        (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x)
+    };
+    let mut hull: Vec<Point2<f64>> = Vec::with_capacity(2 * p.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &Point2<f64>>> = if pass == 0 {
+            Box::new(p.iter())
+        } else {
+            Box::new(p.iter().rev())
+        };
+        for &q in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], q) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(q);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hull_of_a_square_with_inner_points() {
+        let pts: Vec<Point2<f64>> = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [0.5, 0.5],
+            [1.0, 1.0],
+            [0.0, 1.0],
+            [0.2, 0.7],
+        ]
+        .iter()
+        .map(|p| Point2::new(p[0], p[1]))
+        .collect();
+        let h = convex_hull(&pts);
+        assert_eq!(h.len(), 4);
+        let area: f64 = (0..h.len())
+            .map(|i| {
+                let (a, b) = (h[i], h[(i + 1) % h.len()]);
+                a.x * b.y - b.x * a.y
+            })
+            .sum::<f64>()
+            / 2.0;
+        assert!(
+            (area - 1.0).abs() < 1e-12,
+            "counter-clockwise, area 1: {area}"
+        );
+    }
+
+    #[test]
+    fn se3_footprints_are_drawn_at_every_corner_where_the_robot_is() {
+        let scene = Scene::load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cube-into-box.toml"),
+        )
+        .unwrap();
+        // the unit cube at (2, 2) upright, then at (-1, 0) turned 45° about z
+        let path = vec![
+            vec![2.0, 2.0, 2.5, 0.0, 0.0, 0.0, 1.0],
+            vec![
+                -1.0,
+                0.0,
+                2.5,
+                0.0,
+                0.0,
+                (std::f64::consts::PI / 8.0).sin(),
+                (std::f64::consts::PI / 8.0).cos(),
+            ],
+        ];
+        let mut p = Picture::new(&scene);
+        p.path(&scene, &path, true);
+        let svg = p.to_svg();
+        assert_eq!(svg.matches("<g opacity=").count(), 2);
+        // every drawn vertex of a footprint lies on the projected cube at its corner: within
+        // half a side (upright) or half a diagonal (turned) of the centre, in picture units
+        let scale = style::WIDTH / 6.0;
+        let groups: Vec<&str> = svg.split("<g opacity=").skip(1).collect();
+        for (g, (centre, reach)) in groups
+            .iter()
+            .zip([([2.0, 2.0], 0.5), ([-1.0, 0.0], 0.5 * 2f64.sqrt())])
+        {
+            let body = &g[..g.find("</g>").unwrap()];
+            let mut far = 0.0f64;
+            let mut n = 0;
+            for poly in body.split("points=\"").skip(1) {
+                for xy in poly[..poly.find('"').unwrap()].split_whitespace() {
+                    let (x, y) = xy.split_once(',').unwrap();
+                    let (x, y): (f64, f64) = (x.parse().unwrap(), y.parse().unwrap());
+                    let (wx, wy) = (x / scale - 3.0, 3.0 - y / scale);
+                    far = far.max((wx - centre[0]).abs().max((wy - centre[1]).abs()));
+                    n += 1;
+                }
+            }
+            assert!(n > 0);
+            assert!((far - reach).abs() < 0.02, "{far} vs {reach}");
+        }
     }
 }

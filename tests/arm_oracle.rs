@@ -192,6 +192,43 @@ mod pivoted {
         }
     }
 
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+        /// The shared sweep (windows one link oracle found colliding skipped by the others,
+        /// early stops) answers exactly what the link oracles answer on their own: the same
+        /// intervals (within 1e-9), the same yes/no, the same first hit.
+        #[test]
+        fn shared_sweep_equals_separate_oracles(
+            scene in 0usize..3,
+            u in prop::array::uniform7(0.0f64..=1.0),
+            j in 0usize..7,
+            to in 0.0f64..=1.0,
+        ) {
+            let (arm, _, oracle) = &setups()[scene];
+            let alone = oracle.clone().with_culling(false);
+            let g = &arm.group;
+            let q: Vec<f64> = (0..g.dof()).map(|i| g.lower[i] + u[i] * (g.upper[i] - g.lower[i])).collect();
+            let delta = g.lower[j] + to * (g.upper[j] - g.lower[j]) - q[j];
+            let c = &mut CallCounts::default();
+            let (shared, separate) = (oracle.joint_move(&q, j, delta, c).unwrap(), alone.joint_move(&q, j, delta, c).unwrap());
+            prop_assert_eq!(shared.len(), separate.len(), "{:?} vs {:?}", shared.as_slice(), separate.as_slice());
+            for (a, b) in shared.iter().zip(separate.iter()) {
+                prop_assert!(
+                    (a.lo - b.lo).abs() <= 1e-9 && (a.hi - b.hi).abs() <= 1e-9,
+                    "{:?} vs {:?}", shared.as_slice(), separate.as_slice()
+                );
+            }
+            prop_assert_eq!(oracle.joint_move_free(&q, j, delta, c).unwrap(), separate.is_empty());
+            let first = oracle.joint_move_first_hit(&q, j, delta, c).unwrap();
+            let want = separate.iter().next().map(|iv| iv.lo);
+            prop_assert_eq!(first.is_some(), want.is_some());
+            if let (Some(a), Some(b)) = (first, want) {
+                prop_assert!((a - b).abs() <= 1e-9, "{} vs {}", a, b);
+            }
+        }
+    }
+
     /// The proptest above is not vacuous: over a fixed batch of moves, most of them with
     /// intervals, the two answers agree and the moving links are really off the joint frame.
     #[test]
@@ -223,6 +260,23 @@ mod pivoted {
                 for (a, b) in new.iter().zip(old.iter()) {
                     assert!((a.lo - b.lo).abs() <= 1e-9 && (a.hi - b.hi).abs() <= 1e-9);
                 }
+                // the shared sweep, the yes/no and first-hit questions on the same moves
+                let alone = oracle.clone().with_culling(false);
+                let c = &mut CallCounts::default();
+                let separate = alone.joint_move(&q, j, delta, c).unwrap();
+                assert_eq!(separate.as_slice().len(), new.len());
+                for (a, b) in new.iter().zip(separate.iter()) {
+                    assert!((a.lo - b.lo).abs() <= 1e-9 && (a.hi - b.hi).abs() <= 1e-9);
+                }
+                assert_eq!(
+                    oracle.joint_move_free(&q, j, delta, c).unwrap(),
+                    new.is_empty()
+                );
+                let first = oracle.joint_move_first_hit(&q, j, delta, c).unwrap();
+                assert_eq!(first.is_some(), !new.is_empty());
+                if let (Some(a), Some(b)) = (first, new.iter().next()) {
+                    assert!((a - b.lo).abs() <= 1e-9, "{a} vs {b:?}");
+                }
                 if !new.is_empty() && new.as_slice() != [viaroad::interval::Interval::UNIT] {
                     hit += 1;
                 }
@@ -230,5 +284,122 @@ mod pivoted {
             }
         }
         assert!(hit >= 5 && pieces >= 8, "{hit} {pieces}");
+    }
+}
+
+mod culling {
+    //! The polyhedra oracle's culling of face pairs in a turn (cylindrical boxes of single
+    //! edges, faces kept off the other's plane or outside the prism over it) on the arm's own
+    //! geometry: small link faces against the large, tilted faces of a table, where those tests
+    //! do most of their work. With enveloping off every edge–face pair is evaluated.
+
+    use super::{arms_dir, setup};
+    use nalgebra::{Isometry3, Point3};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use std::sync::OnceLock;
+    use viaroad::geometry::TriMesh;
+    use viaroad::oracle::polyhedra::Polyhedra;
+    use viaroad::oracle::CallCounts;
+    use viaroad::scene::moveit::{load_planning_scene, ObjectShape};
+
+    fn placed(m: &TriMesh, pose: &Isometry3<f64>) -> TriMesh {
+        TriMesh {
+            vertices: m.vertices.iter().map(|v| pose * v).collect(),
+            triangles: m.triangles.clone(),
+        }
+    }
+
+    /// Panda link 2 (300 faces) among table_pick 1's obstacles, enveloping on and off, and the
+    /// arm (for link poses near the table).
+    #[allow(clippy::type_complexity)]
+    fn oracles() -> &'static (Polyhedra, Polyhedra, viaroad::robot::Arm) {
+        static S: OnceLock<(Polyhedra, Polyhedra, viaroad::robot::Arm)> = OnceLock::new();
+        S.get_or_init(|| {
+            let (arm, _, _) = setup("mbm/table_pick/scene0001.yaml");
+            let scene =
+                load_planning_scene(&arms_dir().join("mbm/table_pick/scene0001.yaml")).unwrap();
+            let env: Vec<TriMesh> = scene
+                .objects
+                .iter()
+                .flat_map(|o| &o.parts)
+                .map(|(pose, shape)| match shape {
+                    ObjectShape::Primitive(p) => placed(&p.polytope().unwrap(), pose),
+                    ObjectShape::Mesh(m) => placed(m, pose),
+                })
+                .collect();
+            let link = arm
+                .model
+                .urdf
+                .links
+                .iter()
+                .position(|l| l.name == "panda_link2")
+                .unwrap();
+            let shape = arm.shapes.iter().find(|s| s.link == link).unwrap();
+            let mesh = placed(&shape.polytope, &shape.origin);
+            let fast = Polyhedra::new(mesh.clone(), env.clone());
+            let brute = Polyhedra::new(mesh, env).with_enveloping(false);
+            (fast, brute, arm)
+        })
+    }
+
+    fn se3(p: &Isometry3<f64>) -> Vec<f64> {
+        let (t, q) = (p.translation.vector, p.rotation.coords);
+        vec![t.x, t.y, t.z, q[0], q[1], q[2], q[3]]
+    }
+
+    /// Culled answer == unculled answer (within 1e-9) on random turns of the link near the
+    /// table, with far fewer pairs evaluated; not vacuous: several turns hit.
+    #[test]
+    fn culled_turns_equal_unculled_turns() {
+        let (fast, brute, arm) = oracles();
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let g = &arm.group;
+        let link = arm
+            .model
+            .urdf
+            .links
+            .iter()
+            .position(|l| l.name == "panda_link2")
+            .unwrap();
+        let (mut hits, mut cf, mut cb) = (0, CallCounts::default(), CallCounts::default());
+        for _ in 0..12 {
+            let q: Vec<f64> = (0..g.dof())
+                .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+                .collect();
+            // the link turned as the arm turns it, placed over the table (its middle is near
+            // (0.44, 1.02, 0.2)), turned about a random axis through a random pivot by up to a
+            // turn
+            let mut pose = arm.link_poses(&q)[link];
+            pose.translation.vector = nalgebra::Vector3::new(
+                0.44 + rng.random_range(-0.6..0.6),
+                1.02 + rng.random_range(-0.6..0.6),
+                rng.random_range(0.2..0.5),
+            );
+            let pivot = pose
+                * Point3::new(
+                    rng.random_range(-0.2..0.2),
+                    rng.random_range(-0.2..0.2),
+                    rng.random_range(-0.2..0.2),
+                );
+            let axis = [0, 1, 2].map(|_| rng.random_range(-1.0..1.0));
+            let angle = rng.random_range(-6.2..6.2);
+            let p = se3(&pose);
+            let piv = [pivot.x, pivot.y, pivot.z];
+            let a = fast.turn_about(&p, piv, axis, angle, &mut cf).unwrap();
+            let b = brute.turn_about(&p, piv, axis, angle, &mut cb).unwrap();
+            assert_eq!(a.len(), b.len(), "{:?} vs {:?}", a.as_slice(), b.as_slice());
+            for (x, y) in a.iter().zip(b.iter()) {
+                assert!(
+                    (x.lo - y.lo).abs() <= 1e-9 && (x.hi - y.hi).abs() <= 1e-9,
+                    "{:?} vs {:?}",
+                    a.as_slice(),
+                    b.as_slice()
+                );
+            }
+            hits += usize::from(!a.is_empty());
+        }
+        assert!(hits >= 3, "{hits}");
+        assert!(cf.pairs_tested * 20 <= cb.pairs_tested, "{cf:?} {cb:?}");
     }
 }

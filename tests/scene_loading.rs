@@ -1548,7 +1548,7 @@ fn ompl_problems_match_the_table() {
                 );
             }
             Robot::Polygons(parts) => assert!(!parts.is_empty()),
-            Robot::Point => panic!("{}: a point robot", p.cfg),
+            Robot::Point | Robot::Arm(_) => panic!("{}: not a rigid robot", p.cfg),
         }
         assert!(s.space.rotation_scale() > 0.0);
     }
@@ -1741,7 +1741,7 @@ fn ompl_state_collides(scene: &Scene, q: &[f64]) -> bool {
                     .unwrap()
             })
         }
-        Robot::Point => panic!("a point robot"),
+        Robot::Point | Robot::Arm(_) => panic!("not a rigid robot"),
     }
 }
 

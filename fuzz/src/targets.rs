@@ -269,6 +269,44 @@ fn spaces() -> Vec<Space> {
     ]
 }
 
+/// `Ok(true)` when a loader accepted the input (after exercising what it returned with `then`),
+/// `Ok(false)` when it refused it: the refusal's message is formatted too, since a `Display`
+/// that panics is as much a defect as a loader that does.
+fn classify<T, E: std::fmt::Display>(loaded: Result<T, E>, then: impl FnOnce(T)) -> bool {
+    match loaded {
+        Ok(value) => {
+            then(value);
+            true
+        }
+        Err(e) => {
+            let _ = e.to_string();
+            false
+        }
+    }
+}
+
+/// What a loaded scene offers its users, each of which must not panic either.
+fn exercise_scene(scene: Scene) {
+    let _ = scene.fingerprint();
+    let _ = scene.checked_queries();
+    let _ = scene.oracle();
+}
+
+/// The shipped Panda, loaded once: SRDF inputs resolve their groups against it (loading it per
+/// input made the `srdf` target spend most of its time parsing the same URDF).
+fn panda() -> Option<&'static Model> {
+    static PANDA: std::sync::OnceLock<Option<Model>> = std::sync::OnceLock::new();
+    PANDA
+        .get_or_init(|| {
+            let path =
+                Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/arms/panda/panda.urdf");
+            urdf::load_urdf(&path)
+                .and_then(|u| Model::new(u, &path))
+                .ok()
+        })
+        .as_ref()
+}
+
 /// Runs one input of target `name` in the work directory `dir`: `Ok(true)` when it loaded,
 /// `Ok(false)` when it was refused with an error; I/O trouble of the harness is an `Err`.
 pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
@@ -280,18 +318,7 @@ pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
     Ok(match name {
         "toml" => {
             let p = write("in.toml", input)?;
-            match Scene::load(&p) {
-                Ok(scene) => {
-                    let _ = scene.fingerprint();
-                    let _ = scene.checked_queries();
-                    let _ = scene.oracle();
-                    true
-                }
-                Err(e) => {
-                    let _ = e.to_string();
-                    false
-                }
-            }
+            classify(Scene::load(&p), exercise_scene)
         }
         "cfg" => {
             let (cfg, mesh) = match input
@@ -310,31 +337,13 @@ pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
                 }
             }
             let p = write("in.cfg", cfg)?;
-            match Scene::load(&p) {
-                Ok(scene) => {
-                    let _ = scene.fingerprint();
-                    let _ = scene.checked_queries();
-                    let _ = scene.oracle();
-                    true
-                }
-                Err(e) => {
-                    let _ = e.to_string();
-                    false
-                }
-            }
+            classify(Scene::load(&p), exercise_scene)
         }
         "obj" | "stl" | "dae" => {
             let p = write(&format!("in.{name}"), input)?;
-            let loaded = match mesh_io::load_mesh(&p) {
-                Ok(mesh) => {
-                    let _ = mesh_io::vertex_mean(&mesh);
-                    true
-                }
-                Err(e) => {
-                    let _ = e.to_string();
-                    false
-                }
-            };
+            let loaded = classify(mesh_io::load_mesh(&p), |mesh| {
+                let _ = mesh_io::vertex_mean(&mesh);
+            });
             if name == "dae" {
                 if let Ok(dae) = collada::load_collada(&p) {
                     let _ = dae.assimp_centre;
@@ -353,31 +362,25 @@ pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
         }
         "roadmap" => {
             let p = write("in.bin", input)?;
-            match Roadmap::load_any_scene(&p) {
-                Ok(r) => {
-                    let _ = r.info();
-                    let _ = Roadmap::from_bytes(input, r.header().fingerprint);
-                    if r.node_count() > 0 {
-                        let q = r.node(0).to_vec();
-                        let _ = r.nearest(&q, 3, None);
-                    }
-                    for e in 0..r.edge_count().min(4) {
-                        let from = r.edges()[e].a;
-                        let _ = r.edge_path(e, from);
-                    }
-                    true
+            classify(Roadmap::load_any_scene(&p), |r| {
+                let _ = r.info();
+                let _ = Roadmap::from_bytes(input, r.header().fingerprint);
+                if r.node_count() > 0 {
+                    let q = r.node(0).to_vec();
+                    let _ = r.nearest(&q, 3, None);
                 }
-                Err(e) => {
-                    let _ = e.to_string();
-                    false
+                for e in 0..r.edge_count().min(4) {
+                    let from = r.edges()[e].a;
+                    let _ = r.edge_path(e, from);
                 }
-            }
+            })
         }
         "urdf" => {
             let text = String::from_utf8_lossy(input);
             let p = Path::new("in.urdf");
-            match urdf::parse_urdf(&text, p).and_then(|u| Model::new(u, p)) {
-                Ok(model) => {
+            classify(
+                urdf::parse_urdf(&text, p).and_then(|u| Model::new(u, p)),
+                |model| {
                     let values = vec![0.5; model.urdf.joints.len()];
                     let _ = model.link_poses(&nalgebra::Isometry3::identity(), &values);
                     for l in &model.urdf.links {
@@ -387,41 +390,24 @@ pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
                             }
                         }
                     }
-                    true
-                }
-                Err(e) => {
-                    let _ = e.to_string();
-                    false
-                }
-            }
+                },
+            )
         }
         "srdf" => {
             let text = String::from_utf8_lossy(input);
             let p = Path::new("in.srdf");
-            match srdf::parse_srdf(&text, p) {
-                Ok(s) => {
-                    // resolve every group against the shipped Panda, when present
-                    let panda = Path::new(env!("CARGO_MANIFEST_DIR"))
-                        .join("../scenes/arms/panda/panda.urdf");
-                    if let Ok(model) = urdf::load_urdf(&panda).and_then(|u| Model::new(u, &panda)) {
-                        for g in &s.groups {
-                            let _ = model.resolve_group(&s, &g.name, p);
-                        }
+            classify(srdf::parse_srdf(&text, p), |s| {
+                if let Some(model) = panda() {
+                    for g in &s.groups {
+                        let _ = model.resolve_group(&s, &g.name, p);
                     }
-                    true
                 }
-                Err(e) => {
-                    let _ = e.to_string();
-                    false
-                }
-            }
+            })
         }
         "moveit" => {
             let text = String::from_utf8_lossy(input);
             let p = Path::new("in.yaml");
-            let scene = moveit::parse_planning_scene(&text, p);
-            let request = moveit::parse_motion_plan_request(&text, p);
-            if let Ok(s) = &scene {
+            let scene = classify(moveit::parse_planning_scene(&text, p), |s| {
                 for o in &s.objects {
                     for (_, shape) in &o.parts {
                         if let moveit::ObjectShape::Primitive(prim) = shape {
@@ -429,8 +415,9 @@ pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
                         }
                     }
                 }
-            }
-            scene.is_ok() || request.is_ok()
+            });
+            let request = classify(moveit::parse_motion_plan_request(&text, p), |_| {});
+            scene || request
         }
         _ => false,
     })

@@ -34,6 +34,11 @@ pub enum BenchCommand {
     /// advancement); prints queries, solved, invalid (must be 0) and times. Exits with an
     /// error if any path is invalid.
     Validity(ValidityArgs),
+    /// MotionBenchMaker problems for an arm (issue 10): per problem valid start/goal, solved,
+    /// time, roadmap size, oracle calls, raw and shortened length, the path re-checked by the
+    /// independent arm checker; a summary like VAMP's `evaluate_mbm` ("Solved / Valid /
+    /// Total"). `--workcell`: one roadmap per family answering all its requests.
+    Mbm(MbmArgs),
     /// One run of `bench local` (internal): reads the job as JSON on stdin and prints the
     /// record as JSON on stdout.
     #[command(hide = true)]
@@ -164,7 +169,140 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
         BenchCommand::Local(a) => local(a),
         BenchCommand::LocalRun => local_run(),
         BenchCommand::Validity(a) => validity(a),
+        BenchCommand::Mbm(a) => mbm(a),
     }
+}
+
+/// Arguments of `bench mbm`.
+#[derive(Args)]
+pub struct MbmArgs {
+    /// A MotionBenchMaker family directory (`sceneNNNN.yaml` + `requestNNNN.yaml`), or a
+    /// directory of them (every family, in name order).
+    pub dir: PathBuf,
+    /// The robot's folder: its `.urdf` and `.srdf` (the SRDF's first group plans).
+    #[arg(long)]
+    pub robot: PathBuf,
+    /// Planning seconds per problem.
+    #[arg(long, default_value_t = 10.0)]
+    pub time: f64,
+    /// Oracle calls the via-point planner alone may spend before a roadmap grows.
+    #[arg(long, default_value_t = 2000)]
+    pub direct_calls: u64,
+    /// At most this many problems per family.
+    #[arg(long)]
+    pub limit: Option<usize>,
+    /// Seed of the grown roadmaps (and of the workcell roadmaps).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
+    /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
+    #[arg(long)]
+    pub workcell: bool,
+    /// Nodes of each workcell roadmap.
+    #[arg(long, default_value_t = 1000)]
+    pub nodes: usize,
+    /// Seconds one workcell query may take (it may grow the roadmap meanwhile).
+    #[arg(long, default_value_t = 5.0)]
+    pub query_time: f64,
+    /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// Runs `bench mbm`.
+fn mbm(a: MbmArgs) -> anyhow::Result<()> {
+    use viaroad::bench::mbm;
+    let time = super::limits::parse_seconds("--time", a.time)?;
+    let robot = mbm::load_robot(&a.robot)?;
+    let problems = mbm::find_problems(&a.dir, a.limit)?;
+    std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
+    if a.workcell {
+        let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
+        families.dedup();
+        let mut md = String::from(
+            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | certified | query p50 ms | p95 ms | max ms |\n\
+             |---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        );
+        let mut all = Vec::new();
+        for f in &families {
+            let ps: Vec<mbm::Problem> = problems
+                .iter()
+                .filter(|p| &p.family == f)
+                .cloned()
+                .collect();
+            let save = a.out.join(format!("{f}.roadmap"));
+            let r = mbm::run_workcell(
+                &robot,
+                &ps,
+                &viaroad::roadmap::Budget::nodes(a.nodes),
+                a.seed,
+                super::limits::parse_seconds("--query-time", a.query_time)?,
+                &save,
+            )
+            .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
+            let line = format!(
+                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} |\n",
+                r.family,
+                r.nodes,
+                r.learn_s,
+                r.learn_calls,
+                r.load_ms,
+                r.requests,
+                r.valid,
+                r.solved,
+                r.certified,
+                r.query_ms.p50,
+                r.query_ms.p95,
+                r.query_ms.max
+            );
+            eprint!("{line}");
+            md.push_str(&line);
+            all.push(r);
+        }
+        print!("{md}");
+        super::output::save(&a.out.join("workcell.md"), md.as_bytes())?;
+        super::output::save(
+            &a.out.join("workcell.json"),
+            serde_json::to_string_pretty(&all)?.as_bytes(),
+        )?;
+        return Ok(());
+    }
+    let options = mbm::MbmOptions {
+        time,
+        direct_calls: a.direct_calls,
+        seed: a.seed,
+        limit: a.limit,
+    };
+    let mut results = Vec::new();
+    for p in &problems {
+        let r = mbm::run_problem(&robot, p, &options);
+        eprintln!(
+            "{} {}: valid {} solved {} ({}) {:.3} s, {} calls, {} nodes, length {:.3} → {:.3}, certified {:?}{}",
+            r.family,
+            r.id,
+            r.valid,
+            r.solved,
+            r.stage,
+            r.time_s,
+            r.calls,
+            r.nodes,
+            r.raw_length,
+            r.length,
+            r.certified,
+            if r.error.is_empty() { String::new() } else { format!(" ({})", r.error) }
+        );
+        results.push(r);
+        // written as it goes: a long run interrupted keeps what it did
+        super::output::save(&a.out.join("problems.csv"), mbm::csv(&results).as_bytes())?;
+    }
+    let md = mbm::summary_markdown(&results);
+    print!("{md}");
+    super::output::save(&a.out.join("summary.md"), md.as_bytes())?;
+    super::output::save(
+        &a.out.join("report.json"),
+        serde_json::to_string_pretty(&results)?.as_bytes(),
+    )?;
+    Ok(())
 }
 
 /// Arguments of `bench validity`.

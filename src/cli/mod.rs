@@ -4,6 +4,7 @@ mod bench;
 mod build;
 mod config_arg;
 mod demo;
+mod export;
 mod global;
 mod info;
 mod interrupt;
@@ -17,6 +18,7 @@ mod query;
 mod render;
 mod serve;
 mod solve;
+mod view;
 
 use clap::{Parser, Subcommand};
 
@@ -51,6 +53,10 @@ enum Command {
     /// Benchmarks: the seed's disc experiments (Tables A.1–A.4) and local methods compared.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
+    /// Write a scene, its robot and a planned path as a glTF 2.0 binary (.glb).
+    Export(export::ExportArgs),
+    /// Write a self-contained HTML page that plays a planned path in 3D.
+    View(view::ViewArgs),
 }
 
 /// Runs one command.
@@ -65,6 +71,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Probe(a) => probe::run(a),
         Command::Serve(a) => serve::run(a),
         Command::Bench(b) => bench::run(b),
+        Command::Export(a) => export::run(a),
+        Command::View(a) => view::run(a),
     }
 }
 

@@ -35,8 +35,13 @@ pub fn run(a: ProbeArgs) -> anyhow::Result<()> {
         scene.space.normalize(q);
     }
     let motion = scene.space.direct_motion(&from, &to).with_context(|| {
-        "--from and --to differ in both position and orientation: a straight motion either \
-         translates (equal orientations) or turns about one axis (equal positions)"
+        if matches!(scene.space.kind(), viaroad::space::SpaceKind::Joints { .. }) {
+            "--from and --to differ in more than one joint: an arm's straight motion moves one \
+             joint (CHS §1.5)"
+        } else {
+            "--from and --to differ in both position and orientation: a straight motion either \
+             translates (equal orientations) or turns about one axis (equal positions)"
+        }
     })?;
     let oracle = scene.oracle();
     let mut counts = CallCounts::default();

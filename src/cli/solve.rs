@@ -33,12 +33,41 @@ pub struct SolveArgs {
     /// Single-query roadmap (OMPL's PRM `solve`): grow a roadmap from start and goal with the
     /// roadmap's local method (`--local` picks another) until they meet or the time is up,
     /// then answer through it. Without it the local method alone connects start and goal.
-    #[arg(long)]
+    #[arg(long, group = "single_query")]
     pub roadmap: bool,
-    /// Most nodes of the grown roadmap (`--roadmap`): a budget that gives the same answer on
-    /// any machine. With `--nodes` and no `--time` there is no time limit.
-    #[arg(long, requires = "roadmap")]
+    /// Most nodes of the grown roadmap (`--roadmap`) or of both trees (`--tree`): a budget
+    /// that gives the same answer on any machine. With `--nodes` and no `--time` there is no
+    /// time limit.
+    #[arg(long, requires = "single_query")]
     pub nodes: Option<usize>,
+    /// Single-query trees (OMPL's RRTConnect `solve`): two trees grown from start and goal
+    /// whose extends are staircases of single-group motions, each as far as it is free
+    /// (`roadmap::tree`). Default time 60 s, like `--roadmap`.
+    #[arg(long, group = "single_query")]
+    pub tree: bool,
+    /// Longest extend of `--tree`, as a share of the space's extent (OMPL's RRTConnect: 0.2).
+    #[arg(long, value_name = "SHARE", default_value_t = 0.2, requires = "tree")]
+    pub tree_range: f64,
+    /// Longest stair of a `--tree` extend (one position move, then one turn), as a share of
+    /// the extent: shorter stairs follow coupled motions more closely, for more calls.
+    #[arg(long, value_name = "SHARE", default_value_t = 0.01, requires = "tree")]
+    pub tree_stair: f64,
+    /// How a `--tree` stair finds its free prefix: `intervals` (one interval call), `yesno`
+    /// (a yes/no call first, intervals only when blocked) or `first` (one first-collision
+    /// call: the same prefix, without the collisions beyond it).
+    #[arg(
+        long,
+        value_name = "MODE",
+        default_value = "intervals",
+        requires = "tree"
+    )]
+    pub tree_prefix: viaroad::roadmap::tree::Prefix,
+    /// `--tree`: try each extend as one stair first (yes/no), the staircase only when blocked.
+    #[arg(long, requires = "tree")]
+    pub tree_coarse: bool,
+    /// `--tree`: extend the smaller tree each time instead of alternating.
+    #[arg(long, requires = "tree")]
+    pub tree_balance: bool,
     /// Seed of the grown roadmap (`--roadmap`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -98,6 +127,9 @@ pub fn solve_query(
 pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     if a.roadmap {
         return run_roadmap(a);
+    }
+    if a.tree {
+        return run_tree(a);
     }
     if let Some(g) = &a.global {
         return super::global::run_global(&a, g);
@@ -283,6 +315,132 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
                 grown.learnt.report.stop,
                 roadmap.node_count(),
                 roadmap.component_count(),
+            );
+        }
+    }
+    if let Some(out) = path_out {
+        out.finish();
+    }
+    Ok(())
+}
+
+/// `solve --tree`: each query answered by RRT-Connect with exact single-group extends.
+fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
+    use viaroad::roadmap::tree::{rrt_connect, shortcut, TreeParams};
+    let scene = Scene::load(&a.scene)?;
+    let time = match (a.time, a.nodes) {
+        (None, Some(_)) => None,
+        (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
+    };
+    if let Some(n) = a.nodes {
+        super::limits::count_in_range(
+            "--nodes",
+            n,
+            viaroad::limits::MAX_NODES,
+            "trees that large do not fit in memory",
+        )?;
+    }
+    let params = TreeParams {
+        range: a.tree_range,
+        stair: a.tree_stair,
+        prefix: a.tree_prefix,
+        balance: a.tree_balance,
+        coarse: a.tree_coarse,
+        max_nodes: a.nodes,
+    };
+    params.validate().map_err(anyhow::Error::msg)?;
+    let queries = scene.checked_queries()?;
+    if queries.is_empty() {
+        anyhow::bail!("{} has no [[query]]", a.scene.display());
+    }
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
+    let mut path_out = match &a.path_out {
+        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+        None => None,
+    };
+    let oracle = scene.oracle();
+    let groups = scene.space.groups(false);
+    for (i, q) in queries.iter().enumerate() {
+        let began = Instant::now();
+        let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
+        let found = rrt_connect(
+            &scene.space,
+            oracle.as_ref(),
+            &groups,
+            &q.start,
+            &q.goal,
+            &params,
+            a.seed,
+            &deadline,
+        )
+        .context("growing trees")?;
+        let grow_secs = began.elapsed().as_secs_f64();
+        let mut counts = found.counts;
+        // shortcutting gets what is left of the budget (none left: the raw path, also free)
+        let short_deadline = deadline.clone();
+        let shortened = match &found.path {
+            Some(p) => Some(
+                shortcut(
+                    &scene.space,
+                    oracle.as_ref(),
+                    &groups,
+                    p,
+                    32,
+                    &mut counts,
+                    &short_deadline,
+                )
+                .context("shortcutting")?,
+            ),
+            None => None,
+        };
+        let secs = began.elapsed().as_secs_f64();
+        if let (Some(out), Some(p)) = (&mut path_out, &shortened) {
+            out.write(i, p)?;
+        }
+        let length = shortened
+            .as_ref()
+            .map(|p| path_length(&scene.space, &groups, p));
+        if a.json {
+            println!(
+                "{}",
+                json!({
+                    "query": i + 1,
+                    "solved": found.path.is_some(),
+                    "path": found.path,
+                    "shortened": shortened,
+                    "length": length,
+                    "calls": counts.intersect_calls(),
+                    "nodes": found.nodes[0] + found.nodes[1],
+                    "start_tree": found.nodes[0],
+                    "goal_tree": found.nodes[1],
+                    "extends": found.extends,
+                    "seconds": secs,
+                    "grow_seconds": grow_secs,
+                    "stop": format!("{:?}", found.stop),
+                })
+            );
+        } else if let (Some(raw), Some(p)) = (&found.path, &shortened) {
+            println!(
+                "query {}: solved by trees of {} + {} nodes in {secs:.3} s ({grow_secs:.3} s growing), {} intersect calls, {} corners (raw {}), length {:.4}",
+                i + 1,
+                found.nodes[0],
+                found.nodes[1],
+                counts.intersect_calls(),
+                p.len(),
+                raw.len(),
+                length.unwrap_or(0.0),
+            );
+        } else {
+            println!(
+                "query {}: not solved in {secs:.3} s ({:?}; trees of {} + {} nodes, {} extends), {} intersect calls",
+                i + 1,
+                found.stop,
+                found.nodes[0],
+                found.nodes[1],
+                found.extends,
+                counts.intersect_calls(),
             );
         }
     }

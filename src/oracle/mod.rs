@@ -94,6 +94,9 @@ pub struct Workspace {
     pub inner: IntervalList,
     /// A motion a wrapper narrows before it asks its inner oracle.
     pub motion: Option<Motion>,
+    /// Numbers an oracle lays out as it likes (the planar disc loop gathers the discs a line
+    /// meets here); only ever grown, so that no call pays for zeroing it.
+    pub numbers: Vec<f64>,
 }
 
 impl Workspace {
@@ -152,6 +155,22 @@ pub trait CollisionOracle: Send + Sync {
         Ok(self.intervals(motion, counts)?.is_empty())
     }
 
+    /// The earliest collision of `motion`: the least `t` of its collision set within
+    /// `motion.range`, `None` if the whole range is free. What an RRT extend needs (the free
+    /// prefix, CHS §1.2) and no more: an oracle may skip every pair that cannot collide before
+    /// the earliest collision found so far. The default takes the first of all intervals.
+    fn first_collision(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        Ok(self
+            .intervals(motion, counts)?
+            .iter()
+            .next()
+            .map(|iv| iv.lo))
+    }
+
     /// Whether asking about an unbounded range costs no more than asking about a bounded one
     /// (analytic oracles). [`Bounded`] then asks about the motion as it is instead of a copy
     /// clipped to the bounds. Default `false`: enveloping needs bounded sweeps.
@@ -179,6 +198,13 @@ pub trait CountedOracle {
         ws: &mut Workspace,
         counts: &mut CallCounts,
     ) -> Result<(), OracleError>;
+    /// The earliest collision of `motion` ([`CollisionOracle::first_collision`]), counted as
+    /// one segment or line call, like [`intersect`](Self::intersect).
+    fn first_hit(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError>;
     /// A yes/no check of a bounded motion, counted as one segment call.
     fn check_motion(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError>;
     /// Whether `q` is collision-free, counted as one state check.
@@ -212,6 +238,18 @@ impl<T: CollisionOracle + ?Sized> CountedOracle for T {
         self.intervals_into(motion, out, ws, counts)
     }
 
+    fn first_hit(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        match motion.sweep {
+            Sweep::Segment => counts.segment_calls += 1,
+            Sweep::Line | Sweep::Turn => counts.line_calls += 1,
+        }
+        self.first_collision(motion, counts)
+    }
+
     fn check_motion(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError> {
         counts.segment_calls += 1;
         self.motion_is_free(motion, counts)
@@ -239,6 +277,9 @@ macro_rules! forward_oracle {
             }
             fn motion_is_free(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError> {
                 (**self).motion_is_free(motion, counts)
+            }
+            fn first_collision(&self, motion: &Motion, counts: &mut CallCounts) -> Result<Option<f64>, OracleError> {
+                (**self).first_collision(motion, counts)
             }
             fn prefers_unclipped(&self) -> bool {
                 (**self).prefers_unclipped()
@@ -351,6 +392,32 @@ impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
         !self.space.in_bounds(q) || self.inner.collides(q, counts)
+    }
+
+    fn first_collision(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        let Some(inside) = self.space.inside_range(motion) else {
+            return Ok(Some(motion.range.lo));
+        };
+        if inside.lo > motion.range.lo {
+            return Ok(Some(motion.range.lo));
+        }
+        let inner = if inside == motion.range || self.inner.prefers_unclipped() {
+            self.inner.first_collision(motion, counts)?
+        } else {
+            let mut clipped = motion.clone();
+            clipped.range = inside;
+            self.inner.first_collision(&clipped, counts)?
+        };
+        // leaving the bounds is the latest the first collision can be
+        let exit = (inside.hi < motion.range.hi).then_some(inside.hi);
+        Ok(match (inner, exit) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        })
     }
 
     fn motion_is_free(

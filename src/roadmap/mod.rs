@@ -12,6 +12,7 @@
 //! | [`persist`] | the file: magic, version, header, checksum, atomic save |
 //! | [`query`] | attach, A*, shorten; batches in parallel |
 //! | [`landmarks`] | landmark lower bounds that guide A* around obstacles |
+//! | [`tree`] | RRT-Connect for one query, with exact single-group extends |
 //! | [`info`] | the summary `viaroad info` prints |
 //!
 //! ```no_run
@@ -48,6 +49,7 @@ pub mod params;
 pub mod persist;
 pub mod query;
 pub mod sampler;
+pub mod tree;
 
 pub use graph::{Edge, Roadmap};
 pub use info::RoadmapInfo;

@@ -421,6 +421,12 @@ fn check_space(space: &Space) -> Result<(), RoadmapError> {
             scale,
         )
         .map_err(|e| e.to_string()),
+        SpaceKind::Joints { dof, continuous } if dof == lower.len() && dof == upper.len() => {
+            let flags: Vec<bool> = (0..dof)
+                .map(|i| crate::space::joints::bit(continuous, i))
+                .collect();
+            Space::joints(lower.to_vec(), upper.to_vec(), &flags).map_err(|e| e.to_string())
+        }
         _ => Err("bounds of the wrong dimension".into()),
     };
     match rebuilt {

@@ -136,6 +136,9 @@ pub fn gaussian_near<R: Rng + ?Sized>(
     let angle_sigma = sigma / space.rotation_scale();
     match space.kind() {
         SpaceKind::Euclidean(_) => {}
+        SpaceKind::Joints { continuous, .. } => {
+            crate::space::joints::wrap_continuous(continuous, &mut q)
+        }
         SpaceKind::Se2 => q[2] = rotation::wrap_angle(mean[2] + angle_sigma * normal(rng)),
         SpaceKind::Se3 => {
             if angle_sigma > std::f64::consts::FRAC_PI_2 {

@@ -37,7 +37,7 @@ use super::arm::Arm;
 use super::RobotError;
 use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
-use crate::oracle::polyhedra::Polyhedra;
+use crate::oracle::polyhedra::{Gather, Gathered, Polyhedra};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::robot::urdf::JointKind;
 use crate::scene::moveit::{CollisionObject, ObjectShape};
@@ -152,6 +152,17 @@ struct Prepared {
     sweep: Sweep,
 }
 
+impl Prepared {
+    /// The world pivot and axis of the move (for a slide: the child frame's origin and the
+    /// offset).
+    fn pivot_axis(&self) -> (Vector3<f64>, Vector3<f64>) {
+        match &self.sweep {
+            Sweep::Turn { origin, axis, .. } => (*origin, *axis),
+            Sweep::Slide { offset } => (self.poses[self.child].translation.vector, *offset),
+        }
+    }
+}
+
 /// Exact collision intervals of single-joint moves of one arm in one scene.
 #[derive(Clone)]
 pub struct ArmOracle {
@@ -165,6 +176,8 @@ pub struct ArmOracle {
     pair_oracles: HashMap<(usize, usize), Arc<Polyhedra>>,
     /// Per link with geometry: the link (in its frame) among the whole environment, built once.
     env_oracles: Vec<Option<Arc<Polyhedra>>>,
+    /// Whether the link oracles of a move share what they find ([`ArmOracle::with_culling`]).
+    culling: bool,
 }
 
 impl std::fmt::Debug for ArmOracle {
@@ -267,6 +280,7 @@ impl ArmOracle {
             link_meshes,
             pair_oracles,
             env_oracles,
+            culling: true,
         })
     }
 
@@ -431,7 +445,8 @@ impl ArmOracle {
     /// the environment in the world, against each proximal link in that link's frame (or the
     /// proximal link turning the other way in the moving link's frame), the joint axis and its
     /// pivot carried into that frame ([`Polyhedra::turn_about`], CHS §2.3.2). Nothing is built
-    /// per call but a shifted copy of a link's faces.
+    /// per call but a shifted copy of a link's faces. The oracles share what they find: a
+    /// pair of faces whose window an earlier oracle already found colliding is skipped.
     pub fn joint_move(
         &self,
         q: &[f64],
@@ -439,60 +454,137 @@ impl ArmOracle {
         delta: f64,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, RobotError> {
-        let p = match self.prepare(q, joint, delta, counts)? {
-            Ok(p) => p,
-            Err(whole) => return Ok(whole),
-        };
-        let unsupported = |m: String| RobotError::Config {
+        if !self.culling {
+            return self.joint_move_separately(q, joint, delta, counts);
+        }
+        self.gathered(q, joint, delta, Gather::All, counts, |g| g.to_list())
+    }
+
+    /// Whether moving group joint `joint` by `delta` from `q` is free of collision: the
+    /// yes/no question of the local method, [`ArmOracle::joint_move`] stopping at the first
+    /// collision piece any link finds.
+    pub fn joint_move_free(
+        &self,
+        q: &[f64],
+        joint: usize,
+        delta: f64,
+        counts: &mut CallCounts,
+    ) -> Result<bool, RobotError> {
+        if !self.culling {
+            return Ok(self
+                .joint_move_separately(q, joint, delta, counts)?
+                .is_empty());
+        }
+        self.gathered(q, joint, delta, Gather::Any, counts, |g| {
+            g.first().is_none()
+        })
+    }
+
+    /// The first `t ∈ [0, 1]` at which moving group joint `joint` by `delta` from `q` collides
+    /// (`None`: the move is free): what a planner that walks along the move until it hits needs.
+    /// Once some link's piece is known, later links are only asked about the window before it.
+    pub fn joint_move_first_hit(
+        &self,
+        q: &[f64],
+        joint: usize,
+        delta: f64,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, RobotError> {
+        if !self.culling {
+            let all = self.joint_move_separately(q, joint, delta, counts)?;
+            return Ok(all.iter().next().map(|iv| iv.lo));
+        }
+        self.gathered(q, joint, delta, Gather::First, counts, |g| g.first())
+    }
+
+    /// Switches the sharing between link oracles (skipped windows, early stops) on or off.
+    /// Off, every link oracle answers the whole move on its own and the answers are merged:
+    /// the reference the tests and `benches/arm.rs` compare the shared answer with. On by
+    /// default.
+    pub fn with_culling(mut self, on: bool) -> ArmOracle {
+        self.culling = on;
+        self
+    }
+
+    /// The links of a move and the oracles they ask, in one gathered sweep
+    /// ([`Polyhedra::gather`]); `finish` reads the answer.
+    fn gathered<R>(
+        &self,
+        q: &[f64],
+        joint: usize,
+        delta: f64,
+        mode: Gather,
+        counts: &mut CallCounts,
+        finish: impl FnOnce(&Gathered<'_>) -> R,
+    ) -> Result<R, RobotError> {
+        let p = self.prepare(q, joint, delta, counts)?;
+        let unsupported = |OracleError::Unsupported(m)| RobotError::Config {
             what: "joint move".into(),
             message: m,
         };
+        Polyhedra::gather(mode, |g| {
+            let p = match p {
+                Ok(p) => p,
+                Err(_) => {
+                    g.add(Interval::UNIT);
+                    return Ok(finish(g));
+                }
+            };
+            let (pivot_w, axis_w) = p.pivot_axis();
+            // link at `rel` in a frame `into` (world → frame), turning (sliding) with the
+            // distal part, or against it when the distal link is the obstacle (`sign` −1)
+            let ask = |o: &Polyhedra,
+                       rel: &Isometry3<f64>,
+                       into: &Isometry3<f64>,
+                       sign: f64,
+                       g: &mut Gathered<'_>,
+                       counts: &mut CallCounts|
+             -> Result<(), RobotError> {
+                let v = into.rotation * axis_w;
+                match p.sweep {
+                    Sweep::Turn { .. } => {
+                        let c = into * Point3::from(pivot_w);
+                        g.turn_about(
+                            o,
+                            &se3(rel),
+                            [c.x, c.y, c.z],
+                            [v.x, v.y, v.z],
+                            sign * delta,
+                            counts,
+                        )
+                    }
+                    Sweep::Slide { .. } => {
+                        let d = v * sign;
+                        g.slide(o, &se3(rel), [d.x, d.y, d.z], counts)
+                    }
+                }
+                .map_err(unsupported)
+            };
+            self.each_oracle(&p, |o, rel, into, sign| {
+                ask(o, &rel, &into, sign, g, counts)?;
+                Ok(!g.done())
+            })?;
+            Ok(finish(g))
+        })
+    }
+
+    /// Calls `f(oracle, pose, into, sign)` for every oracle a moving link must ask (the
+    /// environment, with the swept link ball meeting some obstacle's; each proximal link it is
+    /// not exempt from, with the balls meeting): the robot placed at `pose` in the frame
+    /// `into` maps the world to, turning with the move (`sign` 1) or against it (−1, the
+    /// moving link is the obstacle). Stops when `f` answers `false`.
+    fn each_oracle(
+        &self,
+        p: &Prepared,
+        mut f: impl FnMut(&Polyhedra, Isometry3<f64>, Isometry3<f64>, f64) -> Result<bool, RobotError>,
+    ) -> Result<(), RobotError> {
         let Prepared {
             poses,
             balls,
             distal,
-            child,
             sweep,
+            ..
         } = p;
-        let (pivot_w, axis_w) = match &sweep {
-            Sweep::Turn { origin, axis, .. } => (*origin, *axis),
-            Sweep::Slide { offset } => (poses[child].translation.vector, *offset),
-        };
-        // link `robot` at `rel` in a frame `into` (world → frame), turning (sliding) with the
-        // distal part, or against it when the distal link is the obstacle (`sign` −1)
-        let moved = |o: &Polyhedra,
-                     rel: &Isometry3<f64>,
-                     into: &Isometry3<f64>,
-                     sign: f64,
-                     counts: &mut CallCounts|
-         -> Result<IntervalList, RobotError> {
-            let v = into.rotation * axis_w;
-            let r = match sweep {
-                Sweep::Turn { .. } => {
-                    let c = into * Point3::from(pivot_w);
-                    o.turn_about(
-                        &se3(rel),
-                        [c.x, c.y, c.z],
-                        [v.x, v.y, v.z],
-                        sign * delta,
-                        counts,
-                    )
-                }
-                Sweep::Slide { .. } => {
-                    let d = v * sign;
-                    o.intervals(
-                        &Motion::segment(
-                            se3(rel),
-                            Change::Linear(vec![d.x, d.y, d.z, 0.0, 0.0, 0.0, 0.0]),
-                        ),
-                        counts,
-                    )
-                }
-            };
-            r.map_err(|OracleError::Unsupported(m)| unsupported(m))
-        };
-        let world = Isometry3::identity();
-        let mut answer = IntervalList::new();
         for l in (0..balls.len()).filter(|&l| distal[l]) {
             let Some(ball) = &balls[l] else {
                 continue;
@@ -503,7 +595,9 @@ impl ArmOracle {
                 .any(|(_, b)| sweep.may_meet(ball, b))
             {
                 if let Some(o) = &self.env_oracles[l] {
-                    answer = answer.union(&moved(o, &poses[l], &world, 1.0, counts)?);
+                    if !f(o, poses[l], Isometry3::identity(), 1.0)? {
+                        return Ok(());
+                    }
                 }
             }
             for m in (0..balls.len()).filter(|&m| !distal[m] && !self.exempt(l, m)) {
@@ -516,16 +610,68 @@ impl ArmOracle {
                 let Some(o) = self.pair_oracles.get(&(l.min(m), l.max(m))) else {
                     continue;
                 };
-                let hits = if l < m {
+                let go = if l < m {
                     let into = poses[m].inverse();
-                    moved(o, &(into * poses[l]), &into, 1.0, counts)?
+                    f(o, into * poses[l], into, 1.0)?
                 } else {
                     let into = poses[l].inverse();
-                    moved(o, &(into * poses[m]), &into, -1.0, counts)?
+                    f(o, into * poses[m], into, -1.0)?
                 };
-                answer = answer.union(&hits);
+                if !go {
+                    return Ok(());
+                }
             }
         }
+        Ok(())
+    }
+
+    /// [`ArmOracle::joint_move`] without sharing: every link oracle answers the whole move on
+    /// its own, the answers merged.
+    fn joint_move_separately(
+        &self,
+        q: &[f64],
+        joint: usize,
+        delta: f64,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, RobotError> {
+        let p = match self.prepare(q, joint, delta, counts)? {
+            Ok(p) => p,
+            Err(whole) => return Ok(whole),
+        };
+        let unsupported = |OracleError::Unsupported(m)| RobotError::Config {
+            what: "joint move".into(),
+            message: m,
+        };
+        let (pivot_w, axis_w) = p.pivot_axis();
+        let mut answer = IntervalList::new();
+        self.each_oracle(&p, |o, rel, into, sign| {
+            let v = into.rotation * axis_w;
+            let r = match p.sweep {
+                Sweep::Turn { .. } => {
+                    let c = into * Point3::from(pivot_w);
+                    o.turn_about(
+                        &se3(&rel),
+                        [c.x, c.y, c.z],
+                        [v.x, v.y, v.z],
+                        sign * delta,
+                        counts,
+                    )
+                }
+                Sweep::Slide { .. } => {
+                    let d = v * sign;
+                    o.intervals(
+                        &Motion::segment(
+                            se3(&rel),
+                            Change::Linear(vec![d.x, d.y, d.z, 0.0, 0.0, 0.0, 0.0]),
+                        ),
+                        counts,
+                    )
+                }
+            }
+            .map_err(unsupported)?;
+            answer = answer.union(&r);
+            Ok(true)
+        })?;
         Ok(answer)
     }
 

@@ -7,12 +7,14 @@
 //! | module | reads |
 //! |---|---|
 //! | [`toml_format`] | viaroad's TOML scenes (the format is documented there) |
+//! | [`arm`] | arm scenes: a URDF robot's planning group in a MoveIt scene (`kind = "arm"`) |
 //! | [`ompl_cfg`] | OMPL.app problems (`.cfg`), OMPL path files and query-pair files |
 //! | [`mesh_io`] | meshes: Wavefront OBJ, STL |
 //! | [`moveit`] | MoveIt PlanningScene and MotionPlanRequest YAML (robot arms) |
 //! | [`collada`] | Collada meshes as OMPL.app sees them through assimp (frame, robot centre) |
 //! | [`shapes`] | convex hulls, 2D footprints of prism meshes, simple-polygon check |
 
+pub mod arm;
 pub mod collada;
 pub mod mesh_io;
 pub mod moveit;
@@ -147,7 +149,8 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
     };
     let big = |v: f64| v.is_nan() || v.abs() > max;
     match &scene.robot {
-        Robot::Point => {}
+        // the robot's own files refuse such numbers as they are read
+        Robot::Point | Robot::Arm(_) => {}
         Robot::Polygons(parts) => {
             if parts
                 .iter()
@@ -208,6 +211,9 @@ pub enum Robot {
     Polygons(Vec<Polygon>),
     /// A triangle mesh in the body frame (SE(3) scenes); the reference point is the origin.
     Mesh(TriMesh),
+    /// A robot arm's planning group among a MoveIt environment (joint-space scenes, issue 10);
+    /// the environment lives here, not in [`Scene::obstacles`].
+    Arm(Box<arm::ArmRobot>),
 }
 
 /// A fixed obstacle.
@@ -316,6 +322,10 @@ impl Scene {
                     Polyhedra::new(mesh.clone(), obstacles),
                 ))
             }
+            (Robot::Arm(a), _) => Box::new(Bounded::new(
+                self.space.clone(),
+                arm::ArmCollision::new(a.arm_oracle().clone()),
+            )),
             (Robot::Point, _) => unreachable!("the loaders only pair a point robot with R^n"),
         }
     }
@@ -368,6 +378,7 @@ impl Scene {
                 h.str("mesh");
                 h.mesh(m);
             }
+            Robot::Arm(a) => h.bytes(&a.digest().to_le_bytes()),
         }
         for o in &self.obstacles {
             match o {

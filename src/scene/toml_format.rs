@@ -159,6 +159,9 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 
 /// Parses a TOML scene; `path` names the file in errors and anchors relative mesh paths.
 pub fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
+    if super::arm::is_arm_scene(text) {
+        return super::arm::from_str(text, path);
+    }
     let file: File = toml::from_str(text).map_err(|e| SceneError::Parse {
         path: path.to_path_buf(),
         message: e.to_string().trim_end().replace('\n', " "),
@@ -330,7 +333,7 @@ impl Reader<'_> {
                 let radius = match &robot {
                     Robot::Polygons(parts) => parts.iter().map(Polygon::radius).fold(0.0, f64::max),
                     Robot::Mesh(m) => m.radius(),
-                    Robot::Point => 1.0,
+                    Robot::Point | Robot::Arm(_) => 1.0,
                 };
                 let max = crate::limits::MAX_COORDINATE;
                 if !(radius.is_finite() && radius <= max) {

@@ -1,4 +1,5 @@
-//! Configuration spaces: R^n with box bounds, SE(2) = R² × S¹ and SE(3) = R³ × S³.
+//! Configuration spaces: R^n with box bounds, SE(2) = R² × S¹, SE(3) = R³ × S³, and the
+//! joint space of a robot arm's planning group ([`joints`]).
 //!
 //! A space knows distance, interpolation, sampling, its **DOF groups** (CHS §1.5) and how to
 //! build the straight motions the oracle is asked about. Configurations are plain coordinate
@@ -7,6 +8,7 @@
 //! Only the position is bounded (as in OMPL); outside the bounds counts as obstacle, so every
 //! borderline has bounded free sections (see [`crate::oracle::Bounded`]).
 
+pub mod joints;
 pub mod motion;
 pub mod rotation;
 
@@ -40,6 +42,15 @@ pub enum SpaceKind {
     Se2,
     /// SE(3): `[x, y, z, qx, qy, qz, qw]`, a unit quaternion in OMPL's order.
     Se3,
+    /// The joint values of an arm's planning group, in group order (issue 10, see
+    /// [`joints`]): one DOF group per joint, because moving one joint turns the distal part
+    /// rigidly about a fixed axis (CHS §1.5, §2.3.2).
+    Joints {
+        /// Number of joints.
+        dof: usize,
+        /// Bit `i` set: joint `i` is continuous (wraps like SE(2)'s angle, has no limits).
+        continuous: u64,
+    },
 }
 
 impl std::fmt::Display for SpaceKind {
@@ -49,6 +60,7 @@ impl std::fmt::Display for SpaceKind {
             SpaceKind::Euclidean(n) => write!(f, "r{n}"),
             SpaceKind::Se2 => write!(f, "se2"),
             SpaceKind::Se3 => write!(f, "se3"),
+            SpaceKind::Joints { dof, .. } => write!(f, "arm{dof}"),
         }
     }
 }
@@ -234,6 +246,7 @@ impl Space {
             SpaceKind::Euclidean(n) => n,
             SpaceKind::Se2 => 3,
             SpaceKind::Se3 => 7,
+            SpaceKind::Joints { dof, .. } => dof,
         }
     }
 
@@ -294,6 +307,7 @@ impl Space {
     pub fn normalize(&self, q: &mut [f64]) {
         match self.kind {
             SpaceKind::Euclidean(_) => {}
+            SpaceKind::Joints { continuous, .. } => joints::wrap_continuous(continuous, q),
             SpaceKind::Se2 => q[2] = rotation::wrap_angle(q[2]),
             SpaceKind::Se3 => {
                 let n = q[3..7].iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -306,9 +320,20 @@ impl Space {
 
     /// Whether the position lies in the closed bounds.
     pub fn in_bounds(&self, q: &[f64]) -> bool {
+        let wraps = self.wrapping();
         q.iter()
             .zip(self.lower.iter().zip(&self.upper))
-            .all(|(v, (l, u))| *l <= *v && *v <= *u)
+            .enumerate()
+            .all(|(i, (v, (l, u)))| (*l <= *v && *v <= *u) || joints::bit(wraps, i))
+    }
+
+    /// The continuous joints of a joint space as a bit set (none for other spaces): their
+    /// coordinates wrap and have no bounds.
+    pub fn wrapping(&self) -> u64 {
+        match self.kind {
+            SpaceKind::Joints { continuous, .. } => continuous,
+            _ => 0,
+        }
     }
 
     /// The parameter range of `motion` in which the position stays inside the bounds (the slab
@@ -316,7 +341,8 @@ impl Space {
     pub fn inside_range(&self, motion: &Motion) -> Option<Interval> {
         let rate = motion.translation_rate(self.position_dim());
         let mut range = motion.range;
-        for i in 0..self.position_dim() {
+        let wraps = self.wrapping();
+        for i in (0..self.position_dim()).filter(|&i| !joints::bit(wraps, i)) {
             let p = motion.origin[i];
             let v = rate.get(i).copied().unwrap_or(0.0);
             let (l, u) = (self.lower[i], self.upper[i]);
@@ -338,6 +364,9 @@ impl Space {
     /// Distance: Euclidean for R^n; `‖Δp‖ + rotation_scale · angle` for rigid bodies, with the
     /// angle of the rotation between the orientations (at most π).
     pub fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
+        if let SpaceKind::Joints { continuous, .. } = self.kind {
+            return joints::distance(continuous, a, b);
+        }
         let p = self.position_dim();
         let dp = a[..p]
             .iter()
@@ -351,12 +380,16 @@ impl Space {
             SpaceKind::Se3 => {
                 dp + self.rotation_scale * rotation::rotation_angle(&a[3..7], &b[3..7])
             }
+            SpaceKind::Joints { .. } => unreachable!("answered above"),
         }
     }
 
     /// Simultaneous interpolation of all coordinates (OMPL's `interpolate`): linear position,
     /// shortest-way angle, slerp for quaternions. Used by sampled checking, not by exact motions.
     pub fn interpolate(&self, a: &[f64], b: &[f64], t: f64) -> Config {
+        if let SpaceKind::Joints { continuous, .. } = self.kind {
+            return joints::interpolate(continuous, a, b, t);
+        }
         let p = self.position_dim();
         let mut q: Config = a[..p]
             .iter()
@@ -378,6 +411,7 @@ impl Space {
                 q.extend_from_slice(&[0.0; 4]);
                 rotation::quat_to_slice(&r, &mut q[3..7]);
             }
+            SpaceKind::Joints { .. } => unreachable!("answered above"),
         }
         q
     }
@@ -393,6 +427,8 @@ impl Space {
             .collect();
         match self.kind {
             SpaceKind::Euclidean(_) => {}
+            // continuous joints have bounds [-π, π]: drawn like the others, then wrapped
+            SpaceKind::Joints { continuous, .. } => joints::wrap_continuous(continuous, &mut q),
             SpaceKind::Se2 => q.push(rng.random_range(-PI..PI)),
             SpaceKind::Se3 => {
                 let (u1, u2, u3): (f64, f64, f64) = (rng.random(), rng.random(), rng.random());
@@ -422,6 +458,19 @@ impl Space {
     pub fn groups_into(&self, split_axes: bool, groups: &mut Vec<Group>) {
         let p = self.position_dim();
         groups.clear();
+        if let SpaceKind::Joints { dof, continuous } = self.kind {
+            // one group per joint whatever `split_axes` says (CHS §1.5, seed l. 438: "a robot
+            // arm whose links may only move one at a time")
+            groups.extend((0..dof).map(|i| Group {
+                kind: if joints::bit(continuous, i) {
+                    GroupKind::Angle
+                } else {
+                    GroupKind::Linear
+                },
+                coords: i..i + 1,
+            }));
+            return;
+        }
         if split_axes {
             groups.extend((0..p).map(|i| Group {
                 kind: GroupKind::Linear,
@@ -443,6 +492,7 @@ impl Space {
                 kind: GroupKind::Quaternion,
                 coords: 3..7,
             }),
+            SpaceKind::Joints { .. } => unreachable!("answered above"),
         }
     }
 
@@ -451,7 +501,10 @@ impl Space {
     pub fn same_in_group(&self, a: &[f64], b: &[f64], group: &Group) -> bool {
         match group.kind {
             GroupKind::Linear => a[group.coords.clone()] == b[group.coords.clone()],
-            GroupKind::Angle => rotation::wrap_angle(b[2] - a[2]) == 0.0,
+            GroupKind::Angle => {
+                let i = group.coords.start;
+                rotation::wrap_angle(b[i] - a[i]) == 0.0
+            }
             GroupKind::Quaternion => {
                 a[3..7] == b[3..7] || a[3..7].iter().zip(&b[3..7]).all(|(x, y)| *x == -*y)
             }
@@ -478,7 +531,8 @@ impl Space {
             }
             GroupKind::Angle => {
                 let mut delta = vec![0.0; a.len()];
-                delta[2] = rotation::wrap_angle(z[2] - a[2]);
+                let i = group.coords.start;
+                delta[i] = rotation::wrap_angle(z[i] - a[i]);
                 Change::Linear(delta)
             }
             GroupKind::Quaternion => {
@@ -503,7 +557,8 @@ impl Space {
             }
             GroupKind::Angle => {
                 let delta = out.reset_linear(a, Interval::UNIT, Sweep::Segment);
-                delta[2] = rotation::wrap_angle(z[2] - a[2]);
+                let i = group.coords.start;
+                delta[i] = rotation::wrap_angle(z[i] - a[i]);
             }
             GroupKind::Quaternion => {
                 let qa = rotation::quat_from_slice(&a[3..7]);
@@ -570,7 +625,7 @@ impl Space {
         match group.kind {
             GroupKind::Angle => {
                 let delta = out.reset_linear(base, turn, Sweep::Turn);
-                delta[2] = TAU;
+                delta[group.coords.start] = TAU;
             }
             GroupKind::Quaternion => out.reset_rotation(base, axis, TAU, turn, Sweep::Turn),
             GroupKind::Linear => panic!("turn_through on a linear group"),
@@ -583,7 +638,7 @@ impl Space {
         match group.kind {
             GroupKind::Angle => {
                 let mut delta = vec![0.0; base.len()];
-                delta[2] = TAU;
+                delta[group.coords.start] = TAU;
                 Motion::turn(base.to_vec(), Change::Linear(delta))
             }
             GroupKind::Quaternion => {
@@ -621,6 +676,7 @@ impl Space {
         let s = self.rotation_scale;
         match self.kind {
             SpaceKind::Euclidean(_) => vec![q.to_vec()],
+            SpaceKind::Joints { continuous, .. } => vec![joints::embedding(continuous, q)],
             SpaceKind::Se2 => vec![vec![q[0], q[1], s * q[2].cos(), s * q[2].sin()]],
             SpaceKind::Se3 => {
                 let mut a = q[..3].to_vec();
@@ -638,6 +694,7 @@ impl Space {
             SpaceKind::Euclidean(n) => n,
             SpaceKind::Se2 => 4,
             SpaceKind::Se3 => 7,
+            SpaceKind::Joints { dof, continuous } => dof + continuous.count_ones() as usize,
         }
     }
 }

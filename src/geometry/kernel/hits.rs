@@ -20,6 +20,8 @@ use std::ops::ControlFlow;
 pub(crate) struct Hits {
     pieces: Vec<Interval>,
     first_only: bool,
+    /// Only the first collision matters ([`Hits::reset_prefix`]).
+    prefix: bool,
 }
 
 impl Hits {
@@ -35,6 +37,7 @@ impl Hits {
         Hits {
             pieces: Vec::new(),
             first_only: true,
+            prefix: false,
         }
     }
 
@@ -43,6 +46,21 @@ impl Hits {
     pub fn reset(&mut self, first_only: bool) {
         self.pieces.clear();
         self.first_only = first_only;
+        self.prefix = false;
+    }
+
+    /// Empties the set for a sweep that wants only the earliest collision (the free prefix of
+    /// a motion, `first_collision`): a window that starts at or after the earliest piece found
+    /// so far cannot change it, so [`Hits::covers`] lets the sweep skip it. The pieces after
+    /// the first may then be incomplete; the first piece's start is exact.
+    pub fn reset_prefix(&mut self) {
+        self.reset(false);
+        self.prefix = true;
+    }
+
+    /// Whether only the earliest collision matters.
+    pub fn is_prefix(&self) -> bool {
+        self.prefix
     }
 
     /// Whether the sweep stops at the first piece.
@@ -79,6 +97,9 @@ impl Hits {
     /// Whether every parameter of `w` is already known to collide.
     #[inline]
     pub fn covers(&self, w: Interval) -> bool {
+        if self.prefix && self.pieces.first().is_some_and(|p| w.lo >= p.lo) {
+            return true;
+        }
         let i = self.pieces.partition_point(|p| p.hi < w.lo);
         self.pieces
             .get(i)

@@ -175,6 +175,7 @@ impl Freeways {
                 .flat_map(|p| p.vertices.iter().map(|v| [v.x, v.y]))
                 .collect(),
             Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
+            Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
         };
         let mut polygons: Vec<Vec<P>> = Vec::new();
         for o in &scene.obstacles {

@@ -263,11 +263,22 @@ pub fn candidates_into(
     out: &mut Vec<Candidate>,
 ) {
     let period = motion.range.hi - motion.range.lo;
+    // a linear motion's length per unit parameter, once per borderline rather than once per
+    // candidate: `motion_length(m, 0, len)` is `|len - 0| · speed` with this very `speed`
+    // (`|1 - 0| · speed` is exact), so `l` keeps its bits; a rotation's length multiplies in
+    // another order and is asked as it is
+    let speed = match motion.change {
+        Change::Linear(_) => Some(space.motion_length(motion, 0.0, 1.0)),
+        Change::Rotation { .. } => None,
+    };
     let mut add = |t: f64, len: f64, scratch: &mut [f64]| {
         motion.write_at(t, scratch);
         space.normalize(scratch);
         let d = space.distance(scratch, base);
-        let l = space.motion_length(motion, 0.0, len);
+        let l = match speed {
+            Some(speed) => (len - 0.0).abs() * speed,
+            None => space.motion_length(motion, 0.0, len),
+        };
         let value = if beta == 0.0 { d } else { d / l.powf(beta) };
         if value.is_finite() {
             out.push(Candidate { t, value });

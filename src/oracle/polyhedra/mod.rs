@@ -221,6 +221,10 @@ pub(crate) struct Caches {
     swept: Memo<Aabb>,
     /// A robot vertex's arc box over a turn.
     vertex_arcs: Memo<Aabb>,
+    /// A robot edge's cylindrical box about the axis of a turn.
+    robot_edges: Memo<CylBox>,
+    /// An obstacle edge's cylindrical box about the axis of a turn, in the robot's frame.
+    obst_edges: Memo<CylBox>,
     /// Containment along a path.
     pieces: containment::Pieces,
 }
@@ -338,29 +342,20 @@ impl Polyhedra {
         angle: f64,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        let at = Pose::from_config(pose)?;
-        if !pivot.iter().all(|c| c.is_finite()) {
-            return Err(OracleError::Unsupported(
-                "polyhedra: a pivot with a coordinate that is not finite".into(),
-            ));
-        }
-        let mut origin = pose.to_vec();
-        origin[..3].copy_from_slice(&pivot);
-        let motion = Motion::segment(origin, Change::Rotation { axis, angle });
-        // body point v sits at rot · v + pos = rot · (v + s) + pivot with s = rotᵀ (pos − pivot)
-        let s = at.rot.tr_mul(&(at.pos - V3::from(pivot)));
-        if s == V3::zeros() {
-            return self.intervals(&motion, counts);
-        }
-        let view = Polyhedra {
-            robot_mesh: Arc::clone(&self.robot_mesh),
-            obstacle_meshes: Arc::clone(&self.obstacle_meshes),
-            robot: self.robot.shifted(&s),
-            obstacles: Arc::clone(&self.obstacles),
-            tol: self.tol,
-            enveloping: self.enveloping,
-        };
-        view.intervals(&motion, counts)
+        Polyhedra::gather(Gather::All, |g| {
+            g.turn_about(self, pose, pivot, axis, angle, counts)?;
+            Ok(g.to_list())
+        })
+    }
+
+    /// Runs `f` with an empty [`Gathered`] of this thread's scratch space: the collision pieces,
+    /// in `t ∈ [0, 1]`, of one motion asked of several oracles (the links of an arm turned by
+    /// one joint, issue 10), each call skipping what the earlier ones already found.
+    pub(crate) fn gather<R>(mode: Gather, f: impl FnOnce(&mut Gathered<'_>) -> R) -> R {
+        with_scratch(|s| {
+            s.hits.reset(mode == Gather::Any);
+            f(&mut Gathered { s, mode })
+        })
     }
 
     fn classify(motion: &Motion) -> Result<(Pose, Kind), OracleError> {
@@ -473,6 +468,19 @@ impl Polyhedra {
                     hi: p1.min(p0 + TAU),
                 };
                 local.reset(sink.is_first_only());
+                if sink.is_prefix() {
+                    local.reset_prefix();
+                }
+                if p1 - p0 <= TAU {
+                    // what other oracles found for this motion (a gathered sweep): windows it
+                    // covers are skipped (the answer repeats every turn, so only within one)
+                    for iv in sink.as_slice() {
+                        let _ = local.add(Interval {
+                            lo: (iv.lo * angle).max(p0),
+                            hi: (iv.hi * angle).min(p1),
+                        });
+                    }
+                }
                 rotation::sweep(self, &pose, &axis, one, local, caches, counts);
                 let turns = ((p1 - p0) / TAU).ceil().max(1.0) as usize;
                 for k in 0..turns {
@@ -572,6 +580,124 @@ impl Polyhedra {
     }
 }
 
+/// What a [`Gathered`] sweep wants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Gather {
+    /// Every collision piece.
+    All,
+    /// Whether there is any: stops at the first piece.
+    Any,
+    /// The first collision only: once a piece is known, everything after its start counts as
+    /// known too, so later calls only look before it.
+    First,
+}
+
+/// The collision pieces of one motion (parameter `t ∈ [0, 1]`) gathered over several oracles
+/// that share the thread's scratch space ([`Polyhedra::gather`]). What is already known to
+/// collide is handed to each further call, which skips pairs whose window it covers (the
+/// `Hits::covers` shortcut across oracles); an `Any` gather stops at the first piece, a `First`
+/// gather narrows the window to what lies before the earliest piece.
+pub(crate) struct Gathered<'s> {
+    s: &'s mut Scratch,
+    mode: Gather,
+}
+
+impl Gathered<'_> {
+    /// Adds the pieces of `oracle`'s robot at `pose` turning by `t · angle` about the world
+    /// `axis` through `pivot` ([`Polyhedra::turn_about`]).
+    pub fn turn_about(
+        &mut self,
+        oracle: &Polyhedra,
+        pose: &[f64],
+        pivot: [f64; 3],
+        axis: [f64; 3],
+        angle: f64,
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        if self.done() {
+            return Ok(());
+        }
+        let at = Pose::from_config(pose)?;
+        if !pivot.iter().all(|c| c.is_finite()) {
+            return Err(OracleError::Unsupported(
+                "polyhedra: a pivot with a coordinate that is not finite".into(),
+            ));
+        }
+        let mut origin = pose.to_vec();
+        origin[..3].copy_from_slice(&pivot);
+        let motion = Motion::segment(origin, Change::Rotation { axis, angle });
+        // body point v sits at rot · v + pos = rot · (v + s) + pivot with s = rotᵀ (pos − pivot)
+        let s = at.rot.tr_mul(&(at.pos - V3::from(pivot)));
+        if s == V3::zeros() {
+            oracle.sweep(&motion, self.s, counts)?;
+        } else {
+            let view = Polyhedra {
+                robot_mesh: Arc::clone(&oracle.robot_mesh),
+                obstacle_meshes: Arc::clone(&oracle.obstacle_meshes),
+                robot: oracle.robot.shifted(&s),
+                obstacles: Arc::clone(&oracle.obstacles),
+                tol: oracle.tol,
+                enveloping: oracle.enveloping,
+            };
+            view.sweep(&motion, self.s, counts)?;
+        }
+        self.narrow();
+        Ok(())
+    }
+
+    /// Adds the pieces of `oracle`'s robot at `pose` translating by `t · dir`.
+    pub fn slide(
+        &mut self,
+        oracle: &Polyhedra,
+        pose: &[f64],
+        dir: [f64; 3],
+        counts: &mut CallCounts,
+    ) -> Result<(), OracleError> {
+        if self.done() {
+            return Ok(());
+        }
+        let motion = Motion::segment(
+            pose.to_vec(),
+            Change::Linear(vec![dir[0], dir[1], dir[2], 0.0, 0.0, 0.0, 0.0]),
+        );
+        oracle.sweep(&motion, self.s, counts)?;
+        self.narrow();
+        Ok(())
+    }
+
+    /// Adds a known collision piece (a static pair that collides throughout, say).
+    pub fn add(&mut self, iv: Interval) {
+        let _ = self.s.hits.add(iv);
+        self.narrow();
+    }
+
+    /// In a `First` gather: everything from the earliest piece on counts as known.
+    fn narrow(&mut self) {
+        if self.mode == Gather::First {
+            if let Some(first) = self.s.hits.as_slice().first() {
+                let lo = first.lo;
+                let _ = self.s.hits.add(Interval { lo, hi: 1.0 });
+            }
+        }
+    }
+
+    /// Whether further calls can change nothing: an `Any` gather has its piece, or all of
+    /// `[0, 1]` is known to collide.
+    pub fn done(&self) -> bool {
+        self.s.hits.done() || self.s.hits.covers(Interval::UNIT)
+    }
+
+    /// The start of the earliest piece.
+    pub fn first(&self) -> Option<f64> {
+        self.s.hits.as_slice().first().map(|iv| iv.lo.max(0.0))
+    }
+
+    /// The pieces within `[0, 1]` (in a `First` gather: `[first, 1]`).
+    pub fn to_list(&self) -> IntervalList {
+        self.s.hits.to_list(Interval::UNIT)
+    }
+}
+
 impl CollisionOracle for Polyhedra {
     fn intervals(
         &self,
@@ -610,6 +736,22 @@ impl CollisionOracle for Polyhedra {
             // not a configuration of this space: nothing sensible to place, report collision
             Err(_) => true,
         }
+    }
+
+    fn first_collision(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        with_scratch(|s| {
+            s.hits.reset_prefix();
+            self.sweep(motion, s, counts)?;
+            Ok(s.hits
+                .as_slice()
+                .iter()
+                .find_map(|iv| iv.meet(&motion.range))
+                .map(|iv| iv.lo))
+        })
     }
 
     fn motion_is_free(

@@ -42,6 +42,13 @@ const DEGENERATE_SPAN: f64 = 1e-7;
 /// degenerate instant of Lemma 2.1, not a collision of this pair.
 const DEGENERATE_PARALLEL: f64 = 1e-7;
 
+/// A face whose corners stay more than this many times the predicate's slack on one side of
+/// another face's plane over a window has no edge that meets that face (its first atoms fail).
+const OFF_NEAR: f64 = 2.0;
+/// … more than this many times: the two faces do not meet at all (no edge of the other face,
+/// which lies in that plane, reaches it either; the margin covers the determinants' slack).
+const OFF_FAR: f64 = 16.0;
+
 /// `s·x_φ` for fixed `s` and `x` turning about the unit `axis` (formula 2.1).
 pub(crate) fn lin(s: &V3, x: &V3, axis: &V3) -> Trig {
     let sr = s.dot(axis);
@@ -59,15 +66,19 @@ pub(crate) fn turn(x: &V3, axis: &V3, phi: f64) -> V3 {
     axis * ((1.0 - c) * axis.dot(x)) + x * c + axis.cross(x) * s
 }
 
-/// A window of angles summarised for cheap bounds: `a cos φ + b sin φ + c` over the window
-/// lies within `amp · chord` of its value at the middle (`|f(φ) − f(m)| ≤ amp · 2 sin(|φ − m|/2)`),
-/// which rules most atoms in or out without solving for their zeros.
+/// A window of angles summarised for cheap bounds: with `m` the window's middle and `h` its half
+/// width, `a cos φ + b sin φ + c = P cos(φ − m) + Q sin(φ − m) + c` with `P = a cos m + b sin m`,
+/// `Q = b cos m − a sin m`; over `|φ − m| ≤ h` it peaks at `c + √(P² + Q²)` if its crest lies in
+/// the window (`P ≥ √(P² + Q²) cos h`), else at an end (`c + P cos h + |Q| sin h`), and likewise
+/// for the trough. Exact extremes for a few products, which rule most atoms in or out without
+/// solving for their zeros.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Around {
     hull: Interval,
     cos: f64,
     sin: f64,
-    chord: f64,
+    cos_half: f64,
+    sin_half: f64,
 }
 
 impl Around {
@@ -75,21 +86,29 @@ impl Around {
     pub fn new(hull: Interval) -> Around {
         let half = (0.5 * (hull.hi - hull.lo)).min(PI);
         let (sin, cos) = (0.5 * (hull.lo + hull.hi)).sin_cos();
+        let (sin_half, cos_half) = half.sin_cos();
         Around {
             hull,
             cos,
             sin,
-            // a relative 1e-9 and an absolute 1e-12 on top for the rounding of the sines
-            chord: 2.0 * (0.5 * half).sin() * (1.0 + 1e-9) + 1e-12,
+            cos_half,
+            sin_half,
         }
     }
 
-    /// Bounds of `f` over the window (conservative, with a relative 1e-12 for rounding).
+    /// Bounds of `f` over the window (conservative: a relative 1e-12 of its coefficients, and
+    /// 1e-9 of its amplitude for the rounding of the middle and half width, on either side).
     pub fn bounds(&self, f: &Trig) -> (f64, f64) {
-        let mid = f.alpha * self.cos + f.beta * self.sin + f.gamma;
-        let amp = (f.alpha * f.alpha + f.beta * f.beta).sqrt();
-        let spread = amp * self.chord + 1e-12 * (f.alpha.abs() + f.beta.abs() + f.gamma.abs());
-        (mid - spread, mid + spread)
+        let p = f.alpha * self.cos + f.beta * self.sin;
+        let q = f.beta * self.cos - f.alpha * self.sin;
+        let amp = (p * p + q * q).sqrt();
+        let crest = amp * self.cos_half;
+        let ends = self.cos_half * p;
+        let side = self.sin_half * q.abs();
+        let hi = if p >= crest { amp } else { ends + side };
+        let lo = if -p >= crest { -amp } else { ends - side };
+        let spread = 1e-12 * (f.alpha.abs() + f.beta.abs() + f.gamma.abs()) + 1e-9 * amp;
+        (f.gamma + lo - spread, f.gamma + hi + spread)
     }
 
     /// `{φ ∈ hull : f(φ) + slack ≥ 0}`, solved only when the bounds cannot tell.
@@ -242,10 +261,14 @@ pub(crate) fn sweep(
         nodes: robot_nodes,
         swept: robot_swept,
         vertex_arcs,
+        robot_edges,
+        obst_edges,
         pieces,
         ..
     } = caches;
     robot_boxes.reset(robot.faces.len());
+    robot_edges.reset(robot.edges.len());
+    obst_edges.reset(obst.edges.len());
     // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
     // cylindrical box) for φ in `w`; returns whether to go on
     let mut pair = |r: u32,
@@ -257,12 +280,14 @@ pub(crate) fn sweep(
                     counts: &mut CallCounts|
      -> bool {
         let rc = robot.corners(r);
+        let mut rbox = None;
         let pair_window = if ph.enveloping {
-            let rbox = robot_boxes.get_or_insert_with(r as usize, || cyl.box_of(&rc, margin));
-            if !rbox.fixed_overlap(obox) {
+            let b = *robot_boxes.get_or_insert_with(r as usize, || cyl.box_of(&rc, margin));
+            if !b.fixed_overlap(obox) {
                 return true;
             }
-            match rbox.turn_window(obox) {
+            rbox = Some(b);
+            match b.turn_window(obox) {
                 Some((start, length)) => arc_in_window(Arc { start, length }, w),
                 None => Spans::single(w),
             }
@@ -286,15 +311,55 @@ pub(crate) fn sweep(
         // an edge meets a face only where its ends are not both strictly on one side of the
         // face's plane (the predicate's first atoms, with their slack doubled): if all three
         // corners of a face stay on one side for the whole window, its edges are skipped
-        let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
-            let th = 2.0 * tol.dist * face.n_norm;
+        // how far a face's corners stay on one side of the other face's plane over the window,
+        // in units of the predicate's slack (0: they may reach it)
+        let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> f64 {
+            let th = tol.dist * face.n_norm;
             let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
-            b.iter().all(|(lo, _)| *lo > th) || b.iter().all(|(_, hi)| *hi < -th)
+            let above = b.iter().map(|(lo, _)| *lo).fold(f64::INFINITY, f64::min);
+            let below = b.iter().map(|(_, hi)| -*hi).fold(f64::INFINITY, f64::min);
+            (above.max(below) / th).max(0.0)
         };
+        // the robot face off the obstacle face's plane: no robot edge reaches that face, and
+        // (well off, beyond the in-plane slack of the determinants too) no obstacle edge, which
+        // lies in that plane, reaches the robot face
         let rf = robot.face(r);
-        if !ph.enveloping || !one_side(&rc, of, &axis) {
+        let robot_off = if ph.enveloping {
+            one_side(&rc, of, &axis)
+        } else {
+            0.0
+        };
+        if ph.enveloping && robot_off > OFF_FAR {
+            return true;
+        }
+        // a face whose corners all stay outside the prism over the other face (beyond the plane
+        // through one of its edges, perpendicular to it) cannot meet it either
+        let outside = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
+            let e = face.edges();
+            (0..3).any(|i| {
+                let m = face.n.cross(&e[i]);
+                let th = OFF_FAR * tol.dist * face.n_norm * face.e_len[i];
+                let c = m.dot(&face.v[i]);
+                corners
+                    .iter()
+                    .all(|x| around.bounds(&lin(&m, x, axis).plus(-c)).1 < -th)
+            })
+        };
+        if ph.enveloping && (outside(&rc, of, &axis) || outside(&of.v, rf, &-axis)) {
+            return true;
+        }
+        if robot_off <= OFF_NEAR {
             for &e in robot.owned_edges(r) {
                 let (p, q) = robot.edge(e);
+                // the edge's own cylindrical box against the obstacle face's: a narrower
+                // window than the face's, or none
+                if ph.enveloping {
+                    let eb = robot_edges
+                        .get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
+                    if !edge_reaches(eb, obox, &pair_window, w) {
+                        continue;
+                    }
+                }
                 counts.pairs_tested += 1;
                 for iv in
                     edge_face_around(&p, &q, of, &axis, &pair_window, &around, &tol).as_slice()
@@ -305,7 +370,7 @@ pub(crate) fn sweep(
                 }
             }
         }
-        if ph.enveloping && one_side(&of.v, rf, &-axis) {
+        if ph.enveloping && one_side(&of.v, rf, &-axis) > OFF_NEAR {
             return true;
         }
         let ids = obst.faces[o as usize];
@@ -313,6 +378,14 @@ pub(crate) fn sweep(
             let [a, b] = obst.edges[e as usize];
             let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
             let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
+            // the obstacle edge's cylindrical box: the robot face turned by +φ must reach it
+            if let Some(rb) = &rbox {
+                let eb =
+                    obst_edges.get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
+                if !edge_reaches(rb, eb, &pair_window, w) {
+                    continue;
+                }
+            }
             counts.pairs_tested += 1;
             for iv in edge_face_around(&p, &q, rf, &-axis, &pair_window, &around, &tol).as_slice() {
                 if sink.add(*iv).is_break() {
@@ -413,6 +486,22 @@ pub(crate) fn sweep(
     }
 }
 
+/// Whether a box `m` turning by `+φ` can meet the fixed box `f` (one of them an edge's, the
+/// other a face's) within the faces' window `pair` (part of the node window `w`): the same tests
+/// as for the faces, on the edge's smaller box. (The pair is then solved in the faces' window:
+/// a narrower one would change nothing but the rounding of the answer.)
+fn edge_reaches(m: &CylBox, f: &CylBox, pair: &Spans, w: Interval) -> bool {
+    if !m.fixed_overlap(f) {
+        return false;
+    }
+    let Some((start, length)) = m.turn_window(f) else {
+        return true;
+    };
+    !pair
+        .intersect(&arc_in_window(Arc { start, length }, w))
+        .is_empty()
+}
+
 /// The world box around everything robot face `r` at `pose` sweeps while turning about the
 /// world `axis` through `pose`'s position: the arcs of its corners (the face is the hull of its
 /// corners, and a turned hull is the hull of the turned corners), grown by `margin` and by a
@@ -501,6 +590,29 @@ mod tests {
     }
 
     proptest! {
+        /// The window's bounds hold every sampled value and are tight: the sampled extremes
+        /// come within the sampling error (amplitude × step) of them.
+        #[test]
+        fn window_bounds_are_exact(
+            f in prop::array::uniform3(-3.0f64..3.0),
+            lo in -7.0f64..7.0,
+            len in 0.0f64..6.3,
+        ) {
+            let f = Trig { alpha: f[0], beta: f[1], gamma: f[2] };
+            let around = Around::new(Interval { lo, hi: lo + len });
+            let (b_lo, b_hi) = around.bounds(&f);
+            let (mut s_lo, mut s_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            const N: usize = 4000;
+            for k in 0..=N {
+                let v = f.eval(lo + len * k as f64 / N as f64);
+                prop_assert!(b_lo <= v && v <= b_hi, "{} outside [{}, {}]", v, b_lo, b_hi);
+                s_lo = s_lo.min(v);
+                s_hi = s_hi.max(v);
+            }
+            let slack = f.amplitude() * len / N as f64 + 1e-8;
+            prop_assert!(s_lo - b_lo <= slack && b_hi - s_hi <= slack, "[{}, {}] vs sampled [{}, {}]", b_lo, b_hi, s_lo, s_hi);
+        }
+
         /// The arcs agree with the static predicate at sampled φ.
         #[test]
         fn arcs_match_static_predicate(

@@ -1,0 +1,597 @@
+//! MotionBenchMaker problems (issue 10): every problem of a family directory planned and
+//! re-checked, summarised like VAMP's `evaluate_mbm` ("Solved / Valid / Total", mean, std and
+//! percentiles), and the workcell mode (one roadmap of a family's first scene answering the
+//! family's requests, issue 10 part 6).
+//!
+//! A family directory holds `sceneNNNN.yaml` (a MoveIt PlanningScene) and `requestNNNN.yaml`
+//! (a MotionPlanRequest) pairs, as in MBM's `problems.tar.bz2`; a directory of family
+//! directories runs them all, in name order.
+//!
+//! Each problem is planned the way `viaroad solve --roadmap` plans: first the via-point
+//! planner alone (a bounded search, [`MbmOptions::direct_calls`] oracle calls), then, if it
+//! did not connect, a roadmap grown from start and goal until they meet or the time is up
+//! (OMPL PRM's `solve`). The returned path is shortened and then re-checked by the independent
+//! [`ArmChecker`] at 1/10 of OMPL's default resolution. "Valid" is the checker's verdict on the
+//! start and goal (exact shapes); the exact oracle uses circumscribed shapes, so it may refuse
+//! an end the checker accepts ("valid, refused by the oracle").
+
+use crate::deadline::Deadline;
+use crate::local::{path_length, shorten, LocalSpec};
+use crate::oracle::CallCounts;
+use crate::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
+use crate::robot::{Arm, ArmChecker, ArmOptions};
+use crate::scene::arm::{arm_scene, ArmRobot};
+use crate::scene::moveit::{load_motion_plan_request, load_planning_scene};
+use crate::scene::{Query, Scene, SceneError};
+use crate::space::Config;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// What can stop a benchmark before it starts.
+#[derive(Debug, thiserror::Error)]
+pub enum MbmError {
+    /// A directory cannot be listed, or holds no problems or no robot.
+    #[error("{path}: {message}")]
+    Layout {
+        /// The directory.
+        path: PathBuf,
+        /// What is missing.
+        message: String,
+    },
+    /// The robot cannot be loaded.
+    #[error(transparent)]
+    Robot(#[from] crate::robot::RobotError),
+}
+
+/// One problem: a scene and its request.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    /// The family (the directory's name).
+    pub family: String,
+    /// The problem's number as written (`0001`).
+    pub id: String,
+    /// The PlanningScene file.
+    pub scene: PathBuf,
+    /// The MotionPlanRequest file.
+    pub request: PathBuf,
+}
+
+/// How to run the problems.
+#[derive(Clone, Debug)]
+pub struct MbmOptions {
+    /// Planning time per problem (the grown roadmap stops there).
+    pub time: Duration,
+    /// Oracle calls the via-point planner alone may spend before the roadmap grows.
+    pub direct_calls: u64,
+    /// Seed of the grown roadmaps.
+    pub seed: u64,
+    /// At most this many problems per family (in name order).
+    pub limit: Option<usize>,
+}
+
+/// The outcome of one problem.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct ProblemResult {
+    /// Family.
+    pub family: String,
+    /// Problem number.
+    pub id: String,
+    /// Start and goal valid for the independent checker (exact shapes): VAMP's "valid".
+    pub valid: bool,
+    /// Start and goal accepted by the exact oracle (circumscribed shapes).
+    pub oracle_valid: bool,
+    /// A path was found.
+    pub solved: bool,
+    /// How: `direct` (via-point planner alone) or `roadmap` (grown roadmap); empty if unsolved.
+    pub stage: String,
+    /// Planning time in seconds (setup of the robot and oracle excluded, see `setup_s`).
+    pub time_s: f64,
+    /// Loading the problem and building the oracle, seconds.
+    pub setup_s: f64,
+    /// Nodes of the grown roadmap (0 when the via-point planner alone solved it).
+    pub nodes: usize,
+    /// Intersect calls (segment + line) of the whole attempt.
+    pub calls: u64,
+    /// Static configuration checks.
+    pub state_checks: u64,
+    /// Raw path length (joint-space L2, radians).
+    pub raw_length: f64,
+    /// Shortened path length.
+    pub length: f64,
+    /// Corners of the shortened path.
+    pub corners: usize,
+    /// The independent checker's verdict on the shortened path at 1/10 of OMPL's resolution.
+    pub certified: Option<bool>,
+    /// Samples the checker took.
+    pub check_samples: usize,
+    /// Why the problem could not be run, if it could not.
+    pub error: String,
+}
+
+/// Lists the problems of `dir`: its own `sceneNNNN.yaml`/`requestNNNN.yaml` pairs, or those of
+/// each subdirectory (a family each), in name order.
+pub fn find_problems(dir: &Path, limit: Option<usize>) -> Result<Vec<Problem>, MbmError> {
+    let layout = |message: String| MbmError::Layout {
+        path: dir.to_path_buf(),
+        message,
+    };
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| layout(e.to_string()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    entries.sort();
+    let own = family_problems(dir, &entries, limit);
+    if !own.is_empty() {
+        return Ok(own);
+    }
+    let mut out = Vec::new();
+    for sub in entries.iter().filter(|p| p.is_dir()) {
+        let mut inner: Vec<PathBuf> = std::fs::read_dir(sub)
+            .map_err(|e| layout(e.to_string()))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        inner.sort();
+        out.extend(family_problems(sub, &inner, limit));
+    }
+    if out.is_empty() {
+        return Err(layout(
+            "no sceneNNNN.yaml + requestNNNN.yaml pairs here or one level below".into(),
+        ));
+    }
+    Ok(out)
+}
+
+fn family_problems(dir: &Path, entries: &[PathBuf], limit: Option<usize>) -> Vec<Problem> {
+    let family = dir
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let mut out = Vec::new();
+    for p in entries {
+        let Some(name) = p.file_name().and_then(|n| n.to_str()) else {
+            continue;
+        };
+        let Some(id) = name
+            .strip_prefix("scene")
+            .and_then(|r| r.strip_suffix(".yaml"))
+        else {
+            continue;
+        };
+        let request = dir.join(format!("request{id}.yaml"));
+        if request.is_file() {
+            out.push(Problem {
+                family: family.clone(),
+                id: id.to_string(),
+                scene: p.clone(),
+                request,
+            });
+        }
+    }
+    out.truncate(limit.unwrap_or(usize::MAX));
+    out
+}
+
+/// The robot of a folder: its one `.urdf` and (optional) one `.srdf`, loaded with the SRDF's
+/// first group.
+pub fn load_robot(dir: &Path) -> Result<Arm, MbmError> {
+    let find = |ext: &str| -> Result<Option<PathBuf>, MbmError> {
+        let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
+            .map_err(|e| MbmError::Layout {
+                path: dir.to_path_buf(),
+                message: e.to_string(),
+            })?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|e| e == ext))
+            .collect();
+        found.sort();
+        Ok(found.into_iter().next())
+    };
+    let urdf = find("urdf")?.ok_or_else(|| MbmError::Layout {
+        path: dir.to_path_buf(),
+        message: "no .urdf file".into(),
+    })?;
+    let srdf = find("srdf")?;
+    Ok(Arm::load(&urdf, srdf.as_deref(), &ArmOptions::default())?)
+}
+
+/// The scene of one problem: `robot` (cloned) in the problem's environment with the request's
+/// start and goal as its one query.
+pub fn problem_scene(robot: &Arm, p: &Problem) -> Result<Scene, SceneError> {
+    let invalid = |e: crate::robot::RobotError| SceneError::Invalid {
+        path: p.request.clone(),
+        message: e.to_string(),
+    };
+    let mut arm = robot.clone();
+    let ps = load_planning_scene(&p.scene)?;
+    ps.apply_to(&mut arm).map_err(invalid)?;
+    let req = load_motion_plan_request(&p.request)?;
+    let (start, goal) = req.start_goal(&mut arm).map_err(invalid)?;
+    let robot = ArmRobot::new(arm, ps.objects, PathBuf::new(), None, Some(p.scene.clone()))
+        .map_err(invalid)?;
+    arm_scene(
+        format!("{}-{}", p.family, p.id),
+        robot,
+        vec![Query { start, goal }],
+        &p.scene,
+    )
+}
+
+/// The independent checker of an arm scene.
+pub fn checker(scene: &Scene) -> Option<ArmChecker> {
+    match &scene.robot {
+        crate::scene::Robot::Arm(a) => ArmChecker::new(&a.arm, &a.objects).ok(),
+        _ => None,
+    }
+}
+
+/// The checker's step: 1/10 of OMPL's default resolution (1 % of the space's extent).
+pub fn check_step(checker: &ArmChecker) -> f64 {
+    0.001 * checker.arm().group.max_extent()
+}
+
+/// Plans one problem (see the module docs) and re-checks the path.
+pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
+    let mut r = ProblemResult {
+        family: p.family.clone(),
+        id: p.id.clone(),
+        ..ProblemResult::default()
+    };
+    let began = Instant::now();
+    let scene = match problem_scene(robot, p) {
+        Ok(s) => s,
+        Err(e) => {
+            r.error = e.to_string();
+            return r;
+        }
+    };
+    let Some(check) = checker(&scene) else {
+        r.error = "the independent checker cannot be built".into();
+        return r;
+    };
+    let q = scene.queries[0].clone();
+    r.valid = check.is_valid(&q.start) && check.is_valid(&q.goal);
+    let oracle = scene.oracle();
+    let ends = scene
+        .check_config(oracle.as_ref(), "start", &q.start)
+        .and_then(|s| Ok((s, scene.check_config(oracle.as_ref(), "goal", &q.goal)?)));
+    r.setup_s = began.elapsed().as_secs_f64();
+    let (start, goal) = match ends {
+        Ok(e) => e,
+        Err(e) => {
+            r.error = e.to_string();
+            return r;
+        }
+    };
+    r.oracle_valid = true;
+    let began = Instant::now();
+    let deadline = Deadline::none().within(Some(o.time));
+    let mut counts = CallCounts::default();
+    // the via-point planner alone, a bounded search
+    let direct = LocalSpec::default()
+        .budgeted(o.direct_calls)
+        .unwrap_or_default();
+    let method = direct.build();
+    let groups = method.groups(&scene.space);
+    let mut path: Option<(Vec<Config>, Vec<Config>)> = None;
+    match method.connect_within(&scene.space, oracle.as_ref(), &start, &goal, &deadline) {
+        Ok(c) => {
+            counts += c.counts;
+            if c.is_connected() {
+                match shorten(&scene.space, oracle.as_ref(), &groups, &c.path, &mut counts) {
+                    Ok(s) => path = Some((c.path, s)),
+                    Err(e) => r.error = format!("shortening: {e}"),
+                }
+                r.stage = "direct".into();
+            }
+        }
+        Err(e) => r.error = format!("local method: {e}"),
+    }
+    if path.is_none() && !deadline.expired() {
+        let spec = LocalSpec::roadmap_default();
+        let method = spec.build();
+        let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref());
+        match learner.connect_pair(
+            &LearnParams::default(),
+            None,
+            (&start, &goal),
+            &Budget {
+                nodes: None,
+                time: None,
+            },
+            o.seed,
+            &deadline,
+            &mut |_| {},
+        ) {
+            Ok(grown) => {
+                let roadmap = &grown.learnt.roadmap;
+                r.nodes = roadmap.node_count();
+                counts += roadmap.header().counts;
+                if grown.connected {
+                    if let Ok(planner) = QueryPlanner::new(roadmap, oracle.as_ref()) {
+                        let planner = planner.with_options(QueryOptions {
+                            landmarks: 0,
+                            grow: false,
+                            ..QueryOptions::default()
+                        });
+                        if let Ok(a) = planner.query(&start, &goal) {
+                            counts += a.counts;
+                            if a.is_solved() {
+                                path = Some((a.raw_path, a.path));
+                                r.stage = "roadmap".into();
+                            }
+                        }
+                    }
+                }
+            }
+            Err(e) => r.error = format!("roadmap: {e}"),
+        }
+    }
+    r.time_s = began.elapsed().as_secs_f64();
+    r.calls = counts.intersect_calls();
+    r.state_checks = counts.state_checks;
+    if let Some((raw, short)) = path {
+        r.solved = true;
+        r.raw_length = path_length(&scene.space, &groups, &raw);
+        r.length = path_length(&scene.space, &groups, &short);
+        r.corners = short.len();
+        if let Ok(rep) = check.check_path(&short, check_step(&check)) {
+            r.certified = Some(rep.valid);
+            r.check_samples = rep.samples;
+        }
+    }
+    r
+}
+
+/// Mean, standard deviation and percentiles of a sample (VAMP's `evaluate_mbm` columns).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Stats {
+    /// Number of values.
+    pub n: usize,
+    /// Mean.
+    pub mean: f64,
+    /// Standard deviation (population).
+    pub std: f64,
+    /// Smallest.
+    pub min: f64,
+    /// 25th percentile.
+    pub p25: f64,
+    /// Median.
+    pub p50: f64,
+    /// 75th percentile.
+    pub p75: f64,
+    /// 95th percentile.
+    pub p95: f64,
+    /// Largest.
+    pub max: f64,
+}
+
+impl Stats {
+    /// The statistics of `v` (linear interpolation between order statistics, as numpy's
+    /// default percentile); all zero when empty.
+    pub fn of(v: &[f64]) -> Stats {
+        if v.is_empty() {
+            return Stats::default();
+        }
+        let mut s = v.to_vec();
+        s.sort_by(f64::total_cmp);
+        let n = s.len();
+        let mean = s.iter().sum::<f64>() / n as f64;
+        let std = (s.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
+        let pct = |p: f64| {
+            let x = p * (n - 1) as f64;
+            let (i, f) = (x.floor() as usize, x - x.floor());
+            s[i] + f * (s[(i + 1).min(n - 1)] - s[i])
+        };
+        Stats {
+            n,
+            mean,
+            std,
+            min: s[0],
+            p25: pct(0.25),
+            p50: pct(0.5),
+            p75: pct(0.75),
+            p95: pct(0.95),
+            max: s[n - 1],
+        }
+    }
+}
+
+/// The summary in Markdown: per family and overall, "Solved / Valid / Total", certified
+/// paths, and the statistics of time, calls, roadmap nodes and path lengths over solved
+/// problems.
+pub fn summary_markdown(results: &[ProblemResult]) -> String {
+    let mut families: Vec<&str> = results.iter().map(|r| r.family.as_str()).collect();
+    families.dedup();
+    let mut out = String::new();
+    out.push_str(
+        "| family | solved / valid / total | oracle-refused ends | certified | time mean ms | std | p50 | p95 | max | calls mean | nodes mean | raw length mean | length mean |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut row = |name: &str, rs: Vec<&ProblemResult>| {
+        let solved: Vec<&&ProblemResult> = rs.iter().filter(|r| r.solved).collect();
+        let valid = rs.iter().filter(|r| r.valid).count();
+        let refused = rs.iter().filter(|r| r.valid && !r.oracle_valid).count();
+        let certified = solved.iter().filter(|r| r.certified == Some(true)).count();
+        let t = Stats::of(&solved.iter().map(|r| r.time_s * 1e3).collect::<Vec<_>>());
+        let mean = |f: &dyn Fn(&ProblemResult) -> f64| {
+            Stats::of(&solved.iter().map(|r| f(r)).collect::<Vec<_>>()).mean
+        };
+        out.push_str(&format!(
+            "| {name} | {} / {valid} / {} | {refused} | {certified} / {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0} | {:.1} | {:.2} | {:.2} |\n",
+            solved.len(),
+            rs.len(),
+            solved.len(),
+            t.mean,
+            t.std,
+            t.p50,
+            t.p95,
+            t.max,
+            mean(&|r| r.calls as f64),
+            mean(&|r| r.nodes as f64),
+            mean(&|r| r.raw_length),
+            mean(&|r| r.length),
+        ));
+    };
+    for f in &families {
+        row(f, results.iter().filter(|r| r.family == *f).collect());
+    }
+    if families.len() > 1 {
+        row("**all**", results.iter().collect());
+    }
+    out
+}
+
+/// The per-problem CSV (one header line, one line per problem).
+pub fn csv(results: &[ProblemResult]) -> String {
+    let mut out = String::from(
+        "family,id,valid,oracle_valid,solved,stage,time_s,setup_s,nodes,calls,state_checks,raw_length,length,corners,certified,check_samples,error\n",
+    );
+    for r in results {
+        out.push_str(&format!(
+            "{},{},{},{},{},{},{:.6},{:.6},{},{},{},{:.6},{:.6},{},{},{},\"{}\"\n",
+            r.family,
+            r.id,
+            r.valid,
+            r.oracle_valid,
+            r.solved,
+            r.stage,
+            r.time_s,
+            r.setup_s,
+            r.nodes,
+            r.calls,
+            r.state_checks,
+            r.raw_length,
+            r.length,
+            r.corners,
+            r.certified.map_or(String::new(), |c| c.to_string()),
+            r.check_samples,
+            r.error.replace('"', "'"),
+        ));
+    }
+    out
+}
+
+/// The workcell result of one family: one roadmap of the first scene, the family's requests
+/// asked of it (issue 10 part 6).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct WorkcellResult {
+    /// Family.
+    pub family: String,
+    /// Nodes of the roadmap.
+    pub nodes: usize,
+    /// Learning time, seconds.
+    pub learn_s: f64,
+    /// Oracle calls of learning.
+    pub learn_calls: u64,
+    /// Loading the saved roadmap, milliseconds (median of 5 loads).
+    pub load_ms: f64,
+    /// Requests of the family.
+    pub requests: usize,
+    /// Requests whose start and goal are valid in the first scene (exact oracle).
+    pub valid: usize,
+    /// Valid requests answered.
+    pub solved: usize,
+    /// Answered paths the independent checker certifies.
+    pub certified: usize,
+    /// Query latency over the valid requests, milliseconds.
+    pub query_ms: Stats,
+}
+
+/// Learns a roadmap of the family's first scene within `budget`, saves it to `save_to`, loads
+/// it back, and answers the start/goal pairs of every request of the family that are valid in
+/// that scene (each within `query_time`), re-checking each path.
+pub fn run_workcell(
+    robot: &Arm,
+    problems: &[Problem],
+    budget: &Budget,
+    seed: u64,
+    query_time: Duration,
+    save_to: &Path,
+) -> Result<WorkcellResult, Box<dyn std::error::Error + Send + Sync>> {
+    let first = problems.first().ok_or("no problems")?;
+    let scene = problem_scene(robot, first)?;
+    let check = checker(&scene).ok_or("no checker")?;
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref()).learn(
+        &LearnParams::default(),
+        budget,
+        seed,
+        &mut |_| {},
+    )?;
+    learnt.roadmap.save(save_to)?;
+    let mut loads = Vec::new();
+    let mut roadmap: Option<Roadmap> = None;
+    for _ in 0..5 {
+        let t = Instant::now();
+        roadmap = Some(Roadmap::load(save_to, scene.fingerprint())?);
+        loads.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let roadmap = roadmap.ok_or("not loaded")?;
+    let mut r = WorkcellResult {
+        family: first.family.clone(),
+        nodes: roadmap.node_count(),
+        learn_s: learnt.report.elapsed.as_secs_f64(),
+        learn_calls: roadmap.header().counts.intersect_calls(),
+        load_ms: Stats::of(&loads).p50,
+        requests: problems.len(),
+        ..WorkcellResult::default()
+    };
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?.with_options(QueryOptions {
+        time: Some(query_time),
+        ..QueryOptions::default()
+    });
+    let arm = &check.arm().clone();
+    let mut times = Vec::new();
+    for p in problems {
+        let Ok(req) = load_motion_plan_request(&p.request) else {
+            continue;
+        };
+        let (Ok(s), Ok(g)) = (
+            arm.group_config(&req.start.names, &req.start.positions, "start"),
+            arm.group_config(&req.goal.names, &req.goal.positions, "goal"),
+        ) else {
+            continue;
+        };
+        let (Ok(s), Ok(g)) = (
+            scene.check_config(oracle.as_ref(), "start", &s),
+            scene.check_config(oracle.as_ref(), "goal", &g),
+        ) else {
+            continue;
+        };
+        r.valid += 1;
+        let t = Instant::now();
+        let answer = planner.query(&s, &g);
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        if let Ok(a) = answer {
+            if a.is_solved() {
+                r.solved += 1;
+                if check
+                    .check_path(&a.path, check_step(&check))
+                    .is_ok_and(|rep| rep.valid)
+                {
+                    r.certified += 1;
+                }
+            }
+        }
+    }
+    r.query_ms = Stats::of(&times);
+    Ok(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percentiles_interpolate_like_numpy() {
+        let s = Stats::of(&[4.0, 1.0, 3.0, 2.0]);
+        assert_eq!((s.min, s.max, s.mean), (1.0, 4.0, 2.5));
+        assert!((s.p50 - 2.5).abs() < 1e-12);
+        assert!((s.p25 - 1.75).abs() < 1e-12);
+        assert!((s.p95 - 3.85).abs() < 1e-12);
+        assert!((s.std - 1.25f64.sqrt()).abs() < 1e-12);
+        assert_eq!(Stats::of(&[]).n, 0);
+    }
+}

@@ -1,0 +1,342 @@
+//! `viaroad export`: a scene, its robot and a planned path as a glTF 2.0 binary (issue 13);
+//! the planning shared with `viaroad view`.
+
+use super::local_args::LocalArgs;
+use super::query::Shortening;
+use anyhow::Context;
+use clap::Args;
+use std::path::{Path, PathBuf};
+use viaroad::deadline::Deadline;
+use viaroad::export::{Legend, Plan};
+use viaroad::local::{path_length, shorten, LocalSpec};
+use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
+use viaroad::robot::arm::GroupChoice;
+use viaroad::robot::{Arm, ArmChecker, ArmOptions};
+use viaroad::scene::moveit::{load_motion_plan_request, load_planning_scene};
+use viaroad::scene::{ompl_cfg, Scene};
+use viaroad::space::{Group, Space};
+
+/// What to draw and how to find the path: shared by `export` and `view`.
+#[derive(Args)]
+pub struct PlanArgs {
+    /// Scene file (.toml or OMPL.app .cfg).
+    pub scene: PathBuf,
+    /// Answer the query with this saved roadmap (else a roadmap is grown from the query's
+    /// start and goal, as `solve --roadmap` does).
+    #[arg(long)]
+    pub roadmap: Option<PathBuf>,
+    /// Draw this path (an OMPL state file, one state per line) instead of planning one.
+    #[arg(long, conflicts_with = "roadmap")]
+    pub path: Option<PathBuf>,
+    /// Which of the scene's queries to plan (1-based).
+    #[arg(long, default_value_t = 1, conflicts_with = "path")]
+    pub query: usize,
+    /// Path shortening (as in `query`): the shortened path is drawn beside the raw one and the
+    /// robot follows it; `off` draws the raw path alone.
+    #[arg(long, value_enum, default_value_t = Shortening::Fast)]
+    pub shorten: Shortening,
+    /// Also draw the roadmap's nodes and edges (at the robot's reference point).
+    #[arg(long)]
+    pub show_roadmap: bool,
+    /// Most nodes of the grown roadmap (no `--roadmap`, no `--path`): a budget that gives the
+    /// same path on any machine.
+    #[arg(long, default_value_t = 5000)]
+    pub nodes: usize,
+    /// Seed of the grown roadmap.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    #[command(flatten)]
+    pub local: LocalArgs,
+    /// A MoveIt MotionPlanRequest: SCENE is then a MoveIt PlanningScene (YAML) and the robot
+    /// the arm of `--urdf` (and `--srdf`). The arm follows `--path` (joint vectors of the
+    /// request's group, one per line, as OMPL writes them) or, without it, the straight joint
+    /// motion from the request's start to its goal; either is checked by the independent arm
+    /// checker and drawn even where it collides (the legend says so).
+    #[arg(long, requires = "urdf", conflicts_with = "roadmap")]
+    pub request: Option<PathBuf>,
+    /// The arm's URDF (with `--request`).
+    #[arg(long, requires = "request")]
+    pub urdf: Option<PathBuf>,
+    /// The arm's SRDF (with `--request`): planning groups, self-collision exemptions.
+    #[arg(long, requires = "request")]
+    pub srdf: Option<PathBuf>,
+}
+
+/// What `export` writes and `view` embeds.
+pub struct Exported {
+    /// The scene's name.
+    pub name: String,
+    /// The glTF binary.
+    pub glb: Vec<u8>,
+    /// One line on what it shows.
+    pub summary: String,
+}
+
+/// Plans (or reads) the path and builds the `.glb`: a rigid-body scene, or an arm in a MoveIt
+/// scene with `--request`.
+pub fn export(a: &PlanArgs) -> anyhow::Result<Exported> {
+    match (&a.request, &a.urdf) {
+        (Some(request), Some(urdf)) => export_arm(a, request, urdf),
+        _ => {
+            let p = plan(a)?;
+            let (glb, summary) = glb(&p)?;
+            Ok(Exported {
+                name: p.scene.name.clone(),
+                glb,
+                summary,
+            })
+        }
+    }
+}
+
+/// The arm of `--urdf` in the MoveIt scene, following `--path` or the request's start → goal.
+fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Exported> {
+    let scene = load_planning_scene(&a.scene)?;
+    let req = load_motion_plan_request(request)?;
+    let mut arm = Arm::load(
+        urdf,
+        a.srdf.as_deref(),
+        &ArmOptions {
+            group: GroupChoice::Srdf(req.group.clone()),
+        },
+    )?;
+    scene.apply_to(&mut arm)?;
+    let (start, goal) = req.start_goal(&mut arm)?;
+    let (path, source) = match &a.path {
+        Some(file) => {
+            let space = Space::euclidean(arm.group.lower.clone(), arm.group.upper.clone())?;
+            let path = ompl_cfg::read_states(file, &space)?;
+            (path, format!("path file {}", file.display()))
+        }
+        None => (vec![start, goal], "start → goal".to_string()),
+    };
+    let checker = ArmChecker::new(&arm, &scene.objects)?;
+    // the checker's own sampling step in joint space (radians): about 0.6° per joint
+    let report = checker.check_path(&path, 0.01)?;
+    let verdict = match &report.first_invalid {
+        None => "free".to_string(),
+        Some((seg, t, c)) => {
+            let what: Vec<String> = c.iter().map(|c| format!("{}–{}", c.a, c.b)).collect();
+            format!(
+                "COLLIDES in segment {} at t = {t:.3} {}",
+                seg + 1,
+                what.join(", ")
+            )
+        }
+    };
+    // MotionBenchMaker scenes have no name: their family folder and file say which they are
+    let name = if scene.name.is_empty() {
+        let part = |p: Option<&std::ffi::OsStr>| p.map(|s| s.to_string_lossy().into_owned());
+        let stem = part(a.scene.file_stem()).unwrap_or_else(|| "arm".into());
+        match part(a.scene.parent().and_then(Path::file_name)) {
+            Some(dir) => format!("{dir}/{stem}"),
+            None => stem,
+        }
+    } else {
+        scene.name.clone()
+    };
+    let length: f64 = path
+        .windows(2)
+        .map(|w| {
+            w[0].iter()
+                .zip(&w[1])
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .sum();
+    let legend = Legend {
+        scene: name.clone(),
+        space: format!("arm, {} joints ({})", arm.group.dof(), arm.group.name),
+        source: format!("{source}; arm checker: {verdict}"),
+        raw_length: None,
+        length: Some(length),
+        calls: None,
+    };
+    let plan = Plan {
+        raw: path.clone(),
+        shortened: Vec::new(),
+    };
+    let g = viaroad::export::arm::arm_gltf(&arm, &scene.objects, &plan, 0, &legend)?;
+    if report.first_invalid.is_some() {
+        eprintln!("warning: the drawn path collides ({verdict})");
+    }
+    Ok(Exported {
+        summary: format!(
+            "{name}: {} corners, joint-space length {length:.4}; {}",
+            path.len(),
+            legend.source
+        ),
+        name,
+        glb: g.to_glb(),
+    })
+}
+
+/// A scene with the plan to draw, the roadmap that found it and the legend.
+pub struct Planned {
+    pub scene: Scene,
+    pub groups: Vec<Group>,
+    pub plan: Plan,
+    pub roadmap: Option<Roadmap>,
+    pub legend: Legend,
+}
+
+/// Loads the scene and finds the path to draw (see [`PlanArgs`]).
+pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
+    let scene = Scene::load(&a.scene)?;
+    for w in &scene.warnings {
+        eprintln!("warning: {w}");
+    }
+    let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
+    let method = spec.build();
+    let groups = method.groups(&scene.space);
+    let oracle = scene.oracle();
+    let mut legend = Legend {
+        scene: scene.name.clone(),
+        space: scene.space.kind().to_string(),
+        ..Legend::default()
+    };
+    let mut roadmap = None;
+    let plan = if let Some(file) = &a.path {
+        let raw = ompl_cfg::read_states(file, &scene.space)?;
+        let mut counts = viaroad::oracle::CallCounts::default();
+        let shortened = if a.shorten == Shortening::Off {
+            Vec::new()
+        } else {
+            shorten(&scene.space, oracle.as_ref(), &groups, &raw, &mut counts)
+                .context("shortening")?
+        };
+        legend.source = format!("path file {}", file.display());
+        legend.calls = Some(counts.intersect_calls());
+        Plan { raw, shortened }
+    } else {
+        let queries = scene.checked_queries()?;
+        let q = queries.get(a.query.wrapping_sub(1)).with_context(|| {
+            format!(
+                "{} has {} queries, not {}",
+                a.scene.display(),
+                queries.len(),
+                a.query
+            )
+        })?;
+        let options = QueryOptions {
+            landmarks: 0,
+            shorten: a.shorten != Shortening::Off,
+            exact_shortening_limit: if a.shorten == Shortening::Exact {
+                usize::MAX
+            } else {
+                QueryOptions::default().exact_shortening_limit
+            },
+            ..QueryOptions::default()
+        };
+        let (map, grown_calls) = match &a.roadmap {
+            Some(file) => {
+                legend.source = format!("roadmap {}", file.display());
+                (Roadmap::load(file, scene.fingerprint())?, 0)
+            }
+            None => {
+                super::limits::count_in_range(
+                    "--nodes",
+                    a.nodes,
+                    viaroad::limits::MAX_NODES,
+                    "a roadmap that large does not fit in memory",
+                )?;
+                let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref());
+                let deadline = super::interrupt::on_ctrl_c(Deadline::none());
+                let grown = learner
+                    .connect_pair(
+                        &LearnParams::default(),
+                        None,
+                        (&q.start, &q.goal),
+                        &Budget {
+                            nodes: Some(a.nodes),
+                            time: None,
+                        },
+                        a.seed,
+                        &deadline,
+                        &mut |_| {},
+                    )
+                    .context("learning")?;
+                let map = grown.learnt.roadmap;
+                legend.source = format!(
+                    "roadmap grown from start and goal, {} nodes",
+                    map.node_count()
+                );
+                let calls = map.header().counts.intersect_calls();
+                (map, calls)
+            }
+        };
+        let planner = QueryPlanner::new(&map, oracle.as_ref())?.with_options(QueryOptions {
+            grow: a.roadmap.is_some(),
+            ..options
+        });
+        let r = planner.query(&q.start, &q.goal)?;
+        if !r.is_solved() {
+            anyhow::bail!(
+                "query {} of {} not solved ({:?}); try more --nodes or another --seed",
+                a.query,
+                a.scene.display(),
+                r.outcome
+            );
+        }
+        legend.calls = Some(grown_calls + r.counts.intersect_calls());
+        let shortened = if a.shorten == Shortening::Off {
+            Vec::new()
+        } else {
+            r.path
+        };
+        roadmap = Some(map);
+        Plan {
+            raw: r.raw_path,
+            shortened,
+        }
+    };
+    legend.raw_length = Some(path_length(&scene.space, &groups, &plan.raw));
+    legend.length = Some(path_length(&scene.space, &groups, plan.animated()));
+    Ok(Planned {
+        scene,
+        groups,
+        plan,
+        roadmap: roadmap.filter(|_| a.show_roadmap),
+        legend,
+    })
+}
+
+/// Arguments of `export`.
+#[derive(Args)]
+pub struct ExportArgs {
+    #[command(flatten)]
+    pub plan: PlanArgs,
+    /// Output glTF binary (.glb).
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// The `.glb` of a planned scene, and a one-line summary of what it shows.
+pub fn glb(p: &Planned) -> anyhow::Result<(Vec<u8>, String)> {
+    let g =
+        viaroad::export::scene_gltf(&p.scene, &p.groups, &p.plan, p.roadmap.as_ref(), &p.legend)?;
+    let l = &p.legend;
+    let summary = format!(
+        "{}: {} corners (raw {}), length {:.4} (raw {:.4}), {} intersect calls; {}",
+        l.scene,
+        p.plan.animated().len(),
+        p.plan.raw.len(),
+        l.length.unwrap_or(f64::NAN),
+        l.raw_length.unwrap_or(f64::NAN),
+        l.calls.unwrap_or(0),
+        l.source
+    );
+    Ok((g.to_glb(), summary))
+}
+
+/// Runs `export`.
+pub fn run(a: ExportArgs) -> anyhow::Result<()> {
+    // refused before the planning, not after it
+    viaroad::safe_file::resolve_target(&a.output)?;
+    let e = export(&a.plan)?;
+    super::output::save(&a.output, &e.glb)?;
+    eprintln!("{}", e.summary);
+    eprintln!("wrote {} ({} bytes)", a.output.display(), e.glb.len());
+    Ok(())
+}

@@ -1,0 +1,26 @@
+//! `viaroad view`: the glTF of `export` in one self-contained HTML page (issue 13).
+
+use super::export::{export, PlanArgs};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Arguments of `view`.
+#[derive(Args)]
+pub struct ViewArgs {
+    #[command(flatten)]
+    pub plan: PlanArgs,
+    /// Output HTML file; it opens from disk with no network.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// Runs `view`.
+pub fn run(a: ViewArgs) -> anyhow::Result<()> {
+    viaroad::safe_file::resolve_target(&a.output)?;
+    let e = export(&a.plan)?;
+    let page = viaroad::export::html::page(&e.name, &e.glb);
+    super::output::save(&a.output, page.as_bytes())?;
+    eprintln!("{}", e.summary);
+    eprintln!("wrote {} ({} bytes)", a.output.display(), page.len());
+    Ok(())
+}

@@ -1,0 +1,475 @@
+//! Bidirectional trees for one query: RRT-Connect (Kuffner–LaValle 2000) whose *extend* is a
+//! staircase of single-group motions, each as far as it is free.
+//!
+//! A sampling RRT-Connect checks states along a coupled straight motion at a fixed resolution
+//! to find the last valid state of an extend. The exact oracle answers that in one call per
+//! DOF group (CHS §1.2: the free section containing the motion's start is exactly the part
+//! it can reach), but only for single-group motions (CHS §1.5). An extend towards a target at
+//! most `range` away is therefore cut into stairs of at most `stair` length; each stair moves
+//! the position group, then the orientation group, to the stair's end, each as far as it is
+//! free. A short stair follows the coupled motion closely (alpha-1.5's passage needs turning
+//! while moving); a long one costs fewer calls. Every corner becomes a tree node, so every
+//! tree edge — and every edge of the returned path — is one certified free single-group
+//! motion.
+//!
+//! Two trees grow from start and goal; after each extend of one tree towards a uniform sample,
+//! the other tree *connects* (extends repeatedly) towards the new node, as in OMPL's
+//! `RRTConnect`. The stream of samples comes from one seeded generator, so with a node budget
+//! and no deadline the answer is the same on every machine.
+
+use crate::deadline::Deadline;
+use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::roadmap::bounce::SECTION_MARGIN;
+use crate::roadmap::nn::NearestNeighbours;
+use crate::space::{Config, Group, GroupKind, Space};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+/// Shortest partial stair kept, as a share of the stair length: shorter free prefixes end the
+/// extend without a node (RRT's frontier nodes would otherwise creep towards the obstacle).
+pub const MIN_PROGRESS: f64 = 0.1;
+
+/// How an extend finds the free prefix of one single-group stair.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Prefix {
+    /// One interval call: the free section containing the start (CHS §1.2).
+    Intervals,
+    /// A yes/no call first (it stops at the first collision found, cheaper on big meshes),
+    /// the interval call only when the stair is blocked.
+    YesNoFirst,
+    /// One first-collision call ([`CollisionOracle::first_collision`]): the same free prefix
+    /// as `Intervals`, without the collisions beyond it.
+    FirstHit,
+}
+
+impl std::str::FromStr for Prefix {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "intervals" => Ok(Prefix::Intervals),
+            "yesno" => Ok(Prefix::YesNoFirst),
+            "first" => Ok(Prefix::FirstHit),
+            _ => Err(format!(
+                "unknown prefix mode {s:?} (intervals | yesno | first)"
+            )),
+        }
+    }
+}
+
+/// Parameters of [`rrt_connect`].
+#[derive(Clone, Debug)]
+pub struct TreeParams {
+    /// Longest extend, as a share of the space's extent (OMPL's `RRTConnect` default: 0.2 of
+    /// its maximum extent).
+    pub range: f64,
+    /// Longest stair of an extend, as a share of the extent: the staircase's approximation of
+    /// a coupled motion.
+    pub stair: f64,
+    /// How a stair's free prefix is found.
+    pub prefix: Prefix,
+    /// Try each extend as one stair first (a yes/no call per group), the staircase only when
+    /// that is blocked.
+    pub coarse: bool,
+    /// Extend the smaller tree each time (Kuffner–LaValle's balanced variant) instead of
+    /// alternating: an entangled end whose extends are mostly trapped gets the effort.
+    pub balance: bool,
+    /// Most nodes of both trees together (a budget that gives the same answer on any machine).
+    pub max_nodes: Option<usize>,
+}
+
+impl Default for TreeParams {
+    fn default() -> Self {
+        TreeParams {
+            range: 0.2,
+            stair: 0.01,
+            prefix: Prefix::Intervals,
+            coarse: false,
+            balance: false,
+            max_nodes: None,
+        }
+    }
+}
+
+impl TreeParams {
+    /// Checks the shares are positive and finite.
+    pub fn validate(&self) -> Result<(), String> {
+        for (name, v) in [("range", self.range), ("stair", self.stair)] {
+            if !(v.is_finite() && v > 0.0 && v <= 10.0) {
+                return Err(format!("tree {name} must be a share in (0, 10], got {v}"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Why [`rrt_connect`] stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TreeStop {
+    /// The trees met: a path exists.
+    Connected,
+    /// The deadline passed (or Ctrl-C).
+    TimedOut,
+    /// The node budget is spent.
+    NodeBudget,
+}
+
+/// What [`rrt_connect`] found.
+#[derive(Clone, Debug)]
+pub struct TreeOutcome {
+    /// Start to goal, consecutive corners joined by free single-group motions, if the trees met.
+    pub path: Option<Vec<Config>>,
+    /// Nodes of the start tree and the goal tree.
+    pub nodes: [usize; 2],
+    /// Extends tried (connect steps included).
+    pub extends: u64,
+    /// Oracle calls made.
+    pub counts: CallCounts,
+    /// Why it stopped.
+    pub stop: TreeStop,
+}
+
+struct Tree {
+    nodes: Vec<Config>,
+    parent: Vec<u32>,
+    nn: NearestNeighbours,
+}
+
+impl Tree {
+    fn new(space: &Space, root: &[f64]) -> Tree {
+        let mut t = Tree {
+            nodes: Vec::new(),
+            parent: Vec::new(),
+            nn: NearestNeighbours::new(space),
+        };
+        t.add(root.to_vec(), u32::MAX);
+        t
+    }
+
+    fn add(&mut self, q: Config, parent: u32) -> u32 {
+        let id = self.nodes.len() as u32;
+        self.nn.insert(id, &q);
+        self.nodes.push(q);
+        self.parent.push(parent);
+        id
+    }
+
+    fn nearest(&self, q: &[f64]) -> u32 {
+        self.nn
+            .nearest(q, 1, None, |id| &self.nodes[id as usize])
+            .first()
+            .map_or(0, |&(id, _)| id)
+    }
+
+    /// Root first, `id` last.
+    fn branch(&self, id: u32) -> Vec<Config> {
+        let mut out = Vec::new();
+        let mut i = id;
+        while i != u32::MAX {
+            out.push(self.nodes[i as usize].clone());
+            i = self.parent[i as usize];
+        }
+        out.reverse();
+        out
+    }
+}
+
+enum Extend {
+    Trapped,
+    Advanced(u32),
+    Reached(u32),
+}
+
+/// Where a stair can go.
+enum Reach {
+    Blocked,
+    Partial(f64),
+    Full,
+}
+
+struct Grower<'a> {
+    space: &'a Space,
+    oracle: &'a dyn CollisionOracle,
+    groups: &'a [Group],
+    params: &'a TreeParams,
+    deadline: &'a Deadline,
+    counts: CallCounts,
+    extends: u64,
+}
+
+impl Grower<'_> {
+    fn reach(&mut self, motion: &crate::space::Motion) -> Result<Reach, OracleError> {
+        if self.params.prefix == Prefix::FirstHit {
+            // the free section containing the start is [range.lo, first collision]
+            let lo = motion.range.lo;
+            return Ok(match self.oracle.first_hit(motion, &mut self.counts)? {
+                None => Reach::Full,
+                Some(hit) if hit <= lo => Reach::Blocked,
+                Some(hit) => {
+                    let t = hit - SECTION_MARGIN * (hit - lo);
+                    if t > 0.0 {
+                        Reach::Partial(t)
+                    } else {
+                        Reach::Blocked
+                    }
+                }
+            });
+        }
+        if self.params.prefix == Prefix::YesNoFirst
+            && self.oracle.check_motion(motion, &mut self.counts)?
+        {
+            return Ok(Reach::Full);
+        }
+        let hits = self.oracle.intersect(motion, &mut self.counts)?;
+        let Some(section) = hits
+            .complement_within(motion.range)
+            .iter()
+            .find(|s| s.contains(0.0))
+            .copied()
+        else {
+            return Ok(Reach::Blocked);
+        };
+        if section.hi >= motion.range.hi {
+            return Ok(Reach::Full);
+        }
+        let t = section.hi - SECTION_MARGIN * section.length();
+        Ok(if t > 0.0 {
+            Reach::Partial(t)
+        } else {
+            Reach::Blocked
+        })
+    }
+
+    /// Extends `tree` from its node nearest to `target` towards it, at most `range` far.
+    fn extend(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
+        self.extends += 1;
+        let near = tree.nearest(target);
+        let from = tree.nodes[near as usize].clone();
+        let d = self.space.distance(&from, target);
+        if d == 0.0 {
+            return Ok(Extend::Reached(near));
+        }
+        let range = self.params.range * self.space.extent();
+        let full = d <= range;
+        let aim = if full {
+            target.to_vec()
+        } else {
+            self.space.interpolate(&from, target, range / d)
+        };
+        let stair = self.params.stair * self.space.extent();
+        let stairs = (d.min(range) / stair).ceil().clamp(1.0, 1e6) as usize;
+        if self.params.coarse && stairs > 1 {
+            // one stair all the way, yes/no: in open space the staircase buys nothing
+            if let Some(corners) = crate::local::check_direct(
+                self.space,
+                self.oracle,
+                self.groups,
+                &from,
+                &aim,
+                &mut self.counts,
+            )? {
+                let mut parent = near;
+                for c in corners {
+                    parent = tree.add(c, parent);
+                }
+                return Ok(if full {
+                    Extend::Reached(parent)
+                } else {
+                    Extend::Advanced(parent)
+                });
+            }
+        }
+        let mut current = from.clone();
+        let mut parent = near;
+        let mut moved = false;
+        for i in 1..=stairs {
+            let w = if i == stairs {
+                aim.clone()
+            } else {
+                self.space
+                    .interpolate(&from, &aim, i as f64 / stairs as f64)
+            };
+            for g in self.groups {
+                if self.deadline.expired() {
+                    return Ok(if moved {
+                        Extend::Advanced(parent)
+                    } else {
+                        Extend::Trapped
+                    });
+                }
+                if self.space.same_in_group(&current, &w, g) {
+                    continue;
+                }
+                let goal = self.space.with_group_of(&current, &w, g);
+                let motion = self.space.group_motion(&current, &goal, g);
+                let (next, blocked) = match self.reach(&motion)? {
+                    Reach::Full => (goal, false),
+                    Reach::Partial(t) => {
+                        let mut q = motion.at(t);
+                        if g.kind != GroupKind::Linear {
+                            self.space.normalize(&mut q);
+                        }
+                        (q, true)
+                    }
+                    Reach::Blocked => (current.clone(), true),
+                };
+                // a partial stair that barely moves only piles nodes against the obstacle
+                let worth =
+                    !blocked || self.space.distance(&current, &next) >= MIN_PROGRESS * stair;
+                if worth && next != current {
+                    parent = tree.add(next.clone(), parent);
+                    current = next;
+                    moved = true;
+                }
+                if blocked {
+                    return Ok(if moved {
+                        Extend::Advanced(parent)
+                    } else {
+                        Extend::Trapped
+                    });
+                }
+            }
+        }
+        Ok(if !moved {
+            Extend::Trapped
+        } else if full {
+            Extend::Reached(parent)
+        } else {
+            Extend::Advanced(parent)
+        })
+    }
+}
+
+/// RRT-Connect between the free configurations `start` and `goal` with exact single-group
+/// extends (see the module docs), until the trees meet, `params.max_nodes` is spent or
+/// `deadline` passes. `groups` are the DOF groups each stair moves in turn.
+#[allow(clippy::too_many_arguments)]
+pub fn rrt_connect(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    start: &[f64],
+    goal: &[f64],
+    params: &TreeParams,
+    seed: u64,
+    deadline: &Deadline,
+) -> Result<TreeOutcome, OracleError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut trees = [Tree::new(space, start), Tree::new(space, goal)];
+    let mut g = Grower {
+        space,
+        oracle,
+        groups,
+        params,
+        deadline,
+        counts: CallCounts::default(),
+        extends: 0,
+    };
+    let finish = |trees: &[Tree; 2], g: &Grower, path, stop| TreeOutcome {
+        path,
+        nodes: [trees[0].nodes.len(), trees[1].nodes.len()],
+        extends: g.extends,
+        counts: g.counts,
+        stop,
+    };
+    // the ends themselves first: often the straight staircase is free
+    let mut a = 0;
+    let mut target = Some(goal.to_vec());
+    loop {
+        if deadline.expired() {
+            return Ok(finish(&trees, &g, None, TreeStop::TimedOut));
+        }
+        if params
+            .max_nodes
+            .is_some_and(|m| trees[0].nodes.len() + trees[1].nodes.len() >= m)
+        {
+            return Ok(finish(&trees, &g, None, TreeStop::NodeBudget));
+        }
+        let q_rand = target
+            .take()
+            .unwrap_or_else(|| space.sample_uniform(&mut rng));
+        let (first, second) = trees.split_at_mut(1);
+        let (ta, tb) = if a == 0 {
+            (&mut first[0], &mut second[0])
+        } else {
+            (&mut second[0], &mut first[0])
+        };
+        let new = match g.extend(ta, &q_rand)? {
+            Extend::Trapped => None,
+            Extend::Advanced(n) | Extend::Reached(n) => Some(n),
+        };
+        if let Some(n) = new {
+            let q_new = ta.nodes[n as usize].clone();
+            loop {
+                let full = params
+                    .max_nodes
+                    .is_some_and(|m| ta.nodes.len() + tb.nodes.len() >= m);
+                if deadline.expired() || full {
+                    break;
+                }
+                match g.extend(tb, &q_new)? {
+                    Extend::Reached(m) => {
+                        let (s, t) = if a == 0 { (n, m) } else { (m, n) };
+                        let mut path = trees[0].branch(s);
+                        let back = trees[1].branch(t);
+                        // the meeting node is in both branches (as the same pose)
+                        path.extend(back.into_iter().rev().skip(1));
+                        return Ok(finish(&trees, &g, Some(path), TreeStop::Connected));
+                    }
+                    Extend::Advanced(_) => {}
+                    Extend::Trapped => break,
+                }
+            }
+        }
+        a = if params.balance {
+            usize::from(trees[1].nodes.len() < trees[0].nodes.len())
+        } else {
+            1 - a
+        };
+    }
+}
+
+/// Shortcuts a path of single-group corners greedily: from each corner, the farthest of the
+/// next `window` corners that a free direct path reaches (yes/no calls), until `deadline`.
+/// The result again has consecutive corners joined by free single-group motions.
+pub fn shortcut(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    window: usize,
+    counts: &mut CallCounts,
+    deadline: &Deadline,
+) -> Result<Vec<Config>, OracleError> {
+    if path.len() <= 2 {
+        return Ok(path.to_vec());
+    }
+    let mut out = vec![path[0].clone()];
+    let mut i = 0;
+    while i + 1 < path.len() {
+        let mut jumped = None;
+        if !deadline.expired() {
+            for j in ((i + 2)..(i + 1 + window).min(path.len())).rev() {
+                if deadline.expired() {
+                    break;
+                }
+                if let Some(c) =
+                    crate::local::check_direct(space, oracle, groups, &path[i], &path[j], counts)?
+                {
+                    jumped = Some((j, c));
+                    break;
+                }
+            }
+        }
+        match jumped {
+            Some((j, c)) => {
+                out.extend(c);
+                i = j;
+            }
+            None => {
+                out.push(path[i + 1].clone());
+                i += 1;
+            }
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,433 @@
+//! Arm scenes (issue 10): a URDF robot's planning group among a MoveIt PlanningScene, as a
+//! TOML scene of `[space] kind = "arm"`.
+//!
+//! ```toml
+//! name = "panda-table-pick-1"          # optional
+//! [space]
+//! kind = "arm"                         # nothing else: the bounds are the joint limits
+//! [robot]
+//! urdf = "panda/panda.urdf"            # relative to this file; meshes relative to the URDF
+//! srdf = "panda/panda.srdf"            # optional: groups, disable_collisions
+//! group = ["panda_joint1", "panda_joint2"]   # joints in this order; or an SRDF group's name
+//!                                      # (group = "panda_arm"); default: the SRDF's first group
+//! fixed = { panda_finger_joint1 = 0.04 }     # optional: joints outside the group
+//! [environment]                        # optional (without it only self-collision counts)
+//! moveit_scene = "mbm/table_pick/scene0001.yaml"
+//! [[query]]
+//! moveit_request = "mbm/table_pick/request0001.yaml"
+//! [[query]]
+//! start = [0, -0.785, 0, -2.356, 0, 1.571, 0.785]    # group order, one value per joint
+//! goal  = [0.5, -0.5, 0, -2.0, 0, 1.571, 0.785]
+//! ```
+//!
+//! Joints outside the group take, in this order, the scene's `robot_state`, the start state
+//! of every `moveit_request` (MoveIt's rule: the request's start state wins), then `fixed`.
+//! The environment's curved primitives become circumscribed polytopes
+//! ([`crate::robot::Primitive::polytope`]), so a path certified against them is certified
+//! against the true shapes.
+//!
+//! The oracle ([`ArmCollision`]) answers a motion of one joint exactly with
+//! [`ArmOracle::joint_move`] (the distal part turns about the joint's fixed axis, CHS §2.3.2;
+//! the proximal links are static obstacles), a configuration with [`ArmOracle::collides`];
+//! motions of several joints at once are not straight in any sense the oracle knows, so it
+//! refuses them ([`OracleError::Unsupported`]): the via-point planner moves one joint per
+//! segment (CHS §1.5).
+
+use super::moveit::{load_motion_plan_request, load_planning_scene, CollisionObject};
+use super::{Fnv, Query, Robot, Scene, SceneError};
+use crate::interval::{Interval, IntervalList};
+use crate::oracle::{CallCounts, CollisionOracle, OracleError};
+use crate::robot::arm::GroupChoice;
+use crate::robot::urdf::JointKind;
+use crate::robot::{Arm, ArmOptions, ArmOracle, RobotError};
+use crate::space::{Change, Motion, Space};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    name: Option<String>,
+    #[serde(rename = "space")]
+    _space: SpaceSpec,
+    robot: RobotSpec,
+    environment: Option<EnvironmentSpec>,
+    #[serde(default, rename = "query")]
+    queries: Vec<QuerySpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpaceSpec {
+    #[serde(rename = "kind")]
+    _kind: String,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum GroupSpec {
+    Name(String),
+    Joints(Vec<String>),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RobotSpec {
+    urdf: String,
+    srdf: Option<String>,
+    group: Option<GroupSpec>,
+    #[serde(default)]
+    fixed: BTreeMap<String, f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EnvironmentSpec {
+    moveit_scene: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct QuerySpec {
+    moveit_request: Option<String>,
+    start: Option<Vec<f64>>,
+    goal: Option<Vec<f64>>,
+}
+
+/// An arm in its environment: what a [`Robot::Arm`] scene holds. The arm has its other joints,
+/// base and allowed-collision exemptions set; `objects` are the environment as read (exact
+/// shapes, for the independent checker and for drawing).
+#[derive(Clone, Debug)]
+pub struct ArmRobot {
+    /// The arm, ready for planning.
+    pub arm: Arm,
+    /// The environment's collision objects.
+    pub objects: Vec<CollisionObject>,
+    /// The URDF file.
+    pub urdf: PathBuf,
+    /// The SRDF file, if any.
+    pub srdf: Option<PathBuf>,
+    /// The PlanningScene file, if any.
+    pub moveit_scene: Option<PathBuf>,
+    oracle: Arc<ArmOracle>,
+    digest: u64,
+}
+
+/// Two arm scenes are equal when what decides their collisions is (the fingerprint's data).
+impl PartialEq for ArmRobot {
+    fn eq(&self, other: &Self) -> bool {
+        self.digest == other.digest
+    }
+}
+
+impl ArmRobot {
+    /// Builds the exact oracle for `arm` among `objects` (once: it is shared by every
+    /// [`Scene::oracle`] call) and the digest of its geometry.
+    pub fn new(
+        arm: Arm,
+        objects: Vec<CollisionObject>,
+        urdf: PathBuf,
+        srdf: Option<PathBuf>,
+        moveit_scene: Option<PathBuf>,
+    ) -> Result<ArmRobot, RobotError> {
+        let oracle = Arc::new(ArmOracle::new(&arm, &objects)?);
+        let digest = digest(&arm, &objects);
+        Ok(ArmRobot {
+            arm,
+            objects,
+            urdf,
+            srdf,
+            moveit_scene,
+            oracle,
+            digest,
+        })
+    }
+
+    /// The exact single-joint oracle.
+    pub fn arm_oracle(&self) -> &Arc<ArmOracle> {
+        &self.oracle
+    }
+
+    /// A 64-bit digest of everything that decides collisions: link geometry and its origins,
+    /// the group's joints, the other joints' values, the base pose, the self-collision pairs
+    /// and the environment's polytopes.
+    pub fn digest(&self) -> u64 {
+        self.digest
+    }
+}
+
+fn digest(arm: &Arm, objects: &[CollisionObject]) -> u64 {
+    let mut h = Fnv::new();
+    h.str("arm");
+    let names = arm.group_joint_names();
+    h.bytes(&(names.len() as u64).to_le_bytes());
+    names.iter().for_each(|n| h.str(n));
+    h.floats(&arm.values);
+    let iso = |h: &mut Fnv, p: &nalgebra::Isometry3<f64>| {
+        let t = p.translation.vector;
+        let r = p.rotation.coords;
+        h.floats(&[t.x, t.y, t.z, r[0], r[1], r[2], r[3]]);
+    };
+    iso(&mut h, &arm.base);
+    for s in &arm.shapes {
+        h.bytes(&(s.link as u64).to_le_bytes());
+        iso(&mut h, &s.origin);
+        h.mesh(&s.polytope);
+    }
+    for &(a, b) in &arm.self_pairs {
+        h.bytes(&(a as u64).to_le_bytes());
+        h.bytes(&(b as u64).to_le_bytes());
+    }
+    // the kinematics: joint origins and axes
+    for j in &arm.model.urdf.joints {
+        iso(&mut h, &j.origin);
+        h.floats(&[j.axis.x, j.axis.y, j.axis.z]);
+    }
+    for o in objects {
+        for (pose, shape) in &o.parts {
+            iso(&mut h, pose);
+            h.str(&format!("{shape:?}"));
+        }
+    }
+    h.finish()
+}
+
+/// The collision oracle of an arm scene (wrapped in [`crate::oracle::Bounded`] by
+/// [`Scene::oracle`]): single-joint motions exactly, configurations statically.
+pub struct ArmCollision {
+    oracle: Arc<ArmOracle>,
+}
+
+impl ArmCollision {
+    /// The oracle answering with `oracle`.
+    pub fn new(oracle: Arc<ArmOracle>) -> Self {
+        ArmCollision { oracle }
+    }
+
+    fn unsupported(e: RobotError) -> OracleError {
+        OracleError::Unsupported(e.to_string())
+    }
+
+    fn answer(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        let Change::Linear(delta) = &motion.change else {
+            return Err(OracleError::Unsupported(
+                "an arm moves its joints, not a rigid-body rotation".into(),
+            ));
+        };
+        let mut moving = delta.iter().enumerate().filter(|(_, d)| **d != 0.0);
+        let first = moving.next();
+        if moving.next().is_some() {
+            return Err(OracleError::Unsupported(
+                "an arm motion moves one joint at a time (CHS §1.5)".into(),
+            ));
+        }
+        let range = motion.range;
+        let static_answer = |q: &[f64], counts: &mut CallCounts| {
+            let hit = self.oracle.collides(q, counts).map_err(Self::unsupported)?;
+            Ok(if hit {
+                IntervalList::single(range)
+            } else {
+                IntervalList::new()
+            })
+        };
+        let Some((j, &d)) = first else {
+            return static_answer(&motion.origin, counts);
+        };
+        if !(range.lo.is_finite() && range.hi.is_finite()) {
+            return Err(OracleError::Unsupported(
+                "an unbounded joint motion (the scene's bounds clip lines to the joint limits)"
+                    .into(),
+            ));
+        }
+        let mut q0 = motion.origin.clone();
+        q0[j] += range.lo * d;
+        let span = range.hi - range.lo;
+        if span == 0.0 {
+            return static_answer(&q0, counts);
+        }
+        let hits = self
+            .oracle
+            .joint_move(&q0, j, span * d, counts)
+            .map_err(Self::unsupported)?;
+        let mapped: Vec<Interval> = hits
+            .iter()
+            .map(|iv| Interval {
+                lo: range.lo + iv.lo * span,
+                hi: range.lo + iv.hi * span,
+            })
+            .collect();
+        Ok(IntervalList::from_unsorted(mapped).into_clipped(range))
+    }
+}
+
+impl CollisionOracle for ArmCollision {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        // the arm oracle counts its own calls; here only its pair tests are kept, the caller
+        // (CountedOracle) counts the call
+        let mut own = CallCounts::default();
+        let r = self.answer(motion, &mut own);
+        counts.pairs_tested += own.pairs_tested;
+        r
+    }
+
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        let mut own = CallCounts::default();
+        // a configuration of the wrong shape cannot be placed: it counts as collision
+        let hit = self.oracle.collides(q, &mut own).unwrap_or(true);
+        counts.pairs_tested += own.pairs_tested;
+        hit
+    }
+}
+
+/// Whether a parsed TOML document is an arm scene (`[space] kind = "arm"`).
+pub(crate) fn is_arm_scene(text: &str) -> bool {
+    let Ok(v) = text.parse::<toml::Table>() else {
+        return false;
+    };
+    v.get("space")
+        .and_then(|s| s.get("kind"))
+        .and_then(|k| k.as_str())
+        == Some("arm")
+}
+
+/// Reads an arm scene from TOML text; `path` names the file and anchors relative paths.
+pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
+    let file: File = toml::from_str(text).map_err(|e| SceneError::Parse {
+        path: path.to_path_buf(),
+        message: e.to_string().trim_end().replace('\n', " "),
+    })?;
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let invalid = |message: String| SceneError::Invalid {
+        path: path.to_path_buf(),
+        message,
+    };
+    let robot_err = |e: RobotError| match e {
+        RobotError::Scene(s) => s,
+        other => invalid(other.to_string()),
+    };
+    let urdf = dir.join(&file.robot.urdf);
+    let srdf = file.robot.srdf.as_ref().map(|s| dir.join(s));
+    let group = match &file.robot.group {
+        None => GroupChoice::FirstSrdfGroup,
+        Some(GroupSpec::Name(n)) => GroupChoice::Srdf(n.clone()),
+        Some(GroupSpec::Joints(j)) => GroupChoice::Joints(j.clone()),
+    };
+    let mut arm = Arm::load(&urdf, srdf.as_deref(), &ArmOptions { group }).map_err(robot_err)?;
+    let mut warnings = Vec::new();
+    let moveit_scene = file
+        .environment
+        .as_ref()
+        .and_then(|e| e.moveit_scene.as_ref())
+        .map(|s| dir.join(s));
+    let objects = match &moveit_scene {
+        Some(p) => {
+            let ps = load_planning_scene(p)?;
+            ps.apply_to(&mut arm).map_err(robot_err)?;
+            ps.objects
+        }
+        None => Vec::new(),
+    };
+    let mut queries = Vec::new();
+    let mut first_values: Option<Vec<f64>> = None;
+    for (i, q) in file.queries.iter().enumerate() {
+        let what = format!("query {}", i + 1);
+        match (&q.moveit_request, &q.start, &q.goal) {
+            (Some(r), None, None) => {
+                let req = load_motion_plan_request(&dir.join(r))?;
+                let (start, goal) = req
+                    .start_goal(&mut arm)
+                    .map_err(|e| invalid(format!("{what} ({r}): {e}")))?;
+                match &first_values {
+                    None => first_values = Some(arm.values.clone()),
+                    Some(v) if *v != arm.values => warnings.push(format!(
+                        "{what} ({r}): its start state sets the joints outside the group \
+                         differently from the first request's; the last one given applies"
+                    )),
+                    Some(_) => {}
+                }
+                queries.push(Query { start, goal });
+            }
+            (None, Some(start), Some(goal)) => queries.push(Query {
+                start: start.clone(),
+                goal: goal.clone(),
+            }),
+            _ => {
+                return Err(invalid(format!(
+                    "{what}: give either moveit_request or both start and goal"
+                )))
+            }
+        }
+    }
+    if !file.robot.fixed.is_empty() {
+        let (names, values): (Vec<String>, Vec<f64>) = file.robot.fixed.into_iter().unzip();
+        for n in &names {
+            if arm
+                .model
+                .joint(n)
+                .is_some_and(|k| arm.group.joints.contains(&k))
+            {
+                return Err(invalid(format!(
+                    "[robot] fixed names {n}, a joint of the planning group"
+                )));
+            }
+        }
+        arm.set_joint_values(&names, &values).map_err(robot_err)?;
+    }
+    let name = file
+        .name
+        .unwrap_or_else(|| super::toml_format::default_name(path));
+    let robot = ArmRobot::new(arm, objects, urdf, srdf, moveit_scene).map_err(robot_err)?;
+    let mut scene = arm_scene(name, robot, queries, path)?;
+    scene.warnings.extend(warnings);
+    super::toml_format::check_queries_on_load(&mut scene)?;
+    Ok(scene)
+}
+
+/// A scene of `robot` with these queries (unchecked: [`Scene::checked_queries`] checks them);
+/// `source` names it in errors. What `bench mbm` builds for each MotionBenchMaker problem.
+pub fn arm_scene(
+    name: String,
+    robot: ArmRobot,
+    queries: Vec<Query>,
+    source: &Path,
+) -> Result<Scene, SceneError> {
+    let space = joint_space(&robot.arm).map_err(|e| SceneError::Invalid {
+        path: source.to_path_buf(),
+        message: format!("the planning group: {e}"),
+    })?;
+    Ok(Scene {
+        name,
+        space,
+        robot: Robot::Arm(Box::new(robot)),
+        obstacles: Vec::new(),
+        queries,
+        source: Some(source.to_path_buf()),
+        warnings: Vec::new(),
+    })
+}
+
+/// The joint space of the arm's planning group: its limits as bounds, continuous joints
+/// wrapping.
+pub fn joint_space(arm: &Arm) -> Result<Space, crate::space::SpaceError> {
+    let continuous: Vec<bool> = arm
+        .group
+        .joints
+        .iter()
+        .map(|&k| matches!(arm.model.urdf.joints[k].kind, JointKind::Continuous))
+        .collect();
+    Space::joints(
+        arm.group.lower.clone(),
+        arm.group.upper.clone(),
+        &continuous,
+    )
+}

@@ -1,0 +1,202 @@
+//! Planning for arms end to end (issue 10): arm TOML scenes, the joint space, the via-point
+//! planner and the roadmap on the Panda, every path re-checked by the independent
+//! [`ArmChecker`] (parry, exact primitives, sharing no code with the exact oracle) sampled at
+//! 1/10 of OMPL's default motion-check resolution (1 % of the space's extent → 0.1 %).
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::path::{Path, PathBuf};
+use viaroad::deadline::Deadline;
+use viaroad::local::{shorten, LocalSpec};
+use viaroad::roadmap::{
+    Budget, LearnParams, Learner, QueryError, QueryPlanner, Roadmap, RoadmapError,
+};
+use viaroad::robot::ArmChecker;
+use viaroad::scene::{Robot, Scene, SceneError};
+use viaroad::space::SpaceKind;
+
+fn arms(p: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/arms")
+        .join(p)
+}
+
+fn checker(scene: &Scene) -> ArmChecker {
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm scene")
+    };
+    ArmChecker::new(&a.arm, &a.objects).unwrap()
+}
+
+/// Re-checks a path: one joint per segment (CHS §1.5), starts and ends where asked, and free
+/// under the independent checker at 1/10 of OMPL's default resolution.
+fn certify(scene: &Scene, path: &[Vec<f64>], start: &[f64], goal: &[f64]) {
+    assert!(path.len() >= 2);
+    assert_eq!(path.first().unwrap().as_slice(), start);
+    let end = path.last().unwrap();
+    assert!(scene.space.distance(end, goal) < 1e-9, "{end:?} ≠ {goal:?}");
+    for w in path.windows(2) {
+        let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
+        assert!(moving <= 1, "a segment moves {moving} joints: {w:?}");
+    }
+    let c = checker(scene);
+    let step = 0.001 * c.arm().group.max_extent();
+    let report = c.check_path(path, step).unwrap();
+    assert!(report.valid, "the checker refuses the path: {report:?}");
+    assert!(report.samples > path.len());
+}
+
+#[test]
+fn an_arm_scene_loads_into_the_joint_space() {
+    let scene = Scene::load(&arms("panda-table_pick-1.toml")).unwrap();
+    assert_eq!(
+        scene.space.kind(),
+        SpaceKind::Joints {
+            dof: 7,
+            continuous: 0
+        }
+    );
+    assert_eq!(scene.space.groups(false).len(), 7);
+    assert_eq!(scene.queries.len(), 1);
+    let c = checker(&scene);
+    assert!(c.is_valid(&scene.queries[0].start));
+    assert!(c.is_valid(&scene.queries[0].goal));
+    // the fingerprint tells the environments apart, and is stable across loads
+    let again = Scene::load(&arms("panda-table_pick-1.toml")).unwrap();
+    let other = Scene::load(&arms("panda-cage-1.toml")).unwrap();
+    assert_eq!(scene.fingerprint(), again.fingerprint());
+    assert_ne!(scene.fingerprint(), other.fingerprint());
+}
+
+#[test]
+fn the_viapoint_planner_solves_a_panda_problem_and_the_checker_agrees() {
+    let scene = Scene::load(&arms("panda-table_pick-1.toml")).unwrap();
+    let q = &scene.checked_queries().unwrap()[0];
+    let oracle = scene.oracle();
+    let method = LocalSpec::default().build();
+    let mut c = method
+        .connect_within(
+            &scene.space,
+            oracle.as_ref(),
+            &q.start,
+            &q.goal,
+            &Deadline::none(),
+        )
+        .unwrap();
+    assert!(c.is_connected());
+    certify(&scene, &c.path, &q.start, &q.goal);
+    let groups = method.groups(&scene.space);
+    let short = shorten(
+        &scene.space,
+        oracle.as_ref(),
+        &groups,
+        &c.path,
+        &mut c.counts,
+    )
+    .unwrap();
+    certify(&scene, &short, &q.start, &q.goal);
+    let len = |p: &[Vec<f64>]| {
+        p.windows(2)
+            .map(|w| scene.space.distance(&w[0], &w[1]))
+            .sum::<f64>()
+    };
+    assert!(len(&short) <= len(&c.path) + 1e-9);
+}
+
+#[test]
+fn a_roadmap_round_trips_answers_and_refuses_another_scene() {
+    let scene = Scene::load(&arms("panda-table_pick-1.toml")).unwrap();
+    let q = scene.checked_queries().unwrap()[0].clone();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(40), 3, &mut |_| {})
+        .unwrap();
+    let bytes = learnt.roadmap.to_bytes().unwrap();
+    let loaded = Roadmap::from_bytes(&bytes, scene.fingerprint()).unwrap();
+    assert_eq!(loaded.to_bytes().unwrap(), bytes);
+    // every node is valid for the independent checker
+    let c = checker(&scene);
+    for n in loaded.nodes() {
+        assert!(c.is_valid(n), "roadmap node {n:?} collides");
+    }
+    let planner = QueryPlanner::new(&loaded, oracle.as_ref()).unwrap();
+    let r = planner.query(&q.start, &q.goal).unwrap();
+    assert!(r.is_solved(), "{:?}", r.outcome);
+    certify(&scene, &r.path, &q.start, &q.goal);
+    certify(&scene, &r.raw_path, &q.start, &q.goal);
+    // the same roadmap for the cage scene is refused
+    let cage = Scene::load(&arms("panda-cage-1.toml")).unwrap();
+    assert!(matches!(
+        Roadmap::from_bytes(&bytes, cage.fingerprint()),
+        Err(RoadmapError::ForeignScene { .. })
+    ));
+}
+
+#[test]
+fn a_start_in_collision_is_a_clear_error() {
+    let scene = Scene::load(&arms("panda-table_pick-1.toml")).unwrap();
+    let c = checker(&scene);
+    let g = &c.arm().group;
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    // a configuration the independent checker finds in collision (the oracle's shapes contain
+    // the true ones, so it must find it in collision too)
+    let bad = loop {
+        let q: Vec<f64> = (0..g.dof())
+            .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+            .collect();
+        if !c.collisions(&q).is_empty() {
+            break q;
+        }
+    };
+    let goal = scene.checked_queries().unwrap()[0].goal.clone();
+    let oracle = scene.oracle();
+    assert!(matches!(
+        scene.check_config(oracle.as_ref(), "start", &bad),
+        Err(SceneError::InCollision { .. })
+    ));
+    let text = format!(
+        "[space]\nkind = \"arm\"\n[robot]\nurdf = \"panda/panda.urdf\"\nsrdf = \"panda/panda.srdf\"\n\
+         [environment]\nmoveit_scene = \"mbm/table_pick/scene0001.yaml\"\n\
+         [[query]]\nstart = {bad:?}\ngoal = {goal:?}\n"
+    );
+    let s = viaroad::scene::toml_format::from_str(&text, &arms("inline.toml")).unwrap();
+    let e = s.checked_queries().unwrap_err();
+    assert!(matches!(e, SceneError::InCollision { .. }), "{e}");
+    assert!(e.to_string().contains("start of query 1"), "{e}");
+    // a roadmap query refuses it too
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(5), 1, &mut |_| {})
+        .unwrap();
+    let planner = QueryPlanner::new(&learnt.roadmap, oracle.as_ref()).unwrap();
+    assert!(matches!(
+        planner.query(&bad, &goal),
+        Err(QueryError::InCollision { .. })
+    ));
+}
+
+#[test]
+fn bad_arm_scenes_are_refused() {
+    let base = "[space]\nkind = \"arm\"\n[robot]\nurdf = \"panda/panda.urdf\"\nsrdf = \"panda/panda.srdf\"\n";
+    for (extra, why) in [
+        ("colour = 1\n", "unknown key"),
+        ("fixed = { panda_joint1 = 0.1 }\n", "group joint fixed"),
+        ("group = [\"nope\"]\n", "unknown joint"),
+        ("group = [\"panda_joint1\"]\n", "one joint"),
+        (
+            "[[query]]\nmoveit_request = \"mbm/table_pick/request0001.yaml\"\nstart = [0]\n",
+            "both forms of query",
+        ),
+        ("[[query]]\nstart = [0, 0]\ngoal = [0, 0]\n", "wrong length"),
+        (
+            "[environment]\nmoveit_scene = \"missing.yaml\"\n",
+            "missing file",
+        ),
+    ] {
+        // bare keys land in [robot]
+        let text = format!("{base}{extra}");
+        let r = viaroad::scene::toml_format::from_str(&text, &arms("inline.toml"));
+        assert!(r.is_err(), "{why}: accepted");
+    }
+}

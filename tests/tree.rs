@@ -1,0 +1,312 @@
+//! RRT-Connect with exact single-group extends (`roadmap::tree`): every path joins start and
+//! goal by free single-group motions — re-checked by the independent checkers (segment–disc
+//! distances, exact polygon sweeps in the plane, parry by conservative advancement in SE(3)) —
+//! the same seed and node budget give the same answer, the node budget holds, and the
+//! shortcut path is checked the same way.
+
+mod common;
+
+use common::cli::{fails_with, stderr, stdout, viaroad};
+use std::path::PathBuf;
+use viaroad::bench::validity::Checker;
+use viaroad::deadline::Deadline;
+use viaroad::oracle::CallCounts;
+use viaroad::roadmap::tree::{rrt_connect, shortcut, Prefix, TreeOutcome, TreeParams, TreeStop};
+use viaroad::scene::Scene;
+use viaroad::space::Config;
+
+fn scene(rel: &str) -> Scene {
+    Scene::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel)).unwrap()
+}
+
+fn grow(scene: &Scene, params: &TreeParams, seed: u64) -> TreeOutcome {
+    let oracle = scene.oracle();
+    let groups = scene.space.groups(false);
+    let q = &scene.checked_queries().unwrap()[0];
+    rrt_connect(
+        &scene.space,
+        oracle.as_ref(),
+        &groups,
+        &q.start,
+        &q.goal,
+        params,
+        seed,
+        &Deadline::none(),
+    )
+    .unwrap()
+}
+
+/// Checks `path` independently: from the query's start to its goal, every step in one DOF
+/// group, every corner and motion free under the scene's checker.
+fn check(scene: &Scene, path: &[Config]) {
+    let q = &scene.checked_queries().unwrap()[0];
+    let groups = scene.space.groups(false);
+    assert_eq!(
+        path.first(),
+        Some(&q.start),
+        "{}: path leaves the start",
+        scene.name
+    );
+    assert_eq!(
+        path.last(),
+        Some(&q.goal),
+        "{}: path misses the goal",
+        scene.name
+    );
+    for w in path.windows(2) {
+        let differing = groups
+            .iter()
+            .filter(|g| !scene.space.same_in_group(&w[0], &w[1], g))
+            .count();
+        assert!(
+            differing <= 1,
+            "{}: a step moved {differing} groups",
+            scene.name
+        );
+    }
+    Checker::for_scene(scene)
+        .unwrap()
+        .check_path(path)
+        .unwrap_or_else(|e| panic!("{}: a tree path collides: {e}", scene.name));
+}
+
+fn params(max_nodes: usize) -> TreeParams {
+    TreeParams {
+        max_nodes: Some(max_nodes),
+        ..TreeParams::default()
+    }
+}
+
+#[test]
+fn paths_are_free_single_group_and_shortcuts_too() {
+    for (rel, nodes, seeds) in [
+        ("scenes/discs-cluttered.toml", 4000, 1..=4),
+        ("scenes/se2-corridor.toml", 4000, 1..=3),
+        ("scenes/ompl/3D/Easy.cfg", 20000, 1..=2),
+    ] {
+        let s = scene(rel);
+        let oracle = s.oracle();
+        let groups = s.space.groups(false);
+        let mut solved = 0;
+        for seed in seeds.clone() {
+            let out = grow(&s, &params(nodes), seed);
+            let Some(path) = &out.path else { continue };
+            assert_eq!(out.stop, TreeStop::Connected);
+            solved += 1;
+            check(&s, path);
+            let mut counts = CallCounts::default();
+            let short = shortcut(
+                &s.space,
+                oracle.as_ref(),
+                &groups,
+                path,
+                16,
+                &mut counts,
+                &Deadline::none(),
+            )
+            .unwrap();
+            assert!(
+                short.len() <= path.len() * 2,
+                "{rel}: shortcut grew the path"
+            );
+            check(&s, &short);
+        }
+        assert!(solved > 0, "{rel}: no seed of {seeds:?} solved");
+    }
+}
+
+#[test]
+fn yes_no_first_finds_paths_as_free() {
+    let s = scene("scenes/se2-corridor.toml");
+    let p = TreeParams {
+        prefix: Prefix::YesNoFirst,
+        ..params(4000)
+    };
+    let out = grow(&s, &p, 1);
+    check(&s, out.path.as_ref().expect("corridor not solved"));
+}
+
+#[test]
+fn same_seed_same_answer_and_the_node_budget_holds() {
+    let s = scene("scenes/discs-cluttered.toml");
+    let a = grow(&s, &params(3000), 5);
+    let b = grow(&s, &params(3000), 5);
+    assert_eq!(a.path, b.path);
+    assert_eq!(a.nodes, b.nodes);
+    assert_eq!(a.counts.intersect_calls(), b.counts.intersect_calls());
+    // a budget too small to connect stops within one extend of it (a staircase of at most
+    // range / stair stairs, one node per group)
+    let p = TreeParams {
+        range: 0.2,
+        stair: 0.05,
+        ..params(30)
+    };
+    let out = grow(&s, &p, 5);
+    if out.path.is_none() {
+        assert_eq!(out.stop, TreeStop::NodeBudget);
+    }
+    assert!(out.nodes[0] + out.nodes[1] <= 30 + 4 * 2, "{:?}", out.nodes);
+}
+
+#[test]
+fn free_space_connects_in_one_straight_staircase() {
+    let mut s = scene("scenes/discs-cluttered.toml");
+    s.obstacles.clear();
+    let p = TreeParams {
+        range: 2.0,
+        ..params(1000)
+    };
+    let out = grow(&s, &p, 1);
+    let path = out.path.expect("free space not solved");
+    check(&s, &path);
+    // the first extend aims at the goal itself and, within range, reaches it
+    assert_eq!(out.nodes[1], 1, "the goal tree grew: {:?}", out.nodes);
+}
+
+#[test]
+fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
+    let s = scene("scenes/discs-cluttered.toml");
+    let (centres, radii): (Vec<Vec<f64>>, Vec<f64>) = s
+        .obstacles
+        .iter()
+        .map(|o| match o {
+            viaroad::scene::Obstacle::Disc { centre, radius } => (centre.clone(), *radius),
+            _ => panic!("a disc scene"),
+        })
+        .unzip();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "solve",
+            "scenes/discs-cluttered.toml",
+            "--tree",
+            "--nodes",
+            "3000",
+            "--seed",
+            "4",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let o = viaroad(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+            .lines()
+            .map(|l| {
+                let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
+                // the timings are the only fields that may differ between two runs
+                let m = v.as_object_mut().unwrap();
+                m.remove("seconds");
+                m.remove("grow_seconds");
+                v
+            })
+            .collect::<Vec<_>>()
+    };
+    for extra in [&[][..], &["--tree-coarse", "--tree-stair", "0.05"][..]] {
+        let a = run(extra);
+        assert_eq!(a, run(extra), "{extra:?}: two runs differ");
+        assert!(!a.is_empty());
+        let solved = a.iter().filter(|v| v["solved"] == true).count();
+        assert!(
+            solved * 2 >= a.len(),
+            "{extra:?}: only {solved} of {} solved",
+            a.len()
+        );
+        for v in a.iter().filter(|v| v["solved"] == true) {
+            assert_eq!(v["stop"], "Connected");
+            for key in ["path", "shortened"] {
+                let p: Vec<Vec<f64>> = serde_json::from_value(v[key].clone()).unwrap();
+                common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9)
+                    .unwrap();
+            }
+        }
+    }
+    fails_with(
+        &[
+            "solve",
+            "scenes/discs-cluttered.toml",
+            "--tree",
+            "--tree-stair",
+            "0",
+        ],
+        "stair",
+    );
+    // one single-query planner at a time (a usage error: clap's exit status 2)
+    let o = viaroad(&[
+        "solve",
+        "scenes/discs-cluttered.toml",
+        "--tree",
+        "--roadmap",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--roadmap"), "{}", stderr(&o));
+}
+
+#[test]
+fn first_collision_is_the_start_of_the_first_interval() {
+    use rand::SeedableRng;
+    use viaroad::oracle::{CollisionOracle, CountedOracle};
+    for rel in [
+        "scenes/ompl/3D/Twistycool.cfg",
+        "scenes/ompl/3D/alpha-1.5.cfg",
+        "scenes/se2-corridor.toml",
+    ] {
+        let s = scene(rel);
+        let oracle = s.oracle();
+        let groups = s.space.groups(false);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let mut counts = CallCounts::default();
+        let (mut blocked, mut partial, mut free) = (0, 0, 0);
+        let q0 = &s.checked_queries().unwrap()[0].start;
+        for i in 0..300 {
+            // from the query's start (alpha's is entangled) or a random free configuration,
+            // a stair of random length towards a uniform sample
+            let from = if i % 2 == 0 {
+                q0.clone()
+            } else {
+                loop {
+                    let q = s.space.sample_uniform(&mut rng);
+                    if oracle.is_free(&q, &mut counts) {
+                        break q;
+                    }
+                }
+            };
+            let to = s.space.sample_uniform(&mut rng);
+            let t: f64 = rand::Rng::random_range(&mut rng, 0.001..1.0);
+            let aim = s.space.interpolate(&from, &to, t);
+            let g = &groups[i % groups.len()];
+            let motion = s
+                .space
+                .group_motion(&from, &s.space.with_group_of(&from, &aim, g), g);
+            let all = oracle.intervals(&motion, &mut counts).unwrap();
+            let first = oracle.first_collision(&motion, &mut counts).unwrap();
+            assert_eq!(
+                first,
+                all.first().map(|iv| iv.lo),
+                "{rel}: motion {i}: first collision differs from the intervals {all:?}"
+            );
+            match first {
+                None => free += 1,
+                Some(x) if x <= 0.0 => blocked += 1,
+                Some(_) => partial += 1,
+            }
+        }
+        // the comparison covered all three cases
+        assert!(
+            free > 0 && partial > 0,
+            "{rel}: free {free}, partial {partial}, blocked {blocked}"
+        );
+    }
+}
+
+#[test]
+fn first_hit_prefixes_grow_the_same_trees_as_intervals() {
+    let s = scene("scenes/ompl/3D/alpha-1.5.cfg");
+    let grow_with = |prefix| {
+        let p = TreeParams {
+            prefix,
+            ..params(1500)
+        };
+        let o = grow(&s, &p, 3);
+        (o.path, o.nodes, o.counts.intersect_calls())
+    };
+    assert_eq!(grow_with(Prefix::Intervals), grow_with(Prefix::FirstHit));
+}
