@@ -209,6 +209,7 @@ fn seed_roadmap_edges_pass_the_checker() {
             &LearnParams::default(),
             &spec,
             1,
+            1000,
         )
         .unwrap();
         assert!(r.node_count() > 10 && r.edge_count() > 10, "{file}");

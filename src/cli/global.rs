@@ -204,6 +204,10 @@ pub fn learn_seeded(
         &params,
         &spec,
         learn.seed,
+        // half a node budget at most: the learner grows the rest
+        budget
+            .nodes
+            .map_or(viaroad::global::cones::seeds::MAX_SEED_NODES, |n| n / 2),
     )
     .context("seeding from the freeways")?;
     eprintln!(

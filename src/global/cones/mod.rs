@@ -256,7 +256,18 @@ impl Freeways {
             .fold(f64::INFINITY, f64::min)
             * 0.99;
         let mut cones = Vec::new();
+        // collinear cones that continue each other (a cone and its parallel extension)
+        let mut joints: Vec<Crossing> = Vec::new();
         let mut candidates = 0;
+        let reach = 2.0 * scene.space.extent();
+        let keep = |c: &Cone| {
+            c.radius(c.lo).max(c.radius(c.hi)) > narrowest + margin && {
+                // no edge crosses a slice, so an obstacle that holds one of its points holds
+                // all of it (a cone between two faces of one block)
+                let m = c.point((c.lo + c.hi) / 2.0);
+                !polygons.iter().any(|v| contains(v, m))
+            }
+        };
         for i in 0..edges.len() {
             for j in i + 1..edges.len() {
                 let Some((cone, own)) = cone::candidate(&edges, i, j) else {
@@ -266,27 +277,73 @@ impl Freeways {
                 if cone.radius(cone.lo).max(cone.radius(cone.hi)) <= narrowest + margin {
                     continue;
                 }
-                cones.extend(
-                    cone::prune(&cone, own, &edges, &boxes, margin)
-                        .into_iter()
-                        .filter(|c| c.radius(c.lo).max(c.radius(c.hi)) > narrowest + margin)
-                        // no edge crosses a slice, so an obstacle that holds one of its points
-                        // holds all of it (a cone between two faces of one block)
-                        .filter(|c| {
-                            let m = c.point((c.lo + c.hi) / 2.0);
-                            !polygons.iter().any(|v| contains(v, m))
-                        }),
-                );
+                for slice in cone::prune(&cone, own, &edges, &boxes, margin) {
+                    if !keep(&slice) {
+                        continue;
+                    }
+                    let k = cones.len();
+                    cones.push(slice);
+                    // "at each vertex of the two edges the cone is extended parallel to the
+                    // spine" (§2.1): a cone of constant radius beyond each end the slice
+                    // reaches, pruned like the others, and kept if it starts at the joint
+                    for (end, from, to) in [
+                        (cone.lo, cone.lo - reach, cone.lo),
+                        (cone.hi, cone.hi, cone.hi + reach),
+                    ] {
+                        let at_end = if end == cone.lo { slice.lo } else { slice.hi };
+                        if (at_end - end).abs() > margin {
+                            continue;
+                        }
+                        let r = cone.radius(end);
+                        let ext = Cone {
+                            lo: from,
+                            hi: to,
+                            r0: r,
+                            slope: 0.0,
+                            ..cone
+                        };
+                        let near = (end - 101.0 * margin, end + 101.0 * margin);
+                        if let Some(e) = cone::prune(&ext, [near, near], &edges, &boxes, margin)
+                            .into_iter()
+                            .find(|e| keep(e))
+                        {
+                            joints.push(Crossing {
+                                a: k,
+                                sa: end.clamp(slice.lo, slice.hi),
+                                b: cones.len(),
+                                sb: end.clamp(e.lo, e.hi),
+                            });
+                            cones.push(e);
+                        }
+                    }
+                }
             }
         }
         // coinciding edges (a wall of the bounds on an obstacle's face) give the same cone twice
-        let mut seen: HashSet<[u64; 5]> = HashSet::new();
-        cones.retain(|c| {
-            let [a, b] = c.spine();
-            let r = |v: f64| (v / margin).round().to_bits();
-            seen.insert([r(a[0]), r(a[1]), r(b[0]), r(b[1]), r(c.radius(c.lo))])
+        let mut seen: std::collections::HashMap<[u64; 5], usize> = Default::default();
+        let mut kept: Vec<Cone> = Vec::with_capacity(cones.len());
+        let renumber: Vec<usize> = cones
+            .iter()
+            .map(|c| {
+                let [a, b] = c.spine();
+                let r = |v: f64| (v / margin).round().to_bits();
+                let key = [r(a[0]), r(a[1]), r(b[0]), r(b[1]), r(c.radius(c.lo))];
+                *seen.entry(key).or_insert_with(|| {
+                    kept.push(*c);
+                    kept.len() - 1
+                })
+            })
+            .collect();
+        let cones = kept;
+        joints.iter_mut().for_each(|j| {
+            j.a = renumber[j.a];
+            j.b = renumber[j.b];
         });
-        let crossings = spine_crossings(&cones);
+        joints.retain(|j| j.a != j.b);
+        joints.sort_by(|x, y| (x.a, x.b).cmp(&(y.a, y.b)).then(x.sa.total_cmp(&y.sa)));
+        joints.dedup_by(|x, y| x.a == y.a && x.b == y.b);
+        let mut crossings = spine_crossings(&cones);
+        crossings.extend(joints);
         Ok(Freeways {
             edges,
             cones,

@@ -13,11 +13,12 @@ use crate::scene::Scene;
 use crate::space::Config;
 use std::collections::HashMap;
 
-/// Most seed nodes (the rest of the budget is the learner's).
+/// Most seed nodes when the caller gives no cap.
 pub const MAX_SEED_NODES: usize = 4000;
 
-/// A roadmap of the freeways' spine points, for `learn_from`. `params`, `local_spec` and
-/// `seed` go to its header as the learner will record them.
+/// A roadmap of the freeways' spine points, for `learn_from`, of at most `max_nodes` nodes
+/// (cones in the order built; the rest of a node budget is the learner's). `params`,
+/// `local_spec` and `seed` go to its header as the learner will record them.
 pub fn seed_roadmap(
     fw: &Freeways,
     scene: &Scene,
@@ -25,6 +26,7 @@ pub fn seed_roadmap(
     params: &LearnParams,
     local_spec: &LocalSpec,
     seed: u64,
+    max_nodes: usize,
 ) -> Result<Roadmap, OracleError> {
     let mut counts = CallCounts::default();
     // points per cone: the intersections and the ends
@@ -53,7 +55,7 @@ pub fn seed_roadmap(
         if let Some(&i) = index.get(&key) {
             return Some(i);
         }
-        if coords.len() / dim >= MAX_SEED_NODES || !oracle.is_free(q, counts) {
+        if coords.len() / dim >= max_nodes || !oracle.is_free(q, counts) {
             return None;
         }
         let i = (coords.len() / dim) as u32;
