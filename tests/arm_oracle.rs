@@ -154,7 +154,9 @@ mod pivoted {
     proptest! {
         #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
-        /// Same intervals as the rebuild-per-call answer (within 1e-9), and none of the
+        /// Same intervals as the rebuild-per-call answer (within 1e-7: the two solve the same
+        /// atoms in different frames, and a root where an edge grazes a face is ill-conditioned,
+        /// its rounding error ≈ √ε ≈ 1e-8 — seen once, 1.2e-9 and 1e-8 apart), and none of the
         /// checker's collisions (sampled along the move) missing.
         #[test]
         fn pivoted_turn_equals_the_rebuilt_answer(
@@ -174,7 +176,7 @@ mod pivoted {
             prop_assert_eq!(new.len(), old.len(), "{:?} vs {:?}", new.as_slice(), old.as_slice());
             for (a, b) in new.iter().zip(old.iter()) {
                 prop_assert!(
-                    (a.lo - b.lo).abs() <= 1e-9 && (a.hi - b.hi).abs() <= 1e-9,
+                    (a.lo - b.lo).abs() <= 1e-7 && (a.hi - b.hi).abs() <= 1e-7,
                     "{:?} vs {:?}", new.as_slice(), old.as_slice()
                 );
             }
