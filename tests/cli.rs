@@ -229,6 +229,31 @@ fn build_query_info_and_their_errors() {
         &["query", &rm, "--scene", CLUTTERED, "--queries", &empty],
         "no queries",
     );
+    // neither --from/--to nor --queries: the scene's own queries (five in discs-cluttered)
+    let o = viaroad(&["query", &rm, "--scene", CLUTTERED, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let own: Vec<serde_json::Value> = stdout(&o)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(own.len(), 5);
+    for v in &own {
+        assert!(v["solved"].as_bool().unwrap(), "{v}");
+        common::check_disc_path(
+            &json_path(&v["shortened"]),
+            &centres,
+            &radii,
+            &[0.0, 0.0],
+            &[1.0, 1.0],
+            1e-9,
+        )
+        .unwrap();
+    }
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(CLUTTERED)).unwrap();
+    let cut = text.find("[[query]]").unwrap();
+    let no_query = write(&d, "no-query.toml", &text[..cut]);
+    fails_with(&["query", &rm, "--scene", &no_query], "names no query");
     // a missing flag is a usage error, reported by clap with its usage line and exit code 2
     let o = viaroad(&["query", &rm, "--scene", CLUTTERED, "--from", "0.02,0.98"]);
     assert_eq!(o.status.code(), Some(2));

@@ -33,6 +33,7 @@ pub struct QueryArgs {
     #[arg(long, allow_hyphen_values = true, requires = "from")]
     pub to: Option<String>,
     /// A file with one query per line: start then goal coordinates, whitespace separated.
+    /// Without it and without `--from`/`--to`, the scene's own queries are answered.
     #[arg(long)]
     pub queries: Option<PathBuf>,
     /// One JSON object per query on stdout.
@@ -196,6 +197,17 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             .into_iter()
             .map(|q| (q.start, q.goal))
             .collect(),
+        // neither: the scene's own queries (an OMPL.app `.cfg` names one), as `solve` answers them
+        (None, None, None) => {
+            let own = scene.checked_queries()?;
+            if own.is_empty() {
+                anyhow::bail!(
+                    "{} names no query: give --from and --to, or --queries FILE",
+                    a.scene.display()
+                );
+            }
+            own.into_iter().map(|q| (q.start, q.goal)).collect()
+        }
         _ => anyhow::bail!("give either --from and --to, or --queries FILE"),
     };
     if let (true, Some(file)) = (queries.is_empty(), &a.queries) {
