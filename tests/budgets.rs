@@ -251,6 +251,84 @@ fn an_unanswerable_query_times_out() {
     assert!(r.path.is_empty() && !r.is_solved());
 }
 
+/// Answers like the scene's oracle, a millisecond late: a scene whose calls are dear.
+struct Slow(Box<dyn CollisionOracle>);
+
+impl CollisionOracle for Slow {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        std::thread::sleep(Duration::from_millis(1));
+        self.0.intervals(motion, counts)
+    }
+
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        self.0.collides(q, counts)
+    }
+
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        std::thread::sleep(Duration::from_millis(1));
+        self.0.motion_is_free(motion, counts)
+    }
+}
+
+/// Attaching an enclosed start tries its 30 nearest nodes with the via-point planner; where
+/// calls are dear that alone outlasts the query's time. A query that may grow gives attaching
+/// at most half of its time ([`viaroad::roadmap::ATTACH_SHARE`]), so the rest goes to growing
+/// the roadmap, and the answer says it grew.
+#[test]
+fn dear_attaching_leaves_the_growing_its_share_of_the_time() {
+    let mut ring = disc_scene(1, 0, 0.1);
+    for k in 0..24 {
+        let a = k as f64 * std::f64::consts::TAU / 24.0;
+        ring.obstacles.push(viaroad::scene::Obstacle::Disc {
+            centre: vec![0.5 + 0.2 * a.cos(), 0.5 + 0.2 * a.sin()],
+            radius: 0.04,
+        });
+    }
+    let roadmap = learn(
+        &ring,
+        &LocalSpec::default(),
+        &LearnParams::default(),
+        100,
+        1,
+    )
+    .roadmap;
+    let (start, goal) = ([0.5, 0.5], [0.02, 0.02]);
+    // the attaching alone, uncapped: its calls take longer than the query below may
+    let fast = ring.oracle();
+    let plain = QueryPlanner::new(&roadmap, fast.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            grow: false,
+            escalation_candidates: 0,
+            ..QueryOptions::default()
+        });
+    let attaching = plain.query(&start, &goal).unwrap();
+    let budget = 600;
+    assert!(
+        attaching.counts.intersect_calls() > budget,
+        "attaching costs {} calls, not enough to outlast the query",
+        attaching.counts.intersect_calls()
+    );
+    let slow = Slow(ring.oracle());
+    let planner = QueryPlanner::new(&roadmap, &slow)
+        .unwrap()
+        .with_options(QueryOptions {
+            time: Some(Duration::from_millis(budget)),
+            ..QueryOptions::default()
+        });
+    let r = planner.query(&start, &goal).unwrap();
+    assert_eq!(r.outcome, QueryOutcome::TimedOut, "{r:?}");
+    assert!(r.grown_nodes > 0, "the query never grew: {r:?}");
+}
+
 /// Growing from nothing (single-query PRM): start and goal become connected nodes.
 #[test]
 fn connect_pair_grows_a_roadmap_from_start_and_goal() {

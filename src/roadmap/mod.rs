@@ -60,5 +60,6 @@ pub use params::{Budget, LearnParams};
 pub use persist::{Header, RoadmapError, FORMAT_VERSION, MAGIC};
 pub use query::{
     BatchAnswer, Endpoint, QueryError, QueryOptions, QueryOutcome, QueryPlanner, QueryResult,
+    ATTACH_SHARE,
 };
 pub use sampler::Sampler;

@@ -37,6 +37,10 @@ use serde::Serialize;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
+/// A query that may grow the roadmap spends at most 1/`ATTACH_SHARE` of its time attaching
+/// start and goal with the roadmap's local method; the rest is the growing's.
+pub const ATTACH_SHARE: u32 = 2;
+
 /// Knobs of the query phase.
 #[derive(Clone, Debug, PartialEq)]
 pub struct QueryOptions {
@@ -442,19 +446,26 @@ impl<'a> QueryPlanner<'a> {
         let ends_q = (&start[..], &goal[..]);
         let k = self.options.attach_candidates;
         let local = self.local.as_ref();
-        let mut meeting = self.attach(local, k, ends_q, &mut ends, &mut result, &deadline)?;
+        // a query that may grow the roadmap gives attaching at most half of its time: deep
+        // searches from ends the roadmap cannot reach would otherwise spend what the growing
+        // needs (alpha-1.5: 30 attaching attempts took all of a 10 s query)
+        let timed = deadline.remaining().is_some();
+        let attaching = match (self.options.grow, deadline.remaining()) {
+            (true, Some(left)) => deadline.within(Some(left / ATTACH_SHARE)),
+            _ => deadline.clone(),
+        };
+        let mut meeting = self.attach(local, k, ends_q, &mut ends, &mut result, &attaching)?;
         // only where the roadmap cannot join the two ends, the local method from start to goal:
         // across a large scene it mostly fails, and tried first it cost most of a query's time
         // (Home, 32 803 nodes: 25–60 ms of a 30–60 ms answer)
         if meeting.is_none() && retry_direct {
-            let c = self.attempt(local, (&start, &goal), &mut result, &deadline)?;
+            let c = self.attempt(local, (&start, &goal), &mut result, &attaching)?;
             if let Some(path) = result.take_direct(c) {
                 return self.finish(result, path, &deadline);
             }
         }
         // where the roadmap cannot join them, grow it around them for the rest of the time
         // (only with a time limit: a cancel flag alone would let it grow until cancelled)
-        let timed = deadline.remaining().is_some();
         let spent = self.calls_left(&result) == Some(0);
         if meeting.is_none() && self.options.grow && timed && !deadline.expired() && !spent {
             return self.grow(result, &deadline);
