@@ -356,9 +356,10 @@ impl Body {
         }
     }
 
-    /// The corners of face `f`.
+    /// The corners of face `f` (kept with its plane: one load, not three indexed ones, in the
+    /// pair loops that ask for them).
     pub fn corners(&self, f: u32) -> [V3; 3] {
-        self.faces[f as usize].map(|i| self.vertices[i as usize])
+        self.geo[f as usize].v
     }
 
     /// Face `f` with its plane and norms.
