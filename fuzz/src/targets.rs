@@ -339,17 +339,19 @@ pub fn run(name: &str, dir: &Path, input: &[u8]) -> std::io::Result<bool> {
             let p = write("in.cfg", cfg)?;
             classify(Scene::load(&p), exercise_scene)
         }
-        "obj" | "stl" | "dae" => {
+        // a Collada file is parsed once: `load_mesh` of a `.dae` is `load_collada`'s mesh
+        "dae" => {
+            let p = write("in.dae", input)?;
+            classify(collada::load_collada(&p), |dae| {
+                let _ = mesh_io::vertex_mean(&dae.mesh);
+                let _ = dae.assimp_centre;
+            })
+        }
+        "obj" | "stl" => {
             let p = write(&format!("in.{name}"), input)?;
-            let loaded = classify(mesh_io::load_mesh(&p), |mesh| {
+            classify(mesh_io::load_mesh(&p), |mesh| {
                 let _ = mesh_io::vertex_mean(&mesh);
-            });
-            if name == "dae" {
-                if let Ok(dae) = collada::load_collada(&p) {
-                    let _ = dae.assimp_centre;
-                }
-            }
-            loaded
+            })
         }
         "queries" => {
             let p = write("in.txt", input)?;
