@@ -220,9 +220,9 @@ fn a_query_the_roadmap_cannot_join_grows_it_within_its_time() {
     assert!(!no_grow.query(&s, &g).unwrap().is_solved());
 }
 
-/// An enclosed start can never be joined: a growing query ends when its time does, unsolved.
-#[test]
-fn an_unanswerable_query_times_out() {
+/// A ring of 24 discs about the centre of the unit square, which nothing can enter or leave,
+/// and a 100-node roadmap of it: the centre is free but cannot be joined to the outside.
+fn ring_and_roadmap() -> (viaroad::scene::Scene, viaroad::roadmap::Roadmap) {
     let mut ring = disc_scene(1, 0, 0.1);
     for k in 0..24 {
         let a = k as f64 * std::f64::consts::TAU / 24.0;
@@ -239,6 +239,13 @@ fn an_unanswerable_query_times_out() {
         1,
     )
     .roadmap;
+    (ring, roadmap)
+}
+
+/// An enclosed start can never be joined: a growing query ends when its time does, unsolved.
+#[test]
+fn an_unanswerable_query_times_out() {
+    let (ring, roadmap) = ring_and_roadmap();
     let oracle = ring.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
         .unwrap()
@@ -284,22 +291,7 @@ impl CollisionOracle for Slow {
 /// the roadmap, and the answer says it grew.
 #[test]
 fn dear_attaching_leaves_the_growing_its_share_of_the_time() {
-    let mut ring = disc_scene(1, 0, 0.1);
-    for k in 0..24 {
-        let a = k as f64 * std::f64::consts::TAU / 24.0;
-        ring.obstacles.push(viaroad::scene::Obstacle::Disc {
-            centre: vec![0.5 + 0.2 * a.cos(), 0.5 + 0.2 * a.sin()],
-            radius: 0.04,
-        });
-    }
-    let roadmap = learn(
-        &ring,
-        &LocalSpec::default(),
-        &LearnParams::default(),
-        100,
-        1,
-    )
-    .roadmap;
+    let (ring, roadmap) = ring_and_roadmap();
     let (start, goal) = ([0.5, 0.5], [0.02, 0.02]);
     // the attaching alone, uncapped: its calls take longer than the query below may
     let fast = ring.oracle();
