@@ -11,7 +11,7 @@ use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::roadmap::{Edge, Header, LearnParams, Roadmap};
 use crate::scene::Scene;
 use crate::space::Config;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Most seed nodes when the caller gives no cap.
 pub const MAX_SEED_NODES: usize = 4000;
@@ -45,6 +45,7 @@ pub fn seed_roadmap(
     let mut coords: Vec<f64> = Vec::new();
     let mut index: HashMap<[u64; 3], u32> = HashMap::new();
     let mut edges: Vec<Edge> = Vec::new();
+    let mut joined: HashSet<(u32, u32)> = HashSet::new();
     let mut at_point: HashMap<[u64; 2], Vec<u32>> = HashMap::new();
     let mut node = |q: &Config, coords: &mut Vec<f64>, counts: &mut CallCounts| -> Option<u32> {
         let key = [
@@ -92,7 +93,13 @@ pub fn seed_roadmap(
                 let Some(m) = scene.space.direct_motion(&qa, &qb) else {
                     continue;
                 };
-                if ia != ib && oracle.check_motion(&m, &mut counts)? {
+                // two cones along one stretch (a cone and its parallel extension) give the
+                // same pair: one edge, one check
+                if ia != ib
+                    && !joined.contains(&(ia.min(ib), ia.max(ib)))
+                    && oracle.check_motion(&m, &mut counts)?
+                {
+                    joined.insert((ia.min(ib), ia.max(ib)));
                     edges.push(Edge {
                         a: ia,
                         b: ib,
