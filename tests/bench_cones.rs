@@ -350,7 +350,7 @@ fn the_command_line_crosses_seedings_and_refuses_se3_with_cones() {
                 "--methods",
                 "viapoint:max=3,calls=1000",
                 "--seed-from",
-                "plain,cones",
+                "plain,cones,cones:nodes=5",
                 "--runs",
                 "1",
                 "--nodes",
@@ -378,8 +378,18 @@ fn the_command_line_crosses_seedings_and_refuses_se3_with_cones() {
     );
     assert!(md.contains("viapoint:max=3,calls=1000 from cones"), "{md}");
     assert!(md.contains("What the seeds are worth"), "{md}");
+    // the plain method once in the seeding table, beside both seeded variants
+    let plain_rows = md
+        .lines()
+        .filter(|l| l.starts_with("| viapoint:max=3,calls=1000 | plain |"))
+        .count();
+    assert_eq!(plain_rows, 1, "{md}");
+    assert!(
+        md.contains("| viapoint:max=3,calls=1000 from cones:nodes=5 | cones:nodes=5 | 5 |"),
+        "{md}"
+    );
     let csv = std::fs::read_to_string(dir.join("corridor/runs.csv")).unwrap();
-    assert_eq!(csv.lines().count(), 3, "{csv}");
+    assert_eq!(csv.lines().count(), 4, "{csv}");
 
     let out = run("scenes/cube-into-box.toml", &dir.join("cube"));
     assert!(!out.status.success());

@@ -375,7 +375,9 @@ impl SceneReport {
     }
 
     /// Pairs of methods that differ only in seeding: (index of the plain one, index of one
-    /// seeded otherwise), in the order of the seeded methods.
+    /// seeded otherwise), in the order of the seeded methods (so the pairs of one plain method
+    /// follow each other when seedings vary fastest, as [`super::super::Method::parse_all_crossed`]
+    /// orders them).
     pub fn seeding_pairs(&self) -> Vec<(usize, usize)> {
         let plain = crate::global::Seeding::Plain.to_string();
         let mut out = Vec::new();

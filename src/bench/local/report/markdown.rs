@@ -152,8 +152,16 @@ impl Report {
             "| method | seeding | seed nodes | seed comps | seed s | reached | time→{pct:.0} % s | nodes→{pct:.0} % | calls→{pct:.0} % | comps at end | solved % | path short |"
         );
         let _ = writeln!(o, "|{}", "---|".repeat(12));
+        // each plain method once, followed by its seeded variants
+        let mut shown = None;
         for (a, b) in pairs {
-            for m in [&s.methods[a], &s.methods[b]] {
+            let rows = if shown == Some(a) {
+                vec![b]
+            } else {
+                vec![a, b]
+            };
+            shown = Some(a);
+            for m in rows.into_iter().map(|k| &s.methods[k]) {
                 let _ = writeln!(
                     o,
                     "| {} | {} | {} | {} | {} | {}/{} | {} | {} | {} | {} | {} | {} |",
