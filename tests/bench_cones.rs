@@ -7,6 +7,7 @@
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 use viaroad::bench::local::report::SceneInfo;
+use viaroad::bench::local::run::path_is_free;
 use viaroad::bench::local::BenchError;
 use viaroad::bench::local::{
     run_on, Method, Plan, QueryChoice, QuerySet, Report, RunRecord, SceneReport, Schedule,
@@ -272,6 +273,53 @@ fn the_seeded_roadmaps_hold_the_seed_nodes() {
         checker
             .check_path(&learnt.roadmap.edge_path(e, edge.a))
             .unwrap();
+    }
+}
+
+/// Regression: a seed turn of (nearly) half a turn was certified along one of its two
+/// "shorter ways" and read from its other end along the other; the bench's exact re-check
+/// found colliding raw paths through such edges on se2-translate, Maze and Barriers
+/// (benches/results/2026-12-02-cones, first run). Every seed edge is now free both ways, by
+/// the exact oracle and by the independent checker.
+#[test]
+fn seed_edges_are_free_read_from_either_end() {
+    for file in [
+        "scenes/se2-translate.toml",
+        "scenes/ompl/2D/Barriers.cfg",
+        "scenes/ompl/2D/Maze_planar.cfg",
+    ] {
+        let scene = Scene::load(std::path::Path::new(file)).unwrap();
+        let oracle = scene.oracle();
+        let spec = LocalSpec::roadmap_default();
+        let groups = spec.build().groups(&scene.space);
+        let r = Seeding::Cones { nodes: None }
+            .seed_roadmap(
+                &scene,
+                oracle.as_ref(),
+                &LearnParams::default(),
+                &spec,
+                1,
+                1600,
+            )
+            .unwrap()
+            .unwrap()
+            .roadmap;
+        let checker = Checker::for_scene(&scene).unwrap();
+        let mut turns = 0;
+        for (e, edge) in r.edges().iter().enumerate() {
+            turns += usize::from(!edge.corners.is_empty());
+            for from in [edge.a, edge.b] {
+                let p = r.edge_path(e, from);
+                assert!(
+                    path_is_free(&scene.space, oracle.as_ref(), &groups, &p).unwrap(),
+                    "{file}: seed edge {e} from {from}: {p:?}"
+                );
+                checker
+                    .check_path(&p)
+                    .unwrap_or_else(|why| panic!("{file}: seed edge {e} from {from}: {why}"));
+            }
+        }
+        assert!(turns > 0, "{file}: no turn of more than a quarter turn");
     }
 }
 
