@@ -215,7 +215,9 @@ fn seed_roadmap_edges_pass_the_checker() {
         assert!(r.node_count() > 10 && r.edge_count() > 10, "{file}");
         let checker = Checker::for_scene(&scene).unwrap();
         for (e, edge) in r.edges().iter().enumerate() {
+            // both ways: a turn read from its other end takes the same arc
             checker.check_path(&r.edge_path(e, edge.a)).unwrap();
+            checker.check_path(&r.edge_path(e, edge.b)).unwrap();
         }
     }
 }

@@ -24,7 +24,7 @@ const MAX_DISC_PROBLEMS: usize = 100_000;
 pub enum BenchCommand {
     /// Regenerate the seed's Tables A.1–A.4 on random disc problems.
     Discs(DiscsArgs),
-    /// Compare local methods (and samplers) inside the same learner on the same scenes and
+    /// Compare local methods (and samplers, and seedings) inside the same learner on the same scenes and
     /// queries: time and nodes to 99 % of the queries, oracle calls, memory; Markdown on
     /// stdout, CSV, JSON, an SQLite database in OMPL's benchmark schema (Planner Arena) and SVG
     /// box plots in --out.
@@ -75,6 +75,12 @@ pub struct BenchLocalArgs {
     /// the learner's default sampler only).
     #[arg(long, num_args = 1.., value_name = "SPEC")]
     pub samplers: Vec<viaroad::roadmap::Sampler>,
+    /// What each roadmap starts from, crossed with every method and sampler: `plain` (from
+    /// nothing) or `cones` (the spine points of Brooks's freeways, planar scenes only, at most
+    /// half the node cap; `cones:nodes=N` keeps at most N), e.g. `--seed-from plain cones`
+    /// (default: plain only).
+    #[arg(long, num_args = 1.., value_delimiter = ',', value_name = "SEEDING")]
+    pub seed_from: Vec<viaroad::global::Seeding>,
     /// Runs per scene and method (run r learns with seed S + r).
     #[arg(long, default_value_t = 5)]
     pub runs: u32,
@@ -558,7 +564,12 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     } else {
         a.samplers.clone()
     };
-    let methods = Method::parse_all_with(&a.methods, feedback, &samplers)?;
+    let seedings = if a.seed_from.is_empty() {
+        vec![viaroad::global::Seeding::Plain]
+    } else {
+        a.seed_from.clone()
+    };
+    let methods = Method::parse_all_crossed(&a.methods, feedback, &samplers, &seedings)?;
     let queries = match (&a.query_file, a.random_queries) {
         (Some(f), _) => QueryChoice::File(f.clone()),
         (None, true) => QueryChoice::Random { count: a.queries },
@@ -596,6 +607,7 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     let mut loaded = Vec::new();
     for source in &plan.scenes {
         let scene = source.load().with_context(|| format!("scene {source}"))?;
+        plan.check_scene(&scene)?;
         let set = QuerySet::build(&scene, &plan.queries, plan.seed)
             .with_context(|| format!("query set of {source}"))?;
         eprintln!(

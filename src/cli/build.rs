@@ -6,6 +6,7 @@ use anyhow::Context;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
+use viaroad::global::Seeding;
 use viaroad::local::LocalSpec;
 use viaroad::roadmap::{Learner, Learnt, Progress};
 use viaroad::scene::Scene;
@@ -23,9 +24,10 @@ pub struct BuildArgs {
     #[command(flatten)]
     pub local: LocalArgs,
     /// Start the roadmap from a global method's output: `cones`, the spine points of
-    /// Brooks's freeways with their legal orientations (planar scenes; issue 14).
-    #[arg(long, value_name = "METHOD")]
-    pub seed_from: Option<String>,
+    /// Brooks's freeways with their legal orientations (planar scenes; issue 14; at most half
+    /// the node budget, `cones:nodes=N` at most N), or `plain` (from nothing, the default).
+    #[arg(long, value_name = "SEEDING")]
+    pub seed_from: Option<viaroad::global::Seeding>,
 }
 
 /// Learns a roadmap of `scene` with a progress bar; `what` names it on the bar.
@@ -104,10 +106,9 @@ pub fn run(a: BuildArgs) -> anyhow::Result<()> {
     }
     // a target that cannot be saved to is refused before the learning, not after it
     viaroad::safe_file::resolve_target(&a.output)?;
-    let learnt = match a.seed_from.as_deref() {
-        None => learn(&scene, &a.local, &a.learn, 1000)?,
-        Some("cones") => super::global::learn_seeded(&scene, &a.local, &a.learn, 1000)?,
-        Some(m) => anyhow::bail!("--seed-from {m}: the seeding methods are `cones`"),
+    let learnt = match a.seed_from.unwrap_or_default() {
+        Seeding::Plain => learn(&scene, &a.local, &a.learn, 1000)?,
+        seeding => super::global::learn_seeded(&scene, seeding, &a.local, &a.learn, 1000)?,
     };
     super::output::create_parent(&a.output)?;
     learnt.roadmap.save(&a.output)?;

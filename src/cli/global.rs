@@ -187,6 +187,7 @@ pub fn run_minkowski(a: &SolveArgs, spec: &LocalSpec) -> anyhow::Result<()> {
 /// (checked by the oracle), then learning grows it to the budget as usual.
 pub fn learn_seeded(
     scene: &Scene,
+    seeding: viaroad::global::Seeding,
     local: &super::local_args::LocalArgs,
     learn: &super::learn_args::LearnArgs,
     default_nodes: usize,
@@ -195,34 +196,34 @@ pub fn learn_seeded(
     let (params, budget) = learn.resolve(default_nodes)?;
     let method = spec.build();
     let oracle = scene.oracle();
-    let began = Instant::now();
-    let fw = Freeways::build(scene).context("generalized cones")?;
-    let base = viaroad::global::cones::seeds::seed_roadmap(
-        &fw,
-        scene,
-        oracle.as_ref(),
-        &params,
-        &spec,
-        learn.seed,
-        // half a node budget at most: the learner grows the rest
-        budget
-            .nodes
-            .map_or(viaroad::global::cones::seeds::MAX_SEED_NODES, |n| n / 2),
-    )
-    .context("seeding from the freeways")?;
+    let seeded = seeding
+        .seed_roadmap(
+            scene,
+            oracle.as_ref(),
+            &params,
+            &spec,
+            learn.seed,
+            // half a node budget at most: the learner grows the rest
+            budget
+                .nodes
+                .map_or(viaroad::global::cones::seeds::MAX_SEED_NODES, |n| n / 2),
+        )
+        .with_context(|| format!("seeding from {seeding}"))?
+        .ok_or_else(|| anyhow::anyhow!("seeding `{seeding}` gives no seed roadmap"))?;
+    let base = &seeded.roadmap;
     eprintln!(
         "seeded from {} freeways: {} nodes, {} edges, {} components in {:.3} s",
-        fw.cones().len(),
+        seeded.freeways,
         base.node_count(),
         base.edge_count(),
         base.component_count(),
-        began.elapsed().as_secs_f64()
+        seeded.elapsed.as_secs_f64()
     );
     let learner = viaroad::roadmap::Learner::for_scene(scene, oracle.as_ref(), method.as_ref())
         .with_attempt_cap(budget.time.map(viaroad::roadmap::Learner::attempt_cap_for));
     let deadline = super::interrupt::on_ctrl_c(Deadline::none());
     let learnt = learner
-        .learn_from(&base, &params, &budget, learn.seed, &deadline, &mut |_| {})
+        .learn_from(base, &params, &budget, learn.seed, &deadline, &mut |_| {})
         .context("learning")?;
     Ok(learnt)
 }

@@ -16,6 +16,14 @@
 //! mixtures) are compared the same way: `--samplers A B C` crosses every method with every
 //! sampler, and the label of a run with a non-default sampler ends in ` @SPEC`.
 //!
+//! **Seedings** ([`crate::global::Seeding`], issue 14) too: `--seed-from plain cones` crosses
+//! every method and sampler with a roadmap learnt from nothing and one learnt from the seed
+//! roadmap of Brooks's freeways (label ` from cones`). A seeded run builds its freeways and
+//! checks its seeds first; that time and those oracle calls count as learning (every stage's
+//! learning time and counts include them), and its first stage is the seed roadmap alone
+//! (stages at or below the seed's node count are skipped). The seeds depend on the scene only,
+//! so determinism holds as for plain runs.
+//!
 //! | file | concept |
 //! |---|---|
 //! | [`spec`] | what to run: scenes × methods × runs, the node schedule, one self-contained [`RunJob`] |
@@ -61,7 +69,7 @@ pub mod sqlite;
 
 pub use queries::{QueryChoice, QuerySet};
 pub use report::{MethodSummary, Report, SceneReport};
-pub use run::{run_job, run_on, RunRecord, StageRecord};
+pub use run::{run_job, run_on, RunRecord, SeedRecord, StageRecord};
 pub use spec::{Method, Plan, RunJob, SceneSource, Schedule};
 
 use crate::local::spec::SpecError;
@@ -91,6 +99,17 @@ pub enum BenchError {
     /// The exact oracle could not re-check a returned path.
     #[error("re-checking a path: {0}")]
     Oracle(#[from] OracleError),
+    /// A seeding that cannot start a roadmap of a scene (cone seeds on an SE(3) scene, an arm,
+    /// R³ …), or that failed while its seeds were checked.
+    #[error("seeding `{seeding}` on scene `{scene}`: {source}")]
+    Seeding {
+        /// The seeding.
+        seeding: crate::global::Seeding,
+        /// The scene's name.
+        scene: String,
+        /// Why.
+        source: crate::global::cones::ConeError,
+    },
     /// A plan that makes no sense (no scenes, zero runs, a bad schedule …).
     #[error("{0}")]
     Invalid(String),

@@ -78,6 +78,24 @@ pub struct StageRecord {
     pub eval_seconds: f64,
 }
 
+/// The seed roadmap a seeded run started from ([`crate::global::Seeding`], issue 14).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SeedRecord {
+    /// Freeways (generalized cones) the seeds came from.
+    pub freeways: usize,
+    /// Seed nodes: the roadmap's nodes before learning.
+    pub nodes: usize,
+    /// Seed edges.
+    pub edges: usize,
+    /// Components of the seed roadmap.
+    pub components: usize,
+    /// Wall time of building the freeways and checking the seeds, seconds (part of every
+    /// stage's learning time).
+    pub seconds: f64,
+    /// Oracle work of checking the seeds (part of every stage's counts).
+    pub counts: CallCounts,
+}
+
 /// Everything measured in one run. The summary fields describe the last stage.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunRecord {
@@ -94,6 +112,12 @@ pub struct RunRecord {
     /// Canonical sampler spec of construction.
     #[serde(default)]
     pub sampler: String,
+    /// What the roadmap started from ([`crate::global::Seeding`]: `plain` or `cones`).
+    #[serde(default = "plain")]
+    pub seeding: String,
+    /// The seed roadmap of a seeded run (`None`: plain).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seeded: Option<SeedRecord>,
     /// Run index.
     pub run: u32,
     /// Learning seed.
@@ -178,6 +202,10 @@ pub struct RunRecord {
     /// answered or not asked).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paths: Option<Vec<Option<Vec<Config>>>>,
+}
+
+fn plain() -> String {
+    crate::global::Seeding::Plain.to_string()
 }
 
 /// Whether every piece of `path` (corners joined by direct paths in `groups`, CHS §1.5) is
@@ -322,16 +350,19 @@ fn evaluate(
     Ok(e)
 }
 
-fn stage_record(l: &Learnt, e: &Evaluation) -> StageRecord {
+/// The record of a stage; a seeded run's seed time and calls count as learning.
+fn stage_record(l: &Learnt, e: &Evaluation, seeded: Option<&SeedRecord>) -> StageRecord {
     let r = &l.roadmap;
+    let (seed_seconds, seed_counts) =
+        seeded.map_or((0.0, CallCounts::default()), |s| (s.seconds, s.counts));
     StageRecord {
         nodes: r.node_count(),
         edges: r.edge_count(),
         components: r.component_count(),
         largest_component: r.largest_component(),
         rounds: l.report.rounds,
-        learn_seconds: l.report.elapsed.as_secs_f64(),
-        counts: r.header().counts,
+        learn_seconds: seed_seconds + l.report.elapsed.as_secs_f64(),
+        counts: r.header().counts + seed_counts,
         attempts: l.report.attempts,
         connected: l.report.connected,
         solved: e.valid,
@@ -370,7 +401,7 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
     };
     let scored = set.scored();
     let needed = target_count(job.target, scored.len());
-    let (learnt, stages, eval) = bench.learn_in_stages(local.as_ref(), &scored, needed)?;
+    let (learnt, stages, eval, seeded) = bench.learn_in_stages(local.as_ref(), &scored, needed)?;
     let (Some(eval), Some(end)) = (eval, stages.last().cloned()) else {
         return Err(BenchError::Invalid(
             "learning ended before its first stage".into(),
@@ -385,6 +416,7 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
         .keep_paths
         .then(|| all_paths(set.len(), &eval.paths, &apart.paths));
     Ok(bench.record(RunEnd {
+        seeded,
         end,
         stages,
         eval,
@@ -400,6 +432,8 @@ pub fn run_on(scene: &Scene, set: &QuerySet, job: &RunJob) -> Result<RunRecord, 
 
 /// How a run ended, for its record.
 struct RunEnd {
+    /// The seed roadmap of a seeded run.
+    seeded: Option<SeedRecord>,
     /// The last stage.
     end: StageRecord,
     /// Every stage evaluated.
@@ -442,6 +476,17 @@ fn time_limit(job: &RunJob) -> Result<Option<Duration>, BenchError> {
                 crate::limits::MAX_SECONDS
             ))
         })
+}
+
+/// The stages of a run seeded with `seed_nodes` nodes: the seed roadmap alone first, then
+/// the job's stages above it (a stage at or below it would evaluate the same roadmap again).
+fn seeded_stages(stages: &[usize], seed_nodes: usize) -> Vec<usize> {
+    if seed_nodes == 0 {
+        return stages.to_vec();
+    }
+    std::iter::once(seed_nodes)
+        .chain(stages.iter().copied().filter(|&n| n > seed_nodes))
+        .collect()
 }
 
 /// Why a run ended, from whether it `reached` its target and why learning stopped.
@@ -497,34 +542,96 @@ impl Bench<'_> {
         )
     }
 
+    /// The seed roadmap of the job's seeding (`None`: plain), of at most half the node cap
+    /// (as `build --seed-from` keeps half the node budget for the learner), and its record.
+    fn seed(
+        &self,
+        local: &dyn LocalMethod,
+        params: &LearnParams,
+    ) -> Result<Option<(Roadmap, SeedRecord)>, BenchError> {
+        let seeding = self.job.method.seeding;
+        let cap = self.job.stages.last().copied().unwrap_or(0);
+        let seeded = seeding
+            .seed_roadmap(
+                self.scene,
+                self.oracle,
+                params,
+                &local.spec(),
+                self.job.seed,
+                (cap / 2).max(1),
+            )
+            .map_err(|source| BenchError::Seeding {
+                seeding,
+                scene: self.scene.name.clone(),
+                source,
+            })?;
+        Ok(seeded.map(|s| {
+            let r = &s.roadmap;
+            let record = SeedRecord {
+                freeways: s.freeways,
+                nodes: r.node_count(),
+                edges: r.edge_count(),
+                components: r.component_count(),
+                seconds: s.elapsed.as_secs_f64(),
+                counts: r.header().counts,
+            };
+            (s.roadmap, record)
+        }))
+    }
+
     /// Learns in the job's stages with `local`, evaluating the `scored` queries after each,
-    /// until a stage solves `needed` of them. Returns the last roadmap, every stage's record
-    /// and the last evaluation.
+    /// until a stage solves `needed` of them; a seeded job starts from its seed roadmap
+    /// ([`seeded_stages`]). Returns the last roadmap, every stage's record, the last
+    /// evaluation and the seed's record.
     #[allow(clippy::type_complexity)]
     fn learn_in_stages(
         &self,
         local: &dyn LocalMethod,
         scored: &[usize],
         needed: usize,
-    ) -> Result<(Learnt, Vec<StageRecord>, Option<Evaluation>), BenchError> {
+    ) -> Result<
+        (
+            Learnt,
+            Vec<StageRecord>,
+            Option<Evaluation>,
+            Option<SeedRecord>,
+        ),
+        BenchError,
+    > {
         let params = LearnParams {
             feedback: self.job.method.feedback,
             sampler: self.job.method.sampler.clone(),
             ..LearnParams::default()
         };
+        let seed = self.seed(local, &params)?;
+        let (base, seeded) = match seed {
+            Some((roadmap, record)) => (Some(roadmap), Some(record)),
+            None => (None, None),
+        };
+        let job_stages = match &seeded {
+            Some(s) => seeded_stages(&self.job.stages, s.nodes),
+            None => self.job.stages.clone(),
+        };
+        // the seeds' time is learning time: what is left of a time limit is the learner's
+        let time = time_limit(self.job)?.map(|t| {
+            t.saturating_sub(Duration::from_secs_f64(
+                seeded.as_ref().map_or(0.0, |s| s.seconds),
+            ))
+        });
         let learner = Learner::for_scene(self.scene, self.oracle, local);
         let mut stages: Vec<StageRecord> = Vec::new();
         let mut last: Option<Evaluation> = None;
         let mut failure: Option<BenchError> = None;
-        let learnt = learner.learn_in_stages(
+        let learnt = learner.learn_in_stages_from(
+            base.as_ref(),
             &params,
-            &self.job.stages,
-            time_limit(self.job)?,
+            &job_stages,
+            time,
             self.job.seed,
             &mut |_| {},
             &mut |l| match self.evaluate(&l.roadmap, scored) {
                 Ok(e) => {
-                    stages.push(stage_record(l, &e));
+                    stages.push(stage_record(l, &e, seeded.as_ref()));
                     let done = e.valid >= needed;
                     last = Some(e);
                     if done {
@@ -541,7 +648,7 @@ impl Bench<'_> {
         )?;
         match failure {
             Some(e) => Err(e),
-            None => Ok((learnt, stages, last)),
+            None => Ok((learnt, stages, last, seeded)),
         }
     }
 
@@ -549,6 +656,7 @@ impl Bench<'_> {
     fn record(&self, run: RunEnd) -> RunRecord {
         let (job, set) = (self.job, self.set);
         let RunEnd {
+            seeded,
             end,
             stages,
             eval,
@@ -567,6 +675,8 @@ impl Bench<'_> {
             local_spec: job.method.local.to_string(),
             feedback: job.method.feedback,
             sampler: job.method.sampler.to_string(),
+            seeding: job.method.seeding.to_string(),
+            seeded,
             run: job.run,
             seed: job.seed,
             threads: rayon::current_num_threads(),
@@ -622,6 +732,15 @@ mod tests {
         assert_eq!(hex_to_bits(&hex, 23), bits);
         assert_eq!(bits_to_hex(&[true, false, false, true]), "9");
         assert_eq!(hex_to_bits("", 3), vec![false; 3]);
+    }
+
+    #[test]
+    fn seeded_runs_start_with_the_seed_roadmap() {
+        let stages = [25, 50, 100, 200];
+        assert_eq!(seeded_stages(&stages, 0), stages);
+        assert_eq!(seeded_stages(&stages, 60), [60, 100, 200]);
+        assert_eq!(seeded_stages(&stages, 50), [50, 100, 200]);
+        assert_eq!(seeded_stages(&stages, 300), [300]);
     }
 
     #[test]

@@ -3,6 +3,7 @@
 
 use super::queries::QueryChoice;
 use super::BenchError;
+use crate::global::Seeding;
 use crate::limits::{MAX_GENERATED_DISCS, MAX_NODES, MAX_QUERIES, MAX_RUNS, MAX_SECONDS};
 use crate::local::LocalSpec;
 use crate::roadmap::Sampler;
@@ -150,9 +151,10 @@ impl<'de> Deserialize<'de> for SceneSource {
 }
 
 /// One benchmarked method: a local method, whether what it discovers is fed back into the
-/// roadmap ([`crate::roadmap::LearnParams::feedback`], CHS §1.6), and where construction draws
-/// its nodes ([`crate::roadmap::LearnParams::sampler`]): samplers are compared like local
-/// methods, inside the same learner on the same queries.
+/// roadmap ([`crate::roadmap::LearnParams::feedback`], CHS §1.6), where construction draws
+/// its nodes ([`crate::roadmap::LearnParams::sampler`]) and what the roadmap starts from
+/// ([`Seeding`]: nothing, or the freeways of Brooks's cones, issue 14): samplers and seedings
+/// are compared like local methods, inside the same learner on the same queries.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Method {
     /// The local method.
@@ -162,20 +164,26 @@ pub struct Method {
     /// The sampler of construction.
     #[serde(default)]
     pub sampler: Sampler,
+    /// What the roadmap starts from.
+    #[serde(default)]
+    pub seeding: Seeding,
 }
 
 impl Method {
     /// A short name: the method and the parameters that differ from its defaults, with
-    /// `+nofeedback` when feedback is off and ` @SAMPLER` when the sampler is not the
-    /// learner's default (`viapoint`, `viapoint:beta=0.5`, `sampled:res=0.01`,
-    /// `viapoint+nofeedback`, `viapoint @bridge:sigma=0.1`).
+    /// `+nofeedback` when feedback is off, ` @SAMPLER` when the sampler is not the
+    /// learner's default and ` from SEEDING` when the roadmap does not start from nothing
+    /// (`viapoint`, `viapoint:beta=0.5`, `sampled:res=0.01`, `viapoint+nofeedback`,
+    /// `viapoint @bridge:sigma=0.1`, `viapoint from cones`).
     pub fn label(&self) -> String {
-        let base = self.local_label();
-        if self.sampler == Sampler::default() {
-            base
-        } else {
-            format!("{base} @{}", self.sampler)
+        let mut label = self.local_label();
+        if self.sampler != Sampler::default() {
+            label = format!("{label} @{}", self.sampler);
         }
+        if self.seeding != Seeding::Plain {
+            label = format!("{label} from {}", self.seeding);
+        }
+        label
     }
 
     fn local_label(&self) -> String {
@@ -223,8 +231,23 @@ impl Method {
         feedback: Option<bool>,
         samplers: &[Sampler],
     ) -> Result<Vec<Method>, BenchError> {
+        Self::parse_all_crossed(items, feedback, samplers, &[Seeding::Plain])
+    }
+
+    /// [`parse_all_with`](Self::parse_all_with) crossed with `seedings` too: every method with
+    /// every sampler and every seeding, seedings varying fastest (so `viapoint` and
+    /// `viapoint from cones` stand side by side).
+    pub fn parse_all_crossed(
+        items: &[String],
+        feedback: Option<bool>,
+        samplers: &[Sampler],
+        seedings: &[Seeding],
+    ) -> Result<Vec<Method>, BenchError> {
         if samplers.is_empty() {
             return Err(BenchError::Invalid("no samplers given".into()));
+        }
+        if seedings.is_empty() {
+            return Err(BenchError::Invalid("no seedings given".into()));
         }
         let mut out: Vec<Method> = Vec::new();
         for item in items {
@@ -241,13 +264,16 @@ impl Method {
             for local in LocalSpec::parse_grid(spec)? {
                 for &f in &variants {
                     for sampler in samplers {
-                        let m = Method {
-                            local: local.clone(),
-                            feedback: f,
-                            sampler: sampler.clone(),
-                        };
-                        if !out.contains(&m) {
-                            out.push(m);
+                        for &seeding in seedings {
+                            let m = Method {
+                                local: local.clone(),
+                                feedback: f,
+                                sampler: sampler.clone(),
+                                seeding,
+                            };
+                            if !out.contains(&m) {
+                                out.push(m);
+                            }
                         }
                     }
                 }
@@ -434,6 +460,22 @@ impl Plan {
         Ok(())
     }
 
+    /// Whether every method's seeding can start a roadmap of `scene` (cone seeds need a planar
+    /// scene): [`BenchError::Seeding`] names the first that cannot. Checked before any run, so
+    /// that an SE(3) scene with `--seed-from cones` fails at once, not after hours.
+    pub fn check_scene(&self, scene: &Scene) -> Result<(), BenchError> {
+        for m in &self.methods {
+            m.seeding
+                .check(scene)
+                .map_err(|source| BenchError::Seeding {
+                    seeding: m.seeding,
+                    scene: scene.name.clone(),
+                    source,
+                })?;
+        }
+        Ok(())
+    }
+
     /// Every run, scene by scene; within a scene run 0 of every method, then run 1 of every
     /// method, …, so that drift of the machine over time affects the methods alike.
     pub fn jobs(&self) -> Vec<RunJob> {
@@ -591,6 +633,54 @@ mod tests {
         let json = serde_json::to_string(&m[3]).unwrap();
         assert_eq!(serde_json::from_str::<Method>(&json).unwrap(), m[3]);
         assert!(Method::parse_all_with(&["viapoint".to_string()], None, &[]).is_err());
+    }
+
+    #[test]
+    fn methods_cross_with_seedings() {
+        let m = Method::parse_all_crossed(
+            &["straight".to_string(), "viapoint".to_string()],
+            Some(true),
+            &[
+                "uniform".parse().unwrap(),
+                "bridge:sigma=0.05".parse().unwrap(),
+            ],
+            &[
+                Seeding::Plain,
+                Seeding::Cones { nodes: None },
+                Seeding::Plain,
+            ],
+        )
+        .unwrap();
+        let labels: Vec<String> = m.iter().map(Method::label).collect();
+        assert_eq!(
+            labels,
+            [
+                "straight",
+                "straight from cones",
+                "straight @bridge:sigma=0.05",
+                "straight @bridge:sigma=0.05 from cones",
+                "viapoint",
+                "viapoint from cones",
+                "viapoint @bridge:sigma=0.05",
+                "viapoint @bridge:sigma=0.05 from cones"
+            ]
+        );
+        let json = serde_json::to_string(&m[5]).unwrap();
+        assert_eq!(serde_json::from_str::<Method>(&json).unwrap(), m[5]);
+        // a method recorded before seedings existed reads as plain
+        let mut old = serde_json::to_value(&m[1]).unwrap();
+        old.as_object_mut().unwrap().remove("seeding");
+        assert_eq!(
+            serde_json::from_value::<Method>(old).unwrap().seeding,
+            Seeding::Plain
+        );
+        assert!(Method::parse_all_crossed(
+            &["viapoint".to_string()],
+            None,
+            &[Sampler::default()],
+            &[]
+        )
+        .is_err());
     }
 
     #[test]

@@ -195,13 +195,16 @@ const PROGRESS_COLUMNS: [(&str, &str); 9] = [
 ];
 
 /// OMPL's planner settings text: `name = value` lines, each followed by `;`, sorted by name.
-fn settings(local_spec: &str, feedback: bool, sampler: &str) -> String {
+fn settings(local_spec: &str, feedback: bool, sampler: &str, seeding: &str) -> String {
     let params = LearnParams {
         feedback,
         sampler: sampler.parse().unwrap_or_default(),
         ..LearnParams::default()
     };
-    let mut kv: Vec<(String, String)> = vec![("local_method".into(), local_spec.to_string())];
+    let mut kv: Vec<(String, String)> = vec![
+        ("local_method".into(), local_spec.to_string()),
+        ("seeding".into(), seeding.to_string()),
+    ];
     if let Ok(serde_json::Value::Object(map)) = serde_json::to_value(&params) {
         for (k, v) in map {
             let v = match v {
@@ -297,7 +300,7 @@ fn fill(conn: &Connection, report: &Report) -> Result<(), rusqlite::Error> {
         )?;
         let experiment = conn.last_insert_rowid();
         for r in &scene.runs {
-            let s = settings(&r.local_spec, r.feedback, &r.sampler);
+            let s = settings(&r.local_spec, r.feedback, &r.sampler, &r.seeding);
             let existing: Option<i64> = conn
                 .query_row(
                     "SELECT id FROM plannerConfigs WHERE (name = ?1 AND settings = ?2)",
@@ -421,10 +424,11 @@ mod tests {
 
     #[test]
     fn settings_look_like_ompl_logs() {
-        let s = settings("straight", false, "uniform");
+        let s = settings("straight", false, "uniform", "cones");
         assert!(s.starts_with("learn."));
         assert!(s.contains("learn.feedback = false\n;"));
         assert!(s.contains("local_method = straight\n;"));
+        assert!(s.contains("seeding = cones\n;"));
         assert!(s.ends_with("\n;"));
     }
 }

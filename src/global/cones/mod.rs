@@ -158,16 +158,37 @@ fn ccw(vertices: impl Iterator<Item = P>) -> Vec<P> {
 }
 
 impl Freeways {
+    /// Whether [`build`](Self::build) can represent `scene`, without building anything: SE(2)
+    /// with a polygonal robot or R² with a point, among polygons and discs. Otherwise
+    /// [`ConeError::Unsupported`] names what is in the way (an SE(3) or R³ scene, a mesh robot,
+    /// an arm, a 3D obstacle).
+    pub fn supports(scene: &Scene) -> Result<(), ConeError> {
+        match scene.space.kind() {
+            SpaceKind::Se2 | SpaceKind::Euclidean(2) => {}
+            k => return Err(ConeError::Unsupported(format!("a {k} scene"))),
+        }
+        match &scene.robot {
+            Robot::Point | Robot::Polygons(_) => {}
+            Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
+            Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
+        }
+        for o in &scene.obstacles {
+            match o {
+                Obstacle::Polygon(_) => {}
+                Obstacle::Disc { centre, .. } if centre.len() == 2 => {}
+                _ => return Err(ConeError::Unsupported("a 3D obstacle".into())),
+            }
+        }
+        Ok(())
+    }
+
     /// The cones of a planar scene (SE(2) with a polygonal robot, or R² with a point among
     /// discs or polygons), pruned, and their spine intersections. `O(n³)` in the number of
     /// obstacle edges `n` (Brooks §2.1), less in practice: edges far from a cone are rejected
     /// by their boxes.
     pub fn build(scene: &Scene) -> Result<Freeways, ConeError> {
-        let oriented = match scene.space.kind() {
-            SpaceKind::Se2 => true,
-            SpaceKind::Euclidean(2) => false,
-            k => return Err(ConeError::Unsupported(format!("a {k} scene"))),
-        };
+        Self::supports(scene)?;
+        let oriented = matches!(scene.space.kind(), SpaceKind::Se2);
         let robot_vertices: Vec<P> = match &scene.robot {
             Robot::Point => Vec::new(),
             Robot::Polygons(parts) => parts

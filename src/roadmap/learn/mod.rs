@@ -174,17 +174,8 @@ impl<'a> Learner<'a> {
         deadline: &Deadline,
         progress: &mut dyn FnMut(&Progress),
     ) -> Result<Learnt, LearnError> {
-        check_budget(params, budget, deadline)?;
-        let (learnt, _) = self.grow(
-            params,
-            Seeds::default(),
-            &[budget.nodes],
-            budget.time,
-            seed,
-            deadline,
-            progress,
-            &mut |_| ControlFlow::Continue(()),
-        )?;
+        let (learnt, _) =
+            self.grow_within(params, Seeds::default(), budget, seed, deadline, progress)?;
         Ok(learnt)
     }
 
@@ -211,21 +202,11 @@ impl<'a> Learner<'a> {
         deadline: &Deadline,
         progress: &mut dyn FnMut(&Progress),
     ) -> Result<PairLearnt, LearnError> {
-        check_budget(params, budget, deadline)?;
         let seeds = Seeds {
             base,
             pair: Some((start, goal)),
         };
-        let (learnt, pair) = self.grow(
-            params,
-            seeds,
-            &[budget.nodes],
-            budget.time,
-            seed,
-            deadline,
-            progress,
-            &mut |_| ControlFlow::Continue(()),
-        )?;
+        let (learnt, pair) = self.grow_within(params, seeds, budget, seed, deadline, progress)?;
         let (start, goal) = pair
             .ok_or_else(|| LearnError::Malformed("start or goal was not kept as a node".into()))?;
         Ok(PairLearnt {
@@ -259,6 +240,25 @@ impl<'a> Learner<'a> {
         progress: &mut dyn FnMut(&Progress),
         on_stage: &mut dyn FnMut(&Learnt) -> ControlFlow<()>,
     ) -> Result<Learnt, LearnError> {
+        self.learn_in_stages_from(None, params, stages, time, seed, progress, on_stage)
+    }
+
+    /// [`learn_in_stages`](Self::learn_in_stages) starting from `base` (copied with its
+    /// indices, as in [`learn_from`](Self::learn_from)) when one is given: `bench local
+    /// --seed-from cones` grows the seed roadmap of Brooks's freeways in stages (issue 14).
+    /// The stages count the copied nodes; a stage not above the base's node count is reached
+    /// at once, without a round.
+    #[allow(clippy::too_many_arguments)]
+    pub fn learn_in_stages_from(
+        &self,
+        base: Option<&Roadmap>,
+        params: &LearnParams,
+        stages: &[usize],
+        time: Option<Duration>,
+        seed: u64,
+        progress: &mut dyn FnMut(&Progress),
+        on_stage: &mut dyn FnMut(&Learnt) -> ControlFlow<()>,
+    ) -> Result<Learnt, LearnError> {
         if stages.is_empty() {
             return Err(LearnError::NoBudget);
         }
@@ -270,7 +270,7 @@ impl<'a> Learner<'a> {
         let stages: Vec<Option<usize>> = stages.iter().map(|&n| Some(n)).collect();
         let (learnt, _) = self.grow(
             params,
-            Seeds::default(),
+            Seeds { base, pair: None },
             &stages,
             time,
             seed,
@@ -296,12 +296,28 @@ impl Learner<'_> {
         deadline: &Deadline,
         progress: &mut dyn FnMut(&Progress),
     ) -> Result<Learnt, LearnError> {
-        check_budget(params, budget, deadline)?;
         let seeds = Seeds {
             base: Some(base),
             pair: None,
         };
-        let (learnt, _) = self.grow(
+        let (learnt, _) = self.grow_within(params, seeds, budget, seed, deadline, progress)?;
+        Ok(learnt)
+    }
+
+    /// The one-stage grow behind [`learn_within`](Self::learn_within),
+    /// [`connect_pair`](Self::connect_pair) and [`learn_from`](Self::learn_from): the budget
+    /// checked, one stage to its node budget, no stage handler.
+    fn grow_within(
+        &self,
+        params: &LearnParams,
+        seeds: Seeds<'_>,
+        budget: &Budget,
+        seed: u64,
+        deadline: &Deadline,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Result<(Learnt, Option<(u32, u32)>), LearnError> {
+        check_budget(params, budget, deadline)?;
+        self.grow(
             params,
             seeds,
             &[budget.nodes],
@@ -310,7 +326,6 @@ impl Learner<'_> {
             deadline,
             progress,
             &mut |_| ControlFlow::Continue(()),
-        )?;
-        Ok(learnt)
+        )
     }
 }

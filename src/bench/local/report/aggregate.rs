@@ -101,6 +101,14 @@ pub struct MethodSummary {
     pub feedback: bool,
     /// Canonical sampler spec.
     pub sampler: String,
+    /// What the roadmap started from (`plain`, `cones`).
+    pub seeding: String,
+    /// Seed nodes of seeded runs (no values for plain runs).
+    pub seed_nodes: Stats,
+    /// Components of the seed roadmaps.
+    pub seed_components: Stats,
+    /// Seconds of building the freeways and checking the seeds (part of the learning times).
+    pub seed_seconds: Stats,
     /// Runs.
     pub runs: usize,
     /// Runs that reached the target share of the scored queries.
@@ -249,6 +257,19 @@ impl MethodSummary {
             local_spec: first.local_spec.clone(),
             feedback: first.feedback,
             sampler: first.sampler.clone(),
+            seeding: first.seeding.clone(),
+            seed_nodes: Stats::of(
+                rs.iter()
+                    .filter_map(|r| r.seeded.as_ref().map(|s| s.nodes as f64)),
+            ),
+            seed_components: Stats::of(
+                rs.iter()
+                    .filter_map(|r| r.seeded.as_ref().map(|s| s.components as f64)),
+            ),
+            seed_seconds: Stats::of(
+                rs.iter()
+                    .filter_map(|r| r.seeded.as_ref().map(|s| s.seconds)),
+            ),
             runs: rs.len(),
             reached: rs.iter().filter(|r| r.stop == RunStop::Target).count(),
             reached_solvable: to_solvable.iter().flatten().count(),
@@ -342,7 +363,33 @@ impl SceneReport {
                 continue;
             }
             if let Some(j) = self.methods.iter().position(|off| {
-                !off.feedback && off.local_spec == on.local_spec && off.sampler == on.sampler
+                !off.feedback
+                    && off.local_spec == on.local_spec
+                    && off.sampler == on.sampler
+                    && off.seeding == on.seeding
+            }) {
+                out.push((i, j));
+            }
+        }
+        out
+    }
+
+    /// Pairs of methods that differ only in seeding: (index of the plain one, index of one
+    /// seeded otherwise), in the order of the seeded methods (so the pairs of one plain method
+    /// follow each other when seedings vary fastest, as [`super::super::Method::parse_all_crossed`]
+    /// orders them).
+    pub fn seeding_pairs(&self) -> Vec<(usize, usize)> {
+        let plain = crate::global::Seeding::Plain.to_string();
+        let mut out = Vec::new();
+        for (j, seeded) in self.methods.iter().enumerate() {
+            if seeded.seeding == plain {
+                continue;
+            }
+            if let Some(i) = self.methods.iter().position(|m| {
+                m.seeding == plain
+                    && m.local_spec == seeded.local_spec
+                    && m.sampler == seeded.sampler
+                    && m.feedback == seeded.feedback
             }) {
                 out.push((i, j));
             }

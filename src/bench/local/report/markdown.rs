@@ -132,6 +132,55 @@ impl Report {
         self.ranking_table(o, s);
         self.end_table(o, s);
         self.feedback_table(o, s);
+        self.seeding_table(o, s);
+    }
+
+    /// What the cone seeds are worth (issue 14): methods that differ only in seeding, side
+    /// by side.
+    fn seeding_table(&self, o: &mut String, s: &SceneReport) {
+        let pct = 100.0 * self.plan.target;
+        let pairs = s.seeding_pairs();
+        if pairs.is_empty() {
+            return;
+        }
+        let _ = writeln!(
+            o,
+            "\nWhat the seeds are worth (issue 14): the same method learnt from nothing and from the seed roadmap, medians; learning time and calls of a seeded run include building and checking its seeds:\n"
+        );
+        let _ = writeln!(
+            o,
+            "| method | seeding | seed nodes | seed comps | seed s | reached | time→{pct:.0} % s | nodes→{pct:.0} % | calls→{pct:.0} % | comps at end | solved % | path short |"
+        );
+        let _ = writeln!(o, "|{}", "---|".repeat(12));
+        // each plain method once, followed by its seeded variants
+        let mut shown = None;
+        for (a, b) in pairs {
+            let rows = if shown == Some(a) {
+                vec![b]
+            } else {
+                vec![a, b]
+            };
+            shown = Some(a);
+            for m in rows.into_iter().map(|k| &s.methods[k]) {
+                let _ = writeln!(
+                    o,
+                    "| {} | {} | {} | {} | {} | {}/{} | {} | {} | {} | {} | {} | {} |",
+                    m.method,
+                    m.seeding,
+                    num(m.seed_nodes.median),
+                    num(m.seed_components.median),
+                    num(m.seed_seconds.median),
+                    m.reached_solvable,
+                    m.runs,
+                    range(&m.time_to_solvable),
+                    range(&m.nodes_to_solvable),
+                    num(m.calls_to_solvable.median),
+                    num(m.components.median),
+                    num(m.solved_share.median.map(|x| 100.0 * x)),
+                    num(m.path_length.median),
+                );
+            }
+        }
     }
 
     /// The methods ranked by learning time to the target share of the solvable queries.
