@@ -509,9 +509,10 @@ impl ArmOracle {
     }
 
     /// Switches the sharing between link oracles (skipped windows, early stops) on or off.
-    /// Off, every link oracle answers the whole move on its own and the answers are merged:
-    /// the reference the tests and `benches/arm.rs` compare the shared answer with. On by
-    /// default.
+    /// Off, every link oracle answers the whole move on its own, each pair of faces solved in
+    /// its whole window (not only where the move is not yet known to collide), and the answers
+    /// are merged: the reference the tests and `benches/arm.rs` compare the shared answer
+    /// with. On by default.
     pub fn with_culling(mut self, on: bool) -> ArmOracle {
         self.culling = on;
         self
@@ -660,13 +661,17 @@ impl ArmOracle {
             let r = match p.sweep {
                 Sweep::Turn { .. } => {
                     let c = into * Point3::from(pivot_w);
-                    o.turn_about(
-                        &se3(&rel),
-                        [c.x, c.y, c.z],
-                        [v.x, v.y, v.z],
-                        sign * delta,
-                        counts,
-                    )
+                    Polyhedra::gather_unclipped(Gather::All, |g| {
+                        g.turn_about(
+                            o,
+                            &se3(&rel),
+                            [c.x, c.y, c.z],
+                            [v.x, v.y, v.z],
+                            sign * delta,
+                            counts,
+                        )?;
+                        Ok(g.to_list())
+                    })
                 }
                 Sweep::Slide { .. } => {
                     let d = v * sign;
