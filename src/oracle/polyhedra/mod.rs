@@ -369,7 +369,8 @@ impl Polyhedra {
     fn gather_with<R>(mode: Gather, clip: bool, f: impl FnOnce(&mut Gathered<'_>) -> R) -> R {
         with_scratch(|s| {
             s.hits.reset(mode == Gather::Any);
-            s.hits.set_clip(clip);
+            // a yes/no gather stops at its first piece: nothing to narrow by
+            s.hits.set_clip(clip && mode != Gather::Any);
             f(&mut Gathered { s, mode })
         })
     }
