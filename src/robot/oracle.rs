@@ -29,8 +29,12 @@
 //! ([`Polyhedra::gather`](crate::oracle::polyhedra::Polyhedra)), so a pair of faces whose
 //! window an earlier oracle already found colliding is skipped; the yes/no question
 //! ([`ArmOracle::joint_move_free`]) stops at the first piece, the first-hit question
-//! ([`ArmOracle::joint_move_first_hit`]) only looks before the earliest piece known.
-//! [`ArmOracle::with_culling`]`(false)` asks every oracle on its own (the reference).
+//! ([`ArmOracle::joint_move_first_hit`]) only looks before the earliest piece known. Within a
+//! turn, a pair of faces is solved only in the part of its window not yet known to collide
+//! (narrowed again after each of its edges): the union is the same, and pairs deep inside a
+//! collision get narrow windows that the bounds mostly decide without solving for zeros.
+//! [`ArmOracle::with_culling`]`(false)` asks every oracle on its own, every pair in its whole
+//! window (the reference).
 //!
 //! Curved primitives are their circumscribed polytopes ([`super::shapes`]), so the answer
 //! contains every true collision.
