@@ -164,20 +164,19 @@ pub fn directed_walk(
             }
             let goal = space.with_group_of(&current, target, g);
             let motion = space.group_motion(&current, &goal, g);
-            let hits = oracle.intersect(&motion, counts)?;
-            let Some(section) = hits
-                .complement_within(motion.range)
-                .iter()
-                .find(|s| s.contains(0.0))
-                .copied()
-            else {
+            // the free section from the start is [lo, first collision]: the first-hit question
+            // answers it and can stop early
+            let lo = motion.range.lo;
+            let hi = match oracle.first_hit(&motion, counts)? {
+                None => motion.range.hi,
                 // the current configuration touches an obstacle in this group's direction
-                continue;
+                Some(hit) if hit <= lo => continue,
+                Some(hit) => hit,
             };
-            let next = if section.hi >= motion.range.hi {
+            let next = if hi >= motion.range.hi {
                 goal
             } else {
-                let t = section.hi - SECTION_MARGIN * section.length();
+                let t = hi - SECTION_MARGIN * (hi - lo);
                 if t <= 0.0 {
                     continue;
                 }

@@ -528,13 +528,13 @@ fn obstacle_based<R: Rng + ?Sized>(
             continue;
         }
         let motion = space.group_motion(&current, &x, g);
-        let hits = oracle.intersect(&motion, counts)?;
-        let Some(first) = hits.first() else {
+        // only the first collision matters: the first-hit question, which can stop early
+        let Some(first_lo) = oracle.first_hit(&motion, counts)? else {
             current = space.with_group_of(&current, &x, g);
             continue;
         };
         let start = motion.range.lo;
-        if first.lo <= start {
+        if first_lo <= start {
             return Ok(None); // the free stretch is empty (touching at the start)
         }
         let length = space.motion_length(&motion, start, motion.range.hi);
@@ -543,7 +543,7 @@ fn obstacle_based<R: Rng + ?Sized>(
         } else {
             0.0
         };
-        let t = first.lo - back.min(0.5 * (first.lo - start));
+        let t = first_lo - back.min(0.5 * (first_lo - start));
         let mut q = motion.at(t);
         if g.kind != GroupKind::Linear {
             space.normalize(&mut q);

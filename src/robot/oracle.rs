@@ -29,8 +29,12 @@
 //! ([`Polyhedra::gather`](crate::oracle::polyhedra::Polyhedra)), so a pair of faces whose
 //! window an earlier oracle already found colliding is skipped; the yes/no question
 //! ([`ArmOracle::joint_move_free`]) stops at the first piece, the first-hit question
-//! ([`ArmOracle::joint_move_first_hit`]) only looks before the earliest piece known.
-//! [`ArmOracle::with_culling`]`(false)` asks every oracle on its own (the reference).
+//! ([`ArmOracle::joint_move_first_hit`]) only looks before the earliest piece known. Within a
+//! turn, a pair of faces is solved only in the part of its window not yet known to collide
+//! (narrowed again after each of its edges): the union is the same, and pairs deep inside a
+//! collision get narrow windows that the bounds mostly decide without solving for zeros.
+//! [`ArmOracle::with_culling`]`(false)` asks every oracle on its own, every pair in its whole
+//! window (the reference).
 //!
 //! Curved primitives are their circumscribed polytopes ([`super::shapes`]), so the answer
 //! contains every true collision.
@@ -509,9 +513,10 @@ impl ArmOracle {
     }
 
     /// Switches the sharing between link oracles (skipped windows, early stops) on or off.
-    /// Off, every link oracle answers the whole move on its own and the answers are merged:
-    /// the reference the tests and `benches/arm.rs` compare the shared answer with. On by
-    /// default.
+    /// Off, every link oracle answers the whole move on its own, each pair of faces solved in
+    /// its whole window (not only where the move is not yet known to collide), and the answers
+    /// are merged: the reference the tests and `benches/arm.rs` compare the shared answer
+    /// with. On by default.
     pub fn with_culling(mut self, on: bool) -> ArmOracle {
         self.culling = on;
         self
@@ -660,13 +665,17 @@ impl ArmOracle {
             let r = match p.sweep {
                 Sweep::Turn { .. } => {
                     let c = into * Point3::from(pivot_w);
-                    o.turn_about(
-                        &se3(&rel),
-                        [c.x, c.y, c.z],
-                        [v.x, v.y, v.z],
-                        sign * delta,
-                        counts,
-                    )
+                    Polyhedra::gather_unclipped(Gather::All, |g| {
+                        g.turn_about(
+                            o,
+                            &se3(&rel),
+                            [c.x, c.y, c.z],
+                            [v.x, v.y, v.z],
+                            sign * delta,
+                            counts,
+                        )?;
+                        Ok(g.to_list())
+                    })
                 }
                 Sweep::Slide { .. } => {
                     let d = v * sign;

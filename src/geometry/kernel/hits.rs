@@ -12,6 +12,7 @@
 //! The buffer is reused between calls ([`Hits::reset`]), so a sweep allocates nothing once it
 //! has grown to the largest answer seen.
 
+use super::spans::Spans;
 use crate::interval::{Interval, IntervalList};
 use std::ops::ControlFlow;
 
@@ -22,6 +23,11 @@ pub(crate) struct Hits {
     first_only: bool,
     /// Only the first collision matters ([`Hits::reset_prefix`]).
     prefix: bool,
+    /// Whether a sweep narrows the windows it solves to what is not yet known
+    /// ([`Hits::uncovered`]); off after every reset.
+    clip: bool,
+    /// Bumped by every piece added: a sweep re-narrows a window only when this changed.
+    generation: u64,
 }
 
 impl Hits {
@@ -38,6 +44,8 @@ impl Hits {
             pieces: Vec::new(),
             first_only: true,
             prefix: false,
+            clip: false,
+            generation: 0,
         }
     }
 
@@ -47,6 +55,76 @@ impl Hits {
         self.pieces.clear();
         self.first_only = first_only;
         self.prefix = false;
+        self.clip = false;
+        self.generation = 0;
+    }
+
+    /// Switches the narrowing of windows ([`Hits::uncovered`]) on or off for this sweep.
+    pub fn set_clip(&mut self, on: bool) {
+        self.clip = on;
+    }
+
+    /// Whether windows are narrowed to what is not yet known ([`Hits::uncovered`]).
+    pub fn clips(&self) -> bool {
+        self.clip
+    }
+
+    /// A number that changes whenever a piece is added (a window narrowed before is stale).
+    #[inline]
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// The parts of `window` not yet known to collide, each reaching `overlap` into the known
+    /// pieces on either side (so that a piece solved in a narrowed window still overlaps the
+    /// known one it continues, and is never a sliver): solving a pair only there changes
+    /// nothing in the union, since whatever it would find elsewhere is already known. With
+    /// [`Hits::reset_prefix`], everything from `overlap` after the earliest piece on counts as
+    /// known. Should the capacity of `Spans` not suffice, the last part is stretched — a wider
+    /// window, never a narrower one. With clipping off (see [`Hits::set_clip`]): `window`.
+    pub fn uncovered<const N: usize>(&self, window: &Spans<N>, overlap: f64) -> Spans<N> {
+        if !self.clip || self.pieces.is_empty() {
+            return *window;
+        }
+        let spans = window.as_slice();
+        let Some(first) = spans.first() else {
+            return *window;
+        };
+        let cut = if self.prefix {
+            self.pieces[0].lo + overlap
+        } else {
+            f64::INFINITY
+        };
+        let mut out = Spans::EMPTY;
+        let mut i = self.pieces.partition_point(|p| p.hi < first.lo);
+        for s in spans {
+            let hi = s.hi.min(cut);
+            let mut lo = s.lo;
+            if lo > hi {
+                break;
+            }
+            while let Some(p) = self.pieces.get(i) {
+                if p.lo > hi {
+                    break;
+                }
+                let (kl, kh) = (p.lo + overlap, p.hi - overlap);
+                if kl <= kh && kh >= lo && kl <= hi {
+                    if kl > lo {
+                        out.push(Interval { lo, hi: kl });
+                    }
+                    lo = lo.max(kh);
+                }
+                if p.hi > hi {
+                    // reaches into the next span too
+                    break;
+                }
+                i += 1;
+            }
+            if lo <= hi {
+                out.push(Interval { lo, hi });
+            }
+        }
+        out
     }
 
     /// Empties the set for a sweep that wants only the earliest collision (the free prefix of
@@ -75,6 +153,7 @@ impl Hits {
         if iv.lo > iv.hi || iv.lo.is_nan() || iv.hi.is_nan() {
             return ControlFlow::Continue(());
         }
+        self.generation += 1;
         // pieces [i, j) meet `iv`
         let i = self.pieces.partition_point(|p| p.hi < iv.lo);
         let j = i + self.pieces[i..].partition_point(|p| p.lo <= iv.hi);
@@ -180,6 +259,52 @@ mod tests {
             let w = Interval { lo: f64::from(w.0) * 0.5, hi: f64::from(w.0 + w.1) * 0.5 };
             let inside = want.as_slice().iter().any(|p| p.lo <= w.lo && w.hi <= p.hi);
             prop_assert_eq!(h.covers(w), inside);
+        }
+    }
+
+    proptest! {
+        /// The narrowed window and the known pieces together cover the window, the narrowed
+        /// window lies inside it, and with clipping off it is the window itself.
+        #[test]
+        fn uncovered_and_known_cover_the_window(
+            raw in prop::collection::vec((0u8..60, 0u8..8), 0..12),
+            win in prop::collection::vec((0u8..60, 0u8..10), 1..5),
+            prefix in any::<bool>(),
+        ) {
+            let mut h = Hits::all();
+            if prefix {
+                h.reset_prefix();
+            }
+            h.set_clip(true);
+            for &(a, l) in &raw {
+                let _ = h.add(Interval { lo: f64::from(a) * 0.5, hi: f64::from(a + l) * 0.5 });
+            }
+            let mut ws: Vec<Interval> = win
+                .iter()
+                .map(|&(a, l)| Interval { lo: f64::from(a) * 0.5, hi: f64::from(a + l) * 0.5 })
+                .collect();
+            merge_in_place(&mut ws);
+            let mut w: Spans<8> = Spans::EMPTY;
+            for iv in &ws {
+                w.push(*iv);
+            }
+            let overlap = 0.01;
+            let u = h.uncovered(&w, overlap);
+            let inside = |t: f64, s: &[Interval]| s.iter().any(|p| p.lo <= t && t <= p.hi);
+            for k in 0..=700 {
+                let t = f64::from(k) * 0.05;
+                if inside(t, w.as_slice()) {
+                    let known = inside(t, h.as_slice())
+                        || (prefix && h.as_slice().first().is_some_and(|p| t >= p.lo));
+                    prop_assert!(known || inside(t, u.as_slice()), "{t}: {:?} {:?} {:?}", w, h, u);
+                }
+                if inside(t, u.as_slice()) {
+                    prop_assert!(inside(t, w.as_slice()), "{t}: {:?} {:?}", w, u);
+                }
+            }
+            h.set_clip(false);
+            let same = h.uncovered(&w, overlap);
+            prop_assert_eq!(same.as_slice(), w.as_slice());
         }
     }
 

@@ -351,9 +351,26 @@ impl Polyhedra {
     /// Runs `f` with an empty [`Gathered`] of this thread's scratch space: the collision pieces,
     /// in `t ∈ [0, 1]`, of one motion asked of several oracles (the links of an arm turned by
     /// one joint, issue 10), each call skipping what the earlier ones already found.
+    ///
+    /// A turn is solved, pair by pair, only in the part of the pair's window not yet known to
+    /// collide (`Hits::uncovered`): the union cannot change, and the pairs deep inside a
+    /// collision piece get narrow windows, most of them decided by bounds alone.
+    /// [`Polyhedra::gather_unclipped`] solves every pair in its whole window (the reference).
     pub(crate) fn gather<R>(mode: Gather, f: impl FnOnce(&mut Gathered<'_>) -> R) -> R {
+        Self::gather_with(mode, true, f)
+    }
+
+    /// [`Polyhedra::gather`] with every pair of a turn solved in its whole window (pairs whose
+    /// window is already known to collide still skipped): the reference of the narrowed sweep.
+    pub(crate) fn gather_unclipped<R>(mode: Gather, f: impl FnOnce(&mut Gathered<'_>) -> R) -> R {
+        Self::gather_with(mode, false, f)
+    }
+
+    fn gather_with<R>(mode: Gather, clip: bool, f: impl FnOnce(&mut Gathered<'_>) -> R) -> R {
         with_scratch(|s| {
             s.hits.reset(mode == Gather::Any);
+            // a yes/no gather stops at its first piece: nothing to narrow by
+            s.hits.set_clip(clip && mode != Gather::Any);
             f(&mut Gathered { s, mode })
         })
     }
@@ -471,6 +488,7 @@ impl Polyhedra {
                 if sink.is_prefix() {
                     local.reset_prefix();
                 }
+                local.set_clip(sink.clips());
                 if p1 - p0 <= TAU {
                     // what other oracles found for this motion (a gathered sweep): windows it
                     // covers are skipped (the answer repeats every turn, so only within one)

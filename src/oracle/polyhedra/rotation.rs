@@ -49,6 +49,11 @@ const OFF_NEAR: f64 = 2.0;
 /// which lies in that plane, reaches it either; the margin covers the determinants' slack).
 const OFF_FAR: f64 = 16.0;
 
+/// A pair of faces is solved only where its window is not yet known to collide, reaching this
+/// far (radians) into the known pieces on either side ([`Hits::uncovered`]): more than
+/// [`DEGENERATE_SPAN`], so that a piece continuing a known one is never dropped as a sliver.
+const CLIP_OVERLAP: f64 = 1e-6;
+
 /// `s·x_φ` for fixed `s` and `x` turning about the unit `axis` (formula 2.1).
 pub(crate) fn lin(s: &V3, x: &V3, axis: &V3) -> Trig {
     let sr = s.dot(axis);
@@ -294,6 +299,13 @@ pub(crate) fn sweep(
         } else {
             whole
         };
+        // only where the pair can change the union: not inside what is known to collide
+        let mut known = sink.generation();
+        let mut pair_window = if ph.enveloping {
+            sink.uncovered(&pair_window, CLIP_OVERLAP)
+        } else {
+            pair_window
+        };
         let (Some(first), Some(last)) = (
             pair_window.as_slice().first(),
             pair_window.as_slice().last(),
@@ -348,8 +360,19 @@ pub(crate) fn sweep(
         if ph.enveloping && (outside(&rc, of, &axis) || outside(&of.v, rf, &-axis)) {
             return true;
         }
+        // the window again, narrowed by what the pair's own edges found so far
+        let mut narrow = |win: &mut Spans, sink: &Hits| -> bool {
+            if ph.enveloping && sink.generation() != known {
+                known = sink.generation();
+                *win = sink.uncovered(win, CLIP_OVERLAP);
+            }
+            !win.is_empty()
+        };
         if robot_off <= OFF_NEAR {
             for &e in robot.owned_edges(r) {
+                if !narrow(&mut pair_window, sink) {
+                    return true;
+                }
                 let (p, q) = robot.edge(e);
                 // the edge's own cylindrical box against the obstacle face's: a narrower
                 // window than the face's, or none
@@ -375,6 +398,9 @@ pub(crate) fn sweep(
         }
         let ids = obst.faces[o as usize];
         for &e in obst.owned_edges(o) {
+            if !narrow(&mut pair_window, sink) {
+                return true;
+            }
             let [a, b] = obst.edges[e as usize];
             let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
             let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
