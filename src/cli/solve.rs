@@ -73,6 +73,10 @@ pub struct SolveArgs {
     /// is tried again, up to N times: lines a robot up with a funnel (bugtrap).
     #[arg(long, value_name = "N", default_value_t = 0, requires = "tree")]
     pub tree_centre: usize,
+    /// `--tree-centre`: half-angle of the turns a centring round asks about, in turns (at most
+    /// 0.45): only free arcs narrower than this are centred.
+    #[arg(long, value_name = "TURNS", default_value_t = viaroad::roadmap::tree::CENTRE_TURN, requires = "tree")]
+    pub tree_centre_turn: f64,
     /// Seed of the grown roadmap (`--roadmap`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -351,6 +355,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         prefix: a.tree_prefix,
         balance: a.tree_balance,
         centre: a.tree_centre,
+        centre_turn: a.tree_centre_turn,
         coarse: a.tree_coarse,
         max_nodes: a.nodes,
     };

@@ -87,6 +87,9 @@ pub struct TreeParams {
     /// call per direction) and tries again, at most this many times — a funnel lines the robot
     /// up with its axis on the way in.
     pub centre: usize,
+    /// Half-angle of the turns a centring round asks about, in turns (default
+    /// [`CENTRE_TURN`]; at most 0.45).
+    pub centre_turn: f64,
     /// Most nodes of both trees together (a budget that gives the same answer on any machine).
     pub max_nodes: Option<usize>,
 }
@@ -100,6 +103,7 @@ impl Default for TreeParams {
             coarse: false,
             balance: false,
             centre: 0,
+            centre_turn: CENTRE_TURN,
             max_nodes: None,
         }
     }
@@ -112,6 +116,12 @@ impl TreeParams {
             if !(v.is_finite() && v > 0.0 && v <= 10.0) {
                 return Err(format!("tree {name} must be a share in (0, 10], got {v}"));
             }
+        }
+        let t = self.centre_turn;
+        if !(t.is_finite() && t > 0.0 && t <= crate::roadmap::bounce::MAX_TURN) {
+            return Err(format!(
+                "tree centre turn must be in (0, 0.45] turns, got {t}"
+            ));
         }
         Ok(())
     }
@@ -356,7 +366,7 @@ impl Grower<'_> {
                             &current,
                             &across,
                             reach,
-                            CENTRE_TURN,
+                            self.params.centre_turn,
                             &mut self.counts,
                             self.deadline,
                         )?;
