@@ -91,6 +91,7 @@ fn axis3(v: &[f64]) -> Option<[f64; 3]> {
 /// chord is bounded on both sides within `reach` (a distance, for lines) or `turn_reach`
 /// (in turns, at most [`MAX_TURN`], for turns). Returns the configurations reached (`q` excluded), each joined to the one before by
 /// a certified free single-group motion. Stops early when `deadline` has passed.
+#[allow(clippy::too_many_arguments)]
 pub fn centre_round(
     space: &Space,
     oracle: &dyn CollisionOracle,
