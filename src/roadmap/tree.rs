@@ -14,7 +14,9 @@
 //!
 //! Two trees grow from start and goal; after each extend of one tree towards a uniform sample,
 //! the other tree *connects* (extends repeatedly) towards the new node, as in OMPL's
-//! `RRTConnect`. The stream of samples comes from one seeded generator, so with a node budget
+//! `RRTConnect`. With [`TreeParams::centre`] a blocked stair first moves its node to the middle
+//! of its free chords across the stair ([`crate::roadmap::centre`]) and is tried again: in a
+//! funnel (bugtrap) that lines the robot up with the funnel's axis. The stream of samples comes from one seeded generator, so with a node budget
 //! and no deadline the answer is the same on every machine.
 
 use crate::deadline::Deadline;
