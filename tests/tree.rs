@@ -310,3 +310,114 @@ fn first_hit_prefixes_grow_the_same_trees_as_intervals() {
     };
     assert_eq!(grow_with(Prefix::Intervals), grow_with(Prefix::FirstHit));
 }
+
+/// Two discs with a gap between them, for the centring tests.
+fn gap_scene(discs: &[([f64; 2], f64)]) -> Scene {
+    let mut s = scene("scenes/discs-cluttered.toml");
+    s.obstacles = discs
+        .iter()
+        .map(|(c, r)| viaroad::scene::Obstacle::Disc {
+            centre: c.to_vec(),
+            radius: *r,
+        })
+        .collect();
+    s
+}
+
+#[test]
+fn centring_moves_to_the_middle_of_a_bounded_chord_only() {
+    use viaroad::roadmap::centre::{centre_round, Across};
+    let s = gap_scene(&[([0.3, 0.5], 0.15), ([0.7, 0.5], 0.15)]);
+    let oracle = s.oracle();
+    let groups = s.space.groups(false);
+    let mut counts = CallCounts::default();
+    // blocked going up: centred across, along x, between the two discs
+    let across = Across::Translation {
+        group: 0,
+        dir: vec![0.0, 1.0],
+    };
+    let q = [0.45, 0.45];
+    let out = centre_round(
+        &s.space,
+        oracle.as_ref(),
+        &groups,
+        &q,
+        &across,
+        0.3,
+        0.05,
+        &mut counts,
+        &Deadline::none(),
+    )
+    .unwrap();
+    assert_eq!(out.len(), 1, "{out:?}");
+    assert!((out[0][0] - 0.5).abs() < 1e-9, "{out:?}");
+    assert_eq!(out[0][1], 0.45);
+    assert_eq!(counts.intersect_calls(), 1);
+    Checker::for_scene(&s)
+        .unwrap()
+        .check_path(&[q.to_vec(), out[0].clone()])
+        .unwrap();
+    // one disc only: the chord is open on one side within the reach, nothing moves
+    let s = gap_scene(&[([0.3, 0.5], 0.15)]);
+    let oracle = s.oracle();
+    let out = centre_round(
+        &s.space,
+        oracle.as_ref(),
+        &groups,
+        &q,
+        &across,
+        0.3,
+        0.05,
+        &mut counts,
+        &Deadline::none(),
+    )
+    .unwrap();
+    assert!(out.is_empty(), "{out:?}");
+}
+
+#[test]
+fn centring_trees_find_checked_paths_deterministically_within_the_budget() {
+    let centring = |nodes| TreeParams {
+        centre: 2,
+        ..params(nodes)
+    };
+    for (rel, nodes, seeds) in [
+        ("scenes/discs-cluttered.toml", 4000, 1..=3),
+        ("scenes/se2-corridor.toml", 4000, 1..=3),
+        ("scenes/ompl/3D/Easy.cfg", 20000, 1..=2),
+    ] {
+        let s = scene(rel);
+        let mut solved = 0;
+        for seed in seeds.clone() {
+            let out = grow(&s, &centring(nodes), seed);
+            let Some(path) = &out.path else { continue };
+            solved += 1;
+            check(&s, path);
+        }
+        assert!(
+            solved > 0,
+            "{rel}: no seed of {seeds:?} solved with centring"
+        );
+    }
+    let s = scene("scenes/se2-corridor.toml");
+    let a = grow(&s, &centring(3000), 4);
+    let b = grow(&s, &centring(3000), 4);
+    assert_eq!(a.path, b.path);
+    assert_eq!(a.nodes, b.nodes);
+    assert_eq!(a.counts.intersect_calls(), b.counts.intersect_calls());
+    // the budget holds to within one extend: its stairs, and per blocked stair at most
+    // `centre` rounds of one node per direction (2 translations + 1 turn in SE(2))
+    let p = TreeParams {
+        stair: 0.05,
+        ..centring(40)
+    };
+    let out = grow(&s, &p, 4);
+    if out.path.is_none() {
+        assert_eq!(out.stop, TreeStop::NodeBudget);
+    }
+    assert!(
+        out.nodes[0] + out.nodes[1] <= 40 + 4 * 2 + 2 * 3,
+        "{:?}",
+        out.nodes
+    );
+}

@@ -68,6 +68,15 @@ pub struct SolveArgs {
     /// `--tree`: extend the smaller tree each time instead of alternating.
     #[arg(long, requires = "tree")]
     pub tree_balance: bool,
+    /// `--tree`: centring rounds per blocked stair (0: off). A blocked stair moves the node to
+    /// the middle of its free chords across the stair (one interval call per direction) and
+    /// is tried again, up to N times: lines a robot up with a funnel (bugtrap).
+    #[arg(long, value_name = "N", default_value_t = 0, requires = "tree")]
+    pub tree_centre: usize,
+    /// `--tree-centre`: half-angle of the turns a centring round asks about, in turns (at most
+    /// 0.45): only free arcs narrower than this are centred.
+    #[arg(long, value_name = "TURNS", default_value_t = viaroad::roadmap::tree::CENTRE_TURN, requires = "tree")]
+    pub tree_centre_turn: f64,
     /// Seed of the grown roadmap (`--roadmap`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -345,6 +354,8 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         stair: a.tree_stair,
         prefix: a.tree_prefix,
         balance: a.tree_balance,
+        centre: a.tree_centre,
+        centre_turn: a.tree_centre_turn,
         coarse: a.tree_coarse,
         max_nodes: a.nodes,
     };

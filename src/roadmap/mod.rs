@@ -40,6 +40,7 @@
 //! ```
 
 pub mod bounce;
+pub mod centre;
 pub mod graph;
 pub mod info;
 pub mod landmarks;

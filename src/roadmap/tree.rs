@@ -14,12 +14,15 @@
 //!
 //! Two trees grow from start and goal; after each extend of one tree towards a uniform sample,
 //! the other tree *connects* (extends repeatedly) towards the new node, as in OMPL's
-//! `RRTConnect`. The stream of samples comes from one seeded generator, so with a node budget
+//! `RRTConnect`. With [`TreeParams::centre`] a blocked stair first moves its node to the middle
+//! of its free chords across the stair ([`crate::roadmap::centre`]) and is tried again: in a
+//! funnel (bugtrap) that lines the robot up with the funnel's axis. The stream of samples comes from one seeded generator, so with a node budget
 //! and no deadline the answer is the same on every machine.
 
 use crate::deadline::Deadline;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::roadmap::bounce::SECTION_MARGIN;
+use crate::roadmap::centre::{centre_round, Across};
 use crate::roadmap::nn::NearestNeighbours;
 use crate::space::{Config, Group, GroupKind, Space};
 use rand::SeedableRng;
@@ -28,6 +31,14 @@ use rand_chacha::ChaCha8Rng;
 /// Shortest partial stair kept, as a share of the stair length: shorter free prefixes end the
 /// extend without a node (RRT's frontier nodes would otherwise creep towards the obstacle).
 pub const MIN_PROGRESS: f64 = 0.1;
+
+/// Half-length of the chords a centring round asks about, as a share of the extent: centring
+/// is local (a funnel's mouth), and shorter lines are cheaper calls on big meshes.
+pub const CENTRE_REACH: f64 = 0.05;
+
+/// Half-angle of the turns a centring round asks about, in turns (0.05: 18°): a long robot
+/// sweeps much of the scene in a full turn, and only narrow arcs are centred anyway.
+pub const CENTRE_TURN: f64 = 0.05;
 
 /// How an extend finds the free prefix of one single-group stair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,6 +84,14 @@ pub struct TreeParams {
     /// Extend the smaller tree each time (Kuffner–LaValle's balanced variant) instead of
     /// alternating: an entangled end whose extends are mostly trapped gets the effort.
     pub balance: bool,
+    /// Centring rounds per blocked stair (0: off, the default): a blocked stair moves the
+    /// node to the middle of its free chords across the stair (`roadmap::centre`, one interval
+    /// call per direction) and tries again, at most this many times — a funnel lines the robot
+    /// up with its axis on the way in.
+    pub centre: usize,
+    /// Half-angle of the turns a centring round asks about, in turns (default
+    /// [`CENTRE_TURN`]; at most 0.45).
+    pub centre_turn: f64,
     /// Most nodes of both trees together (a budget that gives the same answer on any machine).
     pub max_nodes: Option<usize>,
 }
@@ -85,6 +104,8 @@ impl Default for TreeParams {
             prefix: Prefix::Intervals,
             coarse: false,
             balance: false,
+            centre: 0,
+            centre_turn: CENTRE_TURN,
             max_nodes: None,
         }
     }
@@ -97,6 +118,12 @@ impl TreeParams {
             if !(v.is_finite() && v > 0.0 && v <= 10.0) {
                 return Err(format!("tree {name} must be a share in (0, 10], got {v}"));
             }
+        }
+        let t = self.centre_turn;
+        if !(t.is_finite() && t > 0.0 && t <= crate::roadmap::bounce::MAX_TURN) {
+            return Err(format!(
+                "tree centre turn must be in (0, 0.45] turns, got {t}"
+            ));
         }
         Ok(())
     }
@@ -194,6 +221,8 @@ struct Grower<'a> {
     deadline: &'a Deadline,
     counts: CallCounts,
     extends: u64,
+    /// Centring rounds spent in the current extend (at most `params.centre` per extend).
+    centred: usize,
 }
 
 impl Grower<'_> {
@@ -242,6 +271,7 @@ impl Grower<'_> {
     /// Extends `tree` from its node nearest to `target` towards it, at most `range` far.
     fn extend(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
         self.extends += 1;
+        self.centred = 0;
         let near = tree.nearest(target);
         let from = tree.nodes[near as usize].clone();
         let d = self.space.distance(&from, target);
@@ -288,39 +318,69 @@ impl Grower<'_> {
                 self.space
                     .interpolate(&from, &aim, i as f64 / stairs as f64)
             };
-            for g in self.groups {
-                if self.deadline.expired() {
-                    return Ok(if moved {
-                        Extend::Advanced(parent)
-                    } else {
-                        Extend::Trapped
-                    });
-                }
-                if self.space.same_in_group(&current, &w, g) {
-                    continue;
-                }
-                let goal = self.space.with_group_of(&current, &w, g);
-                let motion = self.space.group_motion(&current, &goal, g);
-                let (next, blocked) = match self.reach(&motion)? {
-                    Reach::Full => (goal, false),
-                    Reach::Partial(t) => {
-                        let mut q = motion.at(t);
-                        if g.kind != GroupKind::Linear {
-                            self.space.normalize(&mut q);
-                        }
-                        (q, true)
+            for (gi, g) in self.groups.iter().enumerate() {
+                let mut centred = 0;
+                loop {
+                    if self.deadline.expired() {
+                        return Ok(if moved {
+                            Extend::Advanced(parent)
+                        } else {
+                            Extend::Trapped
+                        });
                     }
-                    Reach::Blocked => (current.clone(), true),
-                };
-                // a partial stair that barely moves only piles nodes against the obstacle
-                let worth =
-                    !blocked || self.space.distance(&current, &next) >= MIN_PROGRESS * stair;
-                if worth && next != current {
-                    parent = tree.add(next.clone(), parent);
-                    current = next;
-                    moved = true;
-                }
-                if blocked {
+                    if self.space.same_in_group(&current, &w, g) {
+                        break;
+                    }
+                    let goal = self.space.with_group_of(&current, &w, g);
+                    let motion = self.space.group_motion(&current, &goal, g);
+                    let (next, blocked) = match self.reach(&motion)? {
+                        Reach::Full => (goal, false),
+                        Reach::Partial(t) => {
+                            let mut q = motion.at(t);
+                            if g.kind != GroupKind::Linear {
+                                self.space.normalize(&mut q);
+                            }
+                            (q, true)
+                        }
+                        Reach::Blocked => (current.clone(), true),
+                    };
+                    // a partial stair that barely moves only piles nodes against the obstacle
+                    let worth =
+                        !blocked || self.space.distance(&current, &next) >= MIN_PROGRESS * stair;
+                    if worth && next != current {
+                        parent = tree.add(next.clone(), parent);
+                        current = next;
+                        moved = true;
+                    }
+                    if !blocked {
+                        break;
+                    }
+                    if centred < self.params.centre && self.centred < self.params.centre {
+                        // centre across the blocked stair, then try it again (module `centre`)
+                        centred += 1;
+                        self.centred += 1;
+                        let across = across_of(&motion, gi, g);
+                        let reach = CENTRE_REACH * self.space.extent();
+                        let corners = centre_round(
+                            self.space,
+                            self.oracle,
+                            self.groups,
+                            &current,
+                            &across,
+                            reach,
+                            self.params.centre_turn,
+                            &mut self.counts,
+                            self.deadline,
+                        )?;
+                        if !corners.is_empty() {
+                            for c in corners {
+                                parent = tree.add(c.clone(), parent);
+                                current = c;
+                            }
+                            moved = true;
+                            continue;
+                        }
+                    }
                     return Ok(if moved {
                         Extend::Advanced(parent)
                     } else {
@@ -336,6 +396,33 @@ impl Grower<'_> {
         } else {
             Extend::Advanced(parent)
         })
+    }
+}
+
+/// What a blocked stair `motion` in group `g` (index `gi`) was doing, for [`centre_round`].
+fn across_of(motion: &crate::space::Motion, gi: usize, g: &Group) -> Across {
+    use crate::space::Change;
+    match (&motion.change, g.kind) {
+        (Change::Rotation { axis, .. }, _) => Across::Turn {
+            group: gi,
+            axis: Some(*axis),
+        },
+        (Change::Linear(delta), GroupKind::Linear) => {
+            let d: Vec<f64> = delta[g.coords.clone()].to_vec();
+            let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+            Across::Translation {
+                group: gi,
+                dir: if norm > 0.0 {
+                    d.iter().map(|x| x / norm).collect()
+                } else {
+                    d
+                },
+            }
+        }
+        (Change::Linear(_), _) => Across::Turn {
+            group: gi,
+            axis: None,
+        },
     }
 }
 
@@ -363,6 +450,7 @@ pub fn rrt_connect(
         deadline,
         counts: CallCounts::default(),
         extends: 0,
+        centred: 0,
     };
     let finish = |trees: &[Tree; 2], g: &Grower, path, stop| TreeOutcome {
         path,
@@ -399,6 +487,9 @@ pub fn rrt_connect(
         };
         if let Some(n) = new {
             let q_new = ta.nodes[n as usize].clone();
+            // with centring an extend may move without getting closer: the connect stops then
+            let mut closest = f64::INFINITY;
+            let min_gain = MIN_PROGRESS * params.stair * space.extent();
             loop {
                 let full = params
                     .max_nodes
@@ -415,7 +506,15 @@ pub fn rrt_connect(
                         path.extend(back.into_iter().rev().skip(1));
                         return Ok(finish(&trees, &g, Some(path), TreeStop::Connected));
                     }
-                    Extend::Advanced(_) => {}
+                    Extend::Advanced(m) => {
+                        if params.centre > 0 {
+                            let d = space.distance(&tb.nodes[m as usize], &q_new);
+                            if d > closest - min_gain {
+                                break;
+                            }
+                            closest = d;
+                        }
+                    }
                     Extend::Trapped => break,
                 }
             }
