@@ -77,7 +77,7 @@ pub struct SolveArgs {
     /// 0.45): only free arcs narrower than this are centred.
     #[arg(long, value_name = "TURNS", default_value_t = viaroad::roadmap::tree::CENTRE_TURN, requires = "tree")]
     pub tree_centre_turn: f64,
-    /// Seed of the grown roadmap (`--roadmap`).
+    /// Seed of the grown roadmap (`--roadmap`) or of the two trees (`--tree`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
