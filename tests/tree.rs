@@ -247,6 +247,7 @@ fn first_collision_is_the_start_of_the_first_interval() {
     for rel in [
         "scenes/ompl/3D/Twistycool.cfg",
         "scenes/ompl/3D/alpha-1.5.cfg",
+        "scenes/ompl/3D/bugtrap.cfg",
         "scenes/se2-corridor.toml",
     ] {
         let s = scene(rel);
@@ -352,14 +353,17 @@ fn centring_moves_to_the_middle_of_a_bounded_chord_only() {
     assert_eq!(out.len(), 1, "{out:?}");
     assert!((out[0][0] - 0.5).abs() < 1e-9, "{out:?}");
     assert_eq!(out[0][1], 0.45);
-    assert_eq!(counts.intersect_calls(), 1);
+    // a chord bounded on both sides: one first-collision call each way
+    assert_eq!(counts.intersect_calls(), 2);
     Checker::for_scene(&s)
         .unwrap()
         .check_path(&[q.to_vec(), out[0].clone()])
         .unwrap();
-    // one disc only: the chord is open on one side within the reach, nothing moves
+    // one disc only: the chord is open on one side within the reach, nothing moves; the open
+    // side is the one asked first, so the other is not asked at all
     let s = gap_scene(&[([0.3, 0.5], 0.15)]);
     let oracle = s.oracle();
+    let mut counts = CallCounts::default();
     let out = centre_round(
         &s.space,
         oracle.as_ref(),
@@ -373,6 +377,125 @@ fn centring_moves_to_the_middle_of_a_bounded_chord_only() {
     )
     .unwrap();
     assert!(out.is_empty(), "{out:?}");
+    assert_eq!(counts.intersect_calls(), 1);
+}
+
+/// The chord a centring round moves across, from all intervals of the line or turn through
+/// `q` within `clip`: the free section containing 0, if bounded on both sides inside `clip`.
+fn chord_from_intervals(
+    oracle: &dyn viaroad::oracle::CollisionOracle,
+    motion: &viaroad::space::Motion,
+    clip: viaroad::interval::Interval,
+) -> Option<viaroad::interval::Interval> {
+    use viaroad::oracle::CountedOracle;
+    let mut m = motion.clone();
+    m.range = clip;
+    let hits = oracle.intersect(&m, &mut CallCounts::default()).unwrap();
+    let chord = hits
+        .complement_within(clip)
+        .iter()
+        .find(|c| c.contains(0.0))
+        .copied()?;
+    (chord.lo > clip.lo && chord.hi < clip.hi).then_some(chord)
+}
+
+#[test]
+fn centring_chords_from_first_collisions_are_the_chords_of_all_intervals() {
+    // bugtrap's long rod turning by up to ±0.45 turns and sliding across its shell, and
+    // alpha-1.5's entangled start: every centring move must land where the chord of all
+    // intervals puts it (two first-collision calls each way replace one interval call)
+    use rand::SeedableRng;
+    use viaroad::interval::Interval;
+    use viaroad::oracle::CountedOracle;
+    use viaroad::roadmap::centre::{centre_round, Across};
+    use viaroad::space::GroupKind;
+    let mut moved = 0;
+    for rel in ["scenes/ompl/3D/bugtrap.cfg", "scenes/ompl/3D/alpha-1.5.cfg"] {
+        let s = scene(rel);
+        let oracle = s.oracle();
+        let groups = s.space.groups(false);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        let mut counts = CallCounts::default();
+        let q0 = s.checked_queries().unwrap()[0].start.clone();
+        let reach = 0.05 * s.space.extent();
+        for i in 0..40 {
+            let q = if i % 2 == 0 {
+                q0.clone()
+            } else {
+                loop {
+                    let q = s.space.sample_uniform(&mut rng);
+                    if oracle.is_free(&q, &mut counts) {
+                        break q;
+                    }
+                }
+            };
+            let dir = [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.6, 0.0, 0.8]][i % 3];
+            let across = Across::Translation {
+                group: 0,
+                dir: dir.to_vec(),
+            };
+            let out = centre_round(
+                &s.space,
+                oracle.as_ref(),
+                &groups,
+                &q,
+                &across,
+                reach,
+                0.45,
+                &mut counts,
+                &Deadline::none(),
+            )
+            .unwrap();
+            // replay the round with chords of all intervals
+            let mut current = q.clone();
+            let mut expected = Vec::new();
+            for g in &groups {
+                let motions: Vec<(viaroad::space::Motion, f64)> = match g.kind {
+                    GroupKind::Linear => viaroad::roadmap::centre::perpendiculars(&dir)
+                        .iter()
+                        .map(|d| (s.space.line_through(&current, g, d), reach))
+                        .collect(),
+                    _ => std::iter::once(dir)
+                        .chain(
+                            viaroad::roadmap::centre::perpendiculars(&dir)
+                                .iter()
+                                .map(|v| [v[0], v[1], v[2]]),
+                        )
+                        .map(|a| (s.space.turn_through(&current, g, a), 0.45))
+                        .collect(),
+                };
+                for (mut m, r) in motions {
+                    m.origin.clone_from(&current);
+                    let clip = Interval { lo: -r, hi: r };
+                    let Some(c) = chord_from_intervals(oracle.as_ref(), &m, clip) else {
+                        continue;
+                    };
+                    let t = 0.5 * (c.lo + c.hi);
+                    let mut next = m.at(t);
+                    if g.kind != GroupKind::Linear {
+                        s.space.normalize(&mut next);
+                    }
+                    if t != 0.0 && next != current {
+                        expected.push(next.clone());
+                        current = next;
+                    }
+                }
+            }
+            assert_eq!(
+                out.len(),
+                expected.len(),
+                "{rel} #{i}: {out:?} vs {expected:?}"
+            );
+            for (a, b) in out.iter().zip(&expected) {
+                assert!(
+                    s.space.distance(a, b) <= 1e-9 * s.space.extent(),
+                    "{rel} #{i}: {a:?} vs {b:?}"
+                );
+            }
+            moved += out.len();
+        }
+    }
+    assert!(moved > 0, "no centring move was compared");
 }
 
 #[test]

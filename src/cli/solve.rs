@@ -69,8 +69,8 @@ pub struct SolveArgs {
     #[arg(long, requires = "tree")]
     pub tree_balance: bool,
     /// `--tree`: centring rounds per blocked stair (0: off). A blocked stair moves the node to
-    /// the middle of its free chords across the stair (one interval call per direction) and
-    /// is tried again, up to N times: lines a robot up with a funnel (bugtrap).
+    /// the middle of its free chords across the stair (a first-collision call each way per
+    /// direction) and is tried again, up to N times: lines a robot up with a funnel (bugtrap).
     #[arg(long, value_name = "N", default_value_t = 0, requires = "tree")]
     pub tree_centre: usize,
     /// `--tree-centre`: half-angle of the turns a centring round asks about, in turns (at most

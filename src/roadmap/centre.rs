@@ -1,13 +1,14 @@
 //! Centring a configuration in its free chords: a step towards the medial axis of free space
-//! with one interval call per direction.
+//! with at most two first-collision calls per direction.
 //!
 //! A blocked extend stops against an obstacle. In a funnel (OMPL.app's bugtrap: a rod must
 //! find the narrow tip of a cone) the next extend from that node is blocked again, because the
 //! rod is off the funnel's axis. A sampling planner cannot tell where the middle of the free
-//! space around a node is without many state checks. The interval oracle can: one
-//! *intersectLine* call on the line (or full turn) through the node in a direction gives every
-//! collision interval along it, so the free section containing the node — the *chord* of free
-//! space through it — is known exactly (CHS §1.2). Its midpoint is the point of that line
+//! space around a node is without many state checks. The interval oracle can: the first
+//! collision along the line (or turn) through the node in a direction, forwards and backwards,
+//! bounds the free section containing the node — the *chord* of free space through it —
+//! exactly (CHS §1.2; the same chord as every interval of the line would give, for less: an
+//! oracle skips whatever lies beyond the nearest obstacle on each side). Its midpoint is the point of that line
 //! farthest from the obstacles on both sides; moving there is a certified free single-group
 //! motion. Centring in the directions *across* the blocked motion (translations perpendicular
 //! to it, turns about axes perpendicular to it) is the coordinate-wise retraction towards the
@@ -83,6 +84,54 @@ fn unit_axes(n: usize) -> Vec<Vec<f64>> {
 
 fn axis3(v: &[f64]) -> Option<[f64; 3]> {
     (v.len() == 3).then(|| [v[0], v[1], v[2]])
+}
+
+/// The free chord through `motion.origin` along `motion` within `clip` (which contains 0), if
+/// it is bounded on both sides inside `clip`: `None` when the origin collides or the chord is
+/// open on either side (not a narrow direction). Two first-collision calls, forwards and then
+/// backwards (only when forwards is bounded), instead of every interval of the whole line:
+/// the nearest obstacle on each side is all a chord needs, and an oracle may skip everything
+/// beyond it. `motion` is left running forwards (its range changed).
+fn bounded_chord(
+    oracle: &dyn CollisionOracle,
+    motion: &mut crate::space::Motion,
+    clip: Interval,
+    counts: &mut CallCounts,
+) -> Result<Option<Interval>, OracleError> {
+    motion.range = Interval {
+        lo: 0.0,
+        hi: clip.hi,
+    };
+    let Some(hi) = oracle.first_hit(motion, counts)? else {
+        return Ok(None);
+    };
+    if hi <= 0.0 || hi >= clip.hi {
+        return Ok(None);
+    }
+    reverse(motion);
+    motion.range = Interval {
+        lo: 0.0,
+        hi: -clip.lo,
+    };
+    let back = oracle.first_hit(motion, counts)?;
+    reverse(motion);
+    let Some(back) = back else {
+        return Ok(None);
+    };
+    if back <= 0.0 || back >= -clip.lo {
+        return Ok(None);
+    }
+    Ok(Some(Interval { lo: -back, hi }))
+}
+
+/// The same line or turn, run the other way: `t ↦ −t`.
+fn reverse(motion: &mut crate::space::Motion) {
+    use crate::space::Change;
+    match &mut motion.change {
+        Change::Linear(delta) => delta.iter_mut().for_each(|d| *d = -*d),
+        // about the opposite axis: the oracles take turns by a positive angle
+        Change::Rotation { axis, .. } => axis.iter_mut().for_each(|a| *a = -*a),
+    }
 }
 
 /// One centring round from the free configuration `q`: for every group in turn, every
@@ -177,20 +226,9 @@ pub fn centre_round(
             let mut motion = template;
             motion.origin.clone_from(&current);
             // only the chord within the reach is asked about: cheaper on big meshes
-            motion.range = clip;
-            let hits = oracle.intersect(&motion, counts)?;
-            let Some(chord) = hits
-                .complement_within(motion.range)
-                .iter()
-                .find(|s| s.contains(0.0))
-                .copied()
-            else {
+            let Some(chord) = bounded_chord(oracle, &mut motion, clip, counts)? else {
                 continue;
             };
-            if chord.lo <= clip.lo || chord.hi >= clip.hi {
-                // open on one side within the reach: not a narrow direction
-                continue;
-            }
             let t = 0.5 * (chord.lo + chord.hi);
             if t == 0.0 {
                 continue;

@@ -85,9 +85,9 @@ pub struct TreeParams {
     /// alternating: an entangled end whose extends are mostly trapped gets the effort.
     pub balance: bool,
     /// Centring rounds per blocked stair (0: off, the default): a blocked stair moves the
-    /// node to the middle of its free chords across the stair (`roadmap::centre`, one interval
-    /// call per direction) and tries again, at most this many times — a funnel lines the robot
-    /// up with its axis on the way in.
+    /// node to the middle of its free chords across the stair (`roadmap::centre`, a
+    /// first-collision call each way per direction) and tries again, at most this many times —
+    /// a funnel lines the robot up with its axis on the way in.
     pub centre: usize,
     /// Half-angle of the turns a centring round asks about, in turns (default
     /// [`CENTRE_TURN`]; at most 0.45).

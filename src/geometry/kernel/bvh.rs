@@ -244,6 +244,82 @@ impl<const D: usize> Bvh<D> {
         }
     }
 
+    /// [`Bvh::visit_pairs`] for a question about the *earliest* collision: of the two child
+    /// pairs of a split, the one whose window starts first (`start`) is descended first, and a
+    /// pair whose window `skip` says cannot matter any more (it starts after the earliest
+    /// collision found so far) is pruned, tested or not. The same node tests as the plain
+    /// descent, fewer of them: deep pairs behind an early hit are never reached.
+    pub(crate) fn visit_pairs_earliest<W: Copy>(
+        &self,
+        other: &Bvh<D>,
+        init: W,
+        mut test: impl FnMut(u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
+        mut leaves: impl FnMut(&[u32], &[u32], W) -> bool,
+        start: impl Fn(&W) -> f64,
+        skip: impl Fn(&W) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return true;
+        }
+        let Some(w) = test(0, &self.nodes[0].bounds, &other.nodes[0].bounds, init) else {
+            return true;
+        };
+        self.pairs_earliest(other, 0, 0, w, &mut test, &mut leaves, &start, &skip)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn pairs_earliest<W: Copy>(
+        &self,
+        other: &Bvh<D>,
+        a: u32,
+        b: u32,
+        w: W,
+        test: &mut impl FnMut(u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
+        leaves: &mut impl FnMut(&[u32], &[u32], W) -> bool,
+        start: &impl Fn(&W) -> f64,
+        skip: &impl Fn(&W) -> bool,
+    ) -> bool {
+        if skip(&w) {
+            return true;
+        }
+        let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
+        let (a_leaf, b_leaf) = (na.count > 0, nb.count > 0);
+        if a_leaf && b_leaf {
+            let ia = &self.items[na.first as usize..(na.first + na.count) as usize];
+            let ib = &other.items[nb.first as usize..(nb.first + nb.count) as usize];
+            return leaves(ia, ib, w);
+        }
+        // the same split as `pairs` (and its order for ties)
+        let split_a = !a_leaf
+            && (b_leaf
+                || (na.bounds.hi - na.bounds.lo).norm_squared()
+                    >= (nb.bounds.hi - nb.bounds.lo).norm_squared());
+        let kids = if split_a {
+            [(na.first + 1, b), (na.first, b)]
+        } else {
+            [(a, nb.first + 1), (a, nb.first)]
+        };
+        let tested = kids.map(|(x, y)| {
+            test(
+                x,
+                &self.nodes[x as usize].bounds,
+                &other.nodes[y as usize].bounds,
+                w,
+            )
+            .map(|wk| (x, y, wk))
+        });
+        let [first, second] = match tested {
+            [Some(p), Some(q)] if start(&q.2) < start(&p.2) => [Some(q), Some(p)],
+            t => t,
+        };
+        for (x, y, wk) in first.into_iter().chain(second) {
+            if !self.pairs_earliest(other, x, y, wk, test, leaves, start, skip) {
+                return false;
+            }
+        }
+        true
+    }
+
     /// Items whose leaf boxes overlap `query` (a superset of the items whose own boxes do).
     pub(crate) fn visit_overlapping(
         &self,

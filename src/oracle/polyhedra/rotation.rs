@@ -28,6 +28,7 @@ use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
+use std::cell::Cell;
 use std::f64::consts::PI;
 
 type V3 = Vector3<f64>;
@@ -435,67 +436,83 @@ pub(crate) fn sweep(
         robot_nodes.reset(robot.bvh.node_count());
         robot_swept.reset(robot.faces.len());
         vertex_arcs.reset(robot.vertices.len());
-        robot.bvh.visit_pairs(
-            &obst.bvh,
-            phis,
-            |a, rb, ob, w| {
-                let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
-                    let half = 0.5 * (rb.hi - rb.lo);
-                    let n = cyl.node_bounds(&rb.centre(), &half, margin);
-                    let c = pose.rot * rb.centre();
-                    let ball = half.norm() * (1.0 + 1e-12) + margin;
-                    let swept = turning.arc_box(&c, axis_w).grown(ball).shifted(&pose.pos);
-                    (n, n.sector(), swept)
-                });
-                if !swept.overlaps(ob) {
-                    return None;
+        // a first-collision question: node pairs whose window starts after the earliest piece
+        // found so far are pruned (`cutoff`), and the earlier window is descended first
+        let prefix = sink.is_prefix();
+        let cutoff = Cell::new(f64::INFINITY);
+        let mut test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
+            let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
+                let half = 0.5 * (rb.hi - rb.lo);
+                let n = cyl.node_bounds(&rb.centre(), &half, margin);
+                let c = pose.rot * rb.centre();
+                let ball = half.norm() * (1.0 + 1e-12) + margin;
+                let swept = turning.arc_box(&c, axis_w).grown(ball).shifted(&pose.pos);
+                (n, n.sector(), swept)
+            });
+            if !swept.overlaps(ob) {
+                return None;
+            }
+            let on =
+                world_cyl.node_bounds(&(ob.centre() - pose.pos), &(0.5 * (ob.hi - ob.lo)), margin);
+            if !rn.fixed_overlap(&on) {
+                return None;
+            }
+            match (rsector, on.sector()) {
+                (Some(m), Some(f)) => sector_window(m, f, w),
+                _ => Some(w),
+            }
+        };
+        let mut leaves = |ri: &[u32], oi: &[u32], w: Interval| {
+            if sink.covers(w) {
+                return true;
+            }
+            for &o in oi {
+                let ow = obst.corners(o);
+                let owbox = Aabb::of_points(ow.iter());
+                if !ri.iter().any(|&r| {
+                    robot_swept
+                        .get_or_insert_with(r as usize, || {
+                            face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
+                        })
+                        .overlaps(&owbox)
+                }) {
+                    continue;
                 }
-                let on = world_cyl.node_bounds(
-                    &(ob.centre() - pose.pos),
-                    &(0.5 * (ob.hi - ob.lo)),
-                    margin,
-                );
-                if !rn.fixed_overlap(&on) {
-                    return None;
-                }
-                match (rsector, on.sector()) {
-                    (Some(m), Some(f)) => sector_window(m, f, w),
-                    _ => Some(w),
-                }
-            },
-            |ri, oi, w| {
-                if sink.covers(w) {
-                    return true;
-                }
-                for &o in oi {
-                    let ow = obst.corners(o);
-                    let owbox = Aabb::of_points(ow.iter());
-                    if !ri.iter().any(|&r| {
-                        robot_swept
-                            .get_or_insert_with(r as usize, || {
-                                face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
-                            })
-                            .overlaps(&owbox)
-                    }) {
+                let of = Face::new(ow.map(|x| pose.body_point(&x)));
+                let obox = cyl.box_of(&of.v, margin);
+                for &r in ri {
+                    let swept = robot_swept.get_or_insert_with(r as usize, || {
+                        face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
+                    });
+                    if !swept.overlaps(&owbox) {
                         continue;
                     }
-                    let of = Face::new(ow.map(|x| pose.body_point(&x)));
-                    let obox = cyl.box_of(&of.v, margin);
-                    for &r in ri {
-                        let swept = robot_swept.get_or_insert_with(r as usize, || {
-                            face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
-                        });
-                        if !swept.overlaps(&owbox) {
-                            continue;
-                        }
-                        if !pair(r, o, &of, &obox, w, sink, counts) {
-                            return false;
-                        }
+                    if !pair(r, o, &of, &obox, w, sink, counts) {
+                        return false;
                     }
                 }
-                true
-            },
-        );
+            }
+            if prefix {
+                if let Some(p) = sink.as_slice().first() {
+                    cutoff.set(p.lo);
+                }
+            }
+            true
+        };
+        if prefix {
+            robot.bvh.visit_pairs_earliest(
+                &obst.bvh,
+                phis,
+                &mut test,
+                &mut leaves,
+                |w| w.lo,
+                |w| w.lo >= cutoff.get(),
+            );
+        } else {
+            robot
+                .bvh
+                .visit_pairs(&obst.bvh, phis, &mut test, &mut leaves);
+        }
     } else {
         'all: for o in 0..obst.faces.len() as u32 {
             let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));

@@ -20,6 +20,7 @@ use super::{containment, Caches, Hits, Polyhedra, Pose};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
+use std::cell::Cell;
 
 type V3 = Vector3<f64>;
 
@@ -256,33 +257,52 @@ pub(crate) fn sweep(
         // per-face boxes of the motion frame
         let dir_body = dir;
         placed.reset(robot.bvh.node_count());
-        robot.bvh.visit_pairs(
-            &obst.bvh,
-            window,
-            |a, rb, ob, w| {
-                let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
-                let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
-                // the same test in the robot's frame (the obstacle box turned into it), which
-                // is tight where the first one is loose
-                rb.sweep_range(&dir_body, &pose.body_box(ob).grown(margin))?
-                    .meet(&w)
-            },
-            |ri, oi, w| {
-                if sink.covers(w) {
-                    return true;
-                }
-                for &o in oi {
-                    let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-                    let obox = frame.box_of(&of.v);
-                    for &r in ri {
-                        if !pair(r, o, &of, &obox, w, sink, counts) {
-                            return false;
-                        }
+        // a first-collision question: node pairs whose window starts after the earliest piece
+        // found so far are pruned (`cutoff`), and the earlier window is descended first
+        let prefix = sink.is_prefix();
+        let cutoff = Cell::new(f64::INFINITY);
+        let mut test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
+            let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
+            let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
+            // the same test in the robot's frame (the obstacle box turned into it), which
+            // is tight where the first one is loose
+            rb.sweep_range(&dir_body, &pose.body_box(ob).grown(margin))?
+                .meet(&w)
+        };
+        let mut leaves = |ri: &[u32], oi: &[u32], w: Interval| {
+            if sink.covers(w) {
+                return true;
+            }
+            for &o in oi {
+                let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+                let obox = frame.box_of(&of.v);
+                for &r in ri {
+                    if !pair(r, o, &of, &obox, w, sink, counts) {
+                        return false;
                     }
                 }
-                true
-            },
-        );
+            }
+            if prefix {
+                if let Some(p) = sink.as_slice().first() {
+                    cutoff.set(p.lo);
+                }
+            }
+            true
+        };
+        if prefix {
+            robot.bvh.visit_pairs_earliest(
+                &obst.bvh,
+                window,
+                &mut test,
+                &mut leaves,
+                |w| w.lo,
+                |w| w.lo >= cutoff.get(),
+            );
+        } else {
+            robot
+                .bvh
+                .visit_pairs(&obst.bvh, window, &mut test, &mut leaves);
+        }
     } else {
         'all: for o in 0..obst.faces.len() as u32 {
             let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
