@@ -13,7 +13,7 @@ usage: benches/hard_problems.sh [options]
   --peer PATH        ompl_peer binary (default: /tmp/ompl-peer/build/ompl_peer)
   --out DIR          output directory (default: benches/results/$(date -u +%F))
   --work DIR         roadmaps and scratch files (default: /tmp/hard_problems_work)
-  --problems "A B"   problems, each NAME or NAME:T (default: alpha-1.5:30 bugtrap:60 Apartment:60 Twistycool:20 cubicles:20)
+  --problems "A B"   problems, each NAME or NAME:T (default: alpha-1.5:30 bugtrap:60 Apartment:60 Twistycool:20 cubicles:20 Abstract:60)
   --seeds "1 2 3"    viaroad seeds (default: 1 2 3)
   --side S           both | viaroad | peer (default: both)
   --threads N        RAYON_NUM_THREADS for viaroad (default: 1, as in the issue)
@@ -30,7 +30,7 @@ VIAROAD=target/release/viaroad
 PEER=/tmp/ompl-peer/build/ompl_peer
 OUT=""
 WORK=/tmp/hard_problems_work
-PROBLEMS="alpha-1.5:30 bugtrap:60 Apartment:60 Twistycool:20 cubicles:20"
+PROBLEMS="alpha-1.5:30 bugtrap:60 Apartment:60 Twistycool:20 cubicles:20 Abstract:60"
 SEEDS="1 2 3"
 SIDE=both
 THREADS=1

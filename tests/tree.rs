@@ -200,7 +200,11 @@ fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
             })
             .collect::<Vec<_>>()
     };
-    for extra in [&[][..], &["--tree-coarse", "--tree-stair", "0.05"][..]] {
+    for extra in [
+        &[][..],
+        &["--tree-coarse", "--tree-stair", "0.05"][..],
+        &["--tree-restart", "40"][..],
+    ] {
         let a = run(extra);
         assert_eq!(a, run(extra), "{extra:?}: two runs differ");
         assert!(!a.is_empty());
@@ -212,6 +216,7 @@ fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
         );
         for v in a.iter().filter(|v| v["solved"] == true) {
             assert_eq!(v["stop"], "Connected");
+            assert!(v["attempts"].as_u64().is_some_and(|n| n >= 1), "{v}");
             for key in ["path", "shortened"] {
                 let p: Vec<Vec<f64>> = serde_json::from_value(v[key].clone()).unwrap();
                 common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9)
@@ -228,6 +233,16 @@ fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
             "0",
         ],
         "stair",
+    );
+    fails_with(
+        &[
+            "solve",
+            "scenes/discs-cluttered.toml",
+            "--tree",
+            "--tree-restart",
+            "0",
+        ],
+        "restarts",
     );
     // one single-query planner at a time (a usage error: clap's exit status 2)
     let o = viaroad(&[
@@ -543,4 +558,59 @@ fn centring_trees_find_checked_paths_deterministically_within_the_budget() {
         "{:?}",
         out.nodes
     );
+}
+
+#[test]
+fn restarts_begin_with_the_plain_run_and_keep_to_the_node_budget() {
+    let s = scene("scenes/se2-corridor.toml");
+    let plain = grow(&s, &params(4000), 2);
+    let needed = plain.nodes[0] + plain.nodes[1];
+    assert!(plain.path.is_some() && needed > 100, "{:?}", plain.nodes);
+    let restarting = |first, nodes| TreeParams {
+        restart: Some(first),
+        ..params(nodes)
+    };
+    let key = |o: &TreeOutcome| (o.path.clone(), o.nodes, o.counts.intersect_calls());
+    // a first attempt large enough is the plain run itself
+    let roomy = grow(&s, &restarting(4000, 4000), 2);
+    assert_eq!(key(&roomy), key(&plain));
+    assert_eq!((roomy.attempts, plain.attempts), (1, 1));
+    // a first attempt too small: fresh trees from new streams, twice the nodes each time; the
+    // answer is checked and the same twice
+    let small = restarting(needed / 8, 64 * needed);
+    let (a, b) = (grow(&s, &small, 2), grow(&s, &small, 2));
+    assert!(
+        a.attempts > 1,
+        "solved in the first attempt of {}",
+        needed / 8
+    );
+    check(
+        &s,
+        a.path.as_ref().expect("corridor not solved with restarts"),
+    );
+    assert_eq!((key(&a), a.attempts), (key(&b), b.attempts));
+    // the last attempt kept to its doubled budget (plus at most one extend's staircase)
+    let last = (needed / 8) << (a.attempts - 1);
+    assert!(
+        a.nodes[0] + a.nodes[1] <= last + 60,
+        "{:?} > {last}",
+        a.nodes
+    );
+    // all attempts together keep to `max_nodes`: 10 + 20 + 40 + what is left of 90
+    let tight = grow(&s, &restarting(10, 90), 2);
+    assert_eq!(
+        (tight.path.is_none(), tight.stop),
+        (true, TreeStop::NodeBudget)
+    );
+    assert!(
+        (3..=4).contains(&tight.attempts),
+        "{} attempts",
+        tight.attempts
+    );
+    assert!(TreeParams {
+        restart: Some(0),
+        ..TreeParams::default()
+    }
+    .validate()
+    .is_err());
 }

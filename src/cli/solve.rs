@@ -77,6 +77,11 @@ pub struct SolveArgs {
     /// 0.45): only free arcs narrower than this are centred.
     #[arg(long, value_name = "TURNS", default_value_t = viaroad::roadmap::tree::CENTRE_TURN, requires = "tree")]
     pub tree_centre_turn: f64,
+    /// `--tree`: restart both trees when an attempt has grown this many nodes, each later
+    /// attempt with a new random stream and twice the nodes (RRT run times are heavy-tailed;
+    /// the first attempt is the run without restarts). Default: no restarts.
+    #[arg(long, value_name = "NODES", requires = "tree")]
+    pub tree_restart: Option<usize>,
     /// Seed of the grown roadmap (`--roadmap`) or of the two trees (`--tree`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -358,6 +363,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         centre_turn: a.tree_centre_turn,
         coarse: a.tree_coarse,
         max_nodes: a.nodes,
+        restart: a.tree_restart,
     };
     params.validate().map_err(anyhow::Error::msg)?;
     let queries = scene.checked_queries()?;
@@ -427,14 +433,19 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
                     "start_tree": found.nodes[0],
                     "goal_tree": found.nodes[1],
                     "extends": found.extends,
+                    "attempts": found.attempts,
                     "seconds": secs,
                     "grow_seconds": grow_secs,
                     "stop": format!("{:?}", found.stop),
                 })
             );
         } else if let (Some(raw), Some(p)) = (&found.path, &shortened) {
+            let attempt = match found.attempts {
+                1 => String::new(),
+                n => format!(" (attempt {n})"),
+            };
             println!(
-                "query {}: solved by trees of {} + {} nodes in {secs:.3} s ({grow_secs:.3} s growing), {} intersect calls, {} corners (raw {}), length {:.4}",
+                "query {}: solved by trees of {} + {} nodes{attempt} in {secs:.3} s ({grow_secs:.3} s growing), {} intersect calls, {} corners (raw {}), length {:.4}",
                 i + 1,
                 found.nodes[0],
                 found.nodes[1],
@@ -445,9 +456,10 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
             );
         } else {
             println!(
-                "query {}: not solved in {secs:.3} s ({:?}; trees of {} + {} nodes, {} extends), {} intersect calls",
+                "query {}: not solved in {secs:.3} s ({:?}; {} attempt(s), the last with trees of {} + {} nodes; {} extends), {} intersect calls",
                 i + 1,
                 found.stop,
+                found.attempts,
                 found.nodes[0],
                 found.nodes[1],
                 found.extends,

@@ -92,8 +92,17 @@ pub struct TreeParams {
     /// Half-angle of the turns a centring round asks about, in turns (default
     /// [`CENTRE_TURN`]; at most 0.45).
     pub centre_turn: f64,
-    /// Most nodes of both trees together (a budget that gives the same answer on any machine).
+    /// Most nodes of both trees together (a budget that gives the same answer on any machine);
+    /// with restarts, of all attempts together.
     pub max_nodes: Option<usize>,
+    /// Restarts (`None`: one attempt, the default): the first attempt gets this many nodes,
+    /// and each attempt that runs out starts afresh from the two ends with a new random stream
+    /// and twice the nodes of the one before. RRT run times are heavy-tailed — the same problem
+    /// is solved in 5 s from one seed and not in minutes from another, as on alpha-1.5 and
+    /// bugtrap — and geometric restarts bound the expected time by a small multiple of the
+    /// best fixed cut-off without knowing it (Luby, Sinclair, Zuckerman 1993; for RRTs, Wedge
+    /// and Branicky 2008).
+    pub restart: Option<usize>,
 }
 
 impl Default for TreeParams {
@@ -107,6 +116,7 @@ impl Default for TreeParams {
             centre: 0,
             centre_turn: CENTRE_TURN,
             max_nodes: None,
+            restart: None,
         }
     }
 }
@@ -118,6 +128,9 @@ impl TreeParams {
             if !(v.is_finite() && v > 0.0 && v <= 10.0) {
                 return Err(format!("tree {name} must be a share in (0, 10], got {v}"));
             }
+        }
+        if self.restart == Some(0) {
+            return Err("tree restarts need a first attempt of at least one node".into());
         }
         let t = self.centre_turn;
         if !(t.is_finite() && t > 0.0 && t <= crate::roadmap::bounce::MAX_TURN) {
@@ -153,6 +166,9 @@ pub struct TreeOutcome {
     pub counts: CallCounts,
     /// Why it stopped.
     pub stop: TreeStop,
+    /// Attempts made (1 without restarts); `nodes` are those of the last one, `extends` and
+    /// `counts` those of all.
+    pub attempts: u32,
 }
 
 struct Tree {
@@ -428,7 +444,9 @@ fn across_of(motion: &crate::space::Motion, gi: usize, g: &Group) -> Across {
 
 /// RRT-Connect between the free configurations `start` and `goal` with exact single-group
 /// extends (see the module docs), until the trees meet, `params.max_nodes` is spent or
-/// `deadline` passes. `groups` are the DOF groups each stair moves in turn.
+/// `deadline` passes. `groups` are the DOF groups each stair moves in turn. With
+/// `params.restart` the attempts are seeded `seed`, then streams derived from it, so the first
+/// attempt is the run without restarts cut at its node budget.
 #[allow(clippy::too_many_arguments)]
 pub fn rrt_connect(
     space: &Space,
@@ -438,6 +456,67 @@ pub fn rrt_connect(
     goal: &[f64],
     params: &TreeParams,
     seed: u64,
+    deadline: &Deadline,
+) -> Result<TreeOutcome, OracleError> {
+    let Some(first) = params.restart else {
+        return grow_once(
+            space,
+            oracle,
+            groups,
+            start,
+            goal,
+            params,
+            seed,
+            params.max_nodes,
+            deadline,
+        );
+    };
+    let (mut counts, mut extends, mut spent) = (CallCounts::default(), 0, 0usize);
+    let mut k = 0u32;
+    loop {
+        let budget = first.saturating_mul(1usize << k.min(40));
+        let cap = match params.max_nodes {
+            Some(m) => budget.min(m.saturating_sub(spent)),
+            None => budget,
+        };
+        // attempt k's stream: `seed` itself first, then well-mixed others
+        let seed_k = seed ^ u64::from(k).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        let mut out = grow_once(
+            space,
+            oracle,
+            groups,
+            start,
+            goal,
+            params,
+            seed_k,
+            Some(cap),
+            deadline,
+        )?;
+        counts += out.counts;
+        extends += out.extends;
+        spent += out.nodes[0] + out.nodes[1];
+        let exhausted = params.max_nodes.is_some_and(|m| spent >= m);
+        if out.stop != TreeStop::NodeBudget || exhausted {
+            out.counts = counts;
+            out.extends = extends;
+            out.attempts = k + 1;
+            return Ok(out);
+        }
+        k = k.saturating_add(1);
+    }
+}
+
+/// One attempt of [`rrt_connect`]: `max_nodes` instead of the parameters' budget.
+#[allow(clippy::too_many_arguments)]
+fn grow_once(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    start: &[f64],
+    goal: &[f64],
+    params: &TreeParams,
+    seed: u64,
+    max_nodes: Option<usize>,
     deadline: &Deadline,
 ) -> Result<TreeOutcome, OracleError> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -458,6 +537,7 @@ pub fn rrt_connect(
         extends: g.extends,
         counts: g.counts,
         stop,
+        attempts: 1,
     };
     // the ends themselves first: often the straight staircase is free
     let mut a = 0;
@@ -466,10 +546,7 @@ pub fn rrt_connect(
         if deadline.expired() {
             return Ok(finish(&trees, &g, None, TreeStop::TimedOut));
         }
-        if params
-            .max_nodes
-            .is_some_and(|m| trees[0].nodes.len() + trees[1].nodes.len() >= m)
-        {
+        if max_nodes.is_some_and(|m| trees[0].nodes.len() + trees[1].nodes.len() >= m) {
             return Ok(finish(&trees, &g, None, TreeStop::NodeBudget));
         }
         let q_rand = target
@@ -491,9 +568,7 @@ pub fn rrt_connect(
             let mut closest = f64::INFINITY;
             let min_gain = MIN_PROGRESS * params.stair * space.extent();
             loop {
-                let full = params
-                    .max_nodes
-                    .is_some_and(|m| ta.nodes.len() + tb.nodes.len() >= m);
+                let full = max_nodes.is_some_and(|m| ta.nodes.len() + tb.nodes.len() >= m);
                 if deadline.expired() || full {
                     break;
                 }
