@@ -228,9 +228,7 @@ impl<const D: usize> Bvh<D> {
         };
         let (a_leaf, b_leaf) = (na.count > 0, nb.count > 0);
         if a_leaf && b_leaf {
-            let ia = &self.items[na.first as usize..(na.first + na.count) as usize];
-            let ib = &other.items[nb.first as usize..(nb.first + nb.count) as usize];
-            leaves(ia, ib, w)
+            leaves(self.leaf_items(na), other.leaf_items(nb), w)
         } else if b_leaf
             || (!a_leaf
                 && (na.bounds.hi - na.bounds.lo).norm_squared()
@@ -242,6 +240,11 @@ impl<const D: usize> Bvh<D> {
             self.pairs(other, a, nb.first + 1, w, test, leaves)
                 && self.pairs(other, a, nb.first, w, test, leaves)
         }
+    }
+
+    /// The items of leaf `n`.
+    fn leaf_items(&self, n: &Node<D>) -> &[u32] {
+        &self.items[n.first as usize..(n.first + n.count) as usize]
     }
 
     /// [`Bvh::visit_pairs`] for a question about the *earliest* collision: of the two child
@@ -285,9 +288,7 @@ impl<const D: usize> Bvh<D> {
         let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
         let (a_leaf, b_leaf) = (na.count > 0, nb.count > 0);
         if a_leaf && b_leaf {
-            let ia = &self.items[na.first as usize..(na.first + na.count) as usize];
-            let ib = &other.items[nb.first as usize..(nb.first + nb.count) as usize];
-            return leaves(ia, ib, w);
+            return leaves(self.leaf_items(na), other.leaf_items(nb), w);
         }
         // the same split as `pairs` (and its order for ties)
         let split_a = !a_leaf

@@ -598,6 +598,39 @@ impl Polyhedra {
     }
 }
 
+/// The robot's tree against the obstacles' tree for a sweep into `sink`: in a first-collision
+/// sweep ([`Hits::is_prefix`]) the earlier window first, and node pairs that start after
+/// `cutoff` pruned — `leaves` keeps `cutoff` at the earliest piece ([`note_earliest`]).
+fn descend_pairs(
+    robot: &bvh::Bvh<3>,
+    obstacles: &bvh::Bvh<3>,
+    window: Interval,
+    prefix: bool,
+    cutoff: &std::cell::Cell<f64>,
+    test: impl FnMut(u32, &Aabb, &Aabb, Interval) -> Option<Interval>,
+    leaves: impl FnMut(&[u32], &[u32], Interval) -> bool,
+) {
+    if prefix {
+        robot.visit_pairs_earliest(
+            obstacles,
+            window,
+            test,
+            leaves,
+            |w| w.lo,
+            |w| w.lo >= cutoff.get(),
+        );
+    } else {
+        robot.visit_pairs(obstacles, window, test, leaves);
+    }
+}
+
+/// After a leaf pair of [`descend_pairs`]: the earliest piece so far is the new cutoff.
+fn note_earliest(sink: &Hits, cutoff: &std::cell::Cell<f64>) {
+    if let Some(p) = sink.as_slice().first() {
+        cutoff.set(p.lo);
+    }
+}
+
 /// What a [`Gathered`] sweep wants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Gather {

@@ -21,7 +21,7 @@
 use super::body::{Body, Face};
 use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
-use super::{containment, Caches, Hits, Polyhedra, Pose};
+use super::{containment, descend_pairs, note_earliest, Caches, Hits, Polyhedra, Pose};
 use super::{Aabb, Spans};
 use crate::geometry::kernel::memo::Memo;
 use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
@@ -440,7 +440,7 @@ pub(crate) fn sweep(
         // found so far are pruned (`cutoff`), and the earlier window is descended first
         let prefix = sink.is_prefix();
         let cutoff = Cell::new(f64::INFINITY);
-        let mut test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
+        let test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
             let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
                 let half = 0.5 * (rb.hi - rb.lo);
                 let n = cyl.node_bounds(&rb.centre(), &half, margin);
@@ -462,7 +462,7 @@ pub(crate) fn sweep(
                 _ => Some(w),
             }
         };
-        let mut leaves = |ri: &[u32], oi: &[u32], w: Interval| {
+        let leaves = |ri: &[u32], oi: &[u32], w: Interval| {
             if sink.covers(w) {
                 return true;
             }
@@ -493,26 +493,11 @@ pub(crate) fn sweep(
                 }
             }
             if prefix {
-                if let Some(p) = sink.as_slice().first() {
-                    cutoff.set(p.lo);
-                }
+                note_earliest(sink, &cutoff);
             }
             true
         };
-        if prefix {
-            robot.bvh.visit_pairs_earliest(
-                &obst.bvh,
-                phis,
-                &mut test,
-                &mut leaves,
-                |w| w.lo,
-                |w| w.lo >= cutoff.get(),
-            );
-        } else {
-            robot
-                .bvh
-                .visit_pairs(&obst.bvh, phis, &mut test, &mut leaves);
-        }
+        descend_pairs(&robot.bvh, &obst.bvh, phis, prefix, &cutoff, test, leaves);
     } else {
         'all: for o in 0..obst.faces.len() as u32 {
             let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));

@@ -16,7 +16,7 @@ use super::body::Face;
 use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
 use super::Aabb;
-use super::{containment, Caches, Hits, Polyhedra, Pose};
+use super::{containment, descend_pairs, note_earliest, Caches, Hits, Polyhedra, Pose};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -261,7 +261,7 @@ pub(crate) fn sweep(
         // found so far are pruned (`cutoff`), and the earlier window is descended first
         let prefix = sink.is_prefix();
         let cutoff = Cell::new(f64::INFINITY);
-        let mut test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
+        let test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
             let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
             let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
             // the same test in the robot's frame (the obstacle box turned into it), which
@@ -269,7 +269,7 @@ pub(crate) fn sweep(
             rb.sweep_range(&dir_body, &pose.body_box(ob).grown(margin))?
                 .meet(&w)
         };
-        let mut leaves = |ri: &[u32], oi: &[u32], w: Interval| {
+        let leaves = |ri: &[u32], oi: &[u32], w: Interval| {
             if sink.covers(w) {
                 return true;
             }
@@ -283,26 +283,11 @@ pub(crate) fn sweep(
                 }
             }
             if prefix {
-                if let Some(p) = sink.as_slice().first() {
-                    cutoff.set(p.lo);
-                }
+                note_earliest(sink, &cutoff);
             }
             true
         };
-        if prefix {
-            robot.bvh.visit_pairs_earliest(
-                &obst.bvh,
-                window,
-                &mut test,
-                &mut leaves,
-                |w| w.lo,
-                |w| w.lo >= cutoff.get(),
-            );
-        } else {
-            robot
-                .bvh
-                .visit_pairs(&obst.bvh, window, &mut test, &mut leaves);
-        }
+        descend_pairs(&robot.bvh, &obst.bvh, window, prefix, &cutoff, test, leaves);
     } else {
         'all: for o in 0..obst.faces.len() as u32 {
             let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
