@@ -192,6 +192,44 @@ impl<const D: usize> Bvh<D> {
         ControlFlow::Continue(())
     }
 
+    /// Like [`Bvh::query`], but the test computes a value for each node and item box (the
+    /// window of a motion parameter in which a moving box meets it, say): `None` prunes, and
+    /// `visit` gets each item with its own value. Lets a sweep narrow its window per item
+    /// while it descends, instead of testing one box around the whole sweep.
+    pub(crate) fn query_with<T, B>(
+        &self,
+        mut test: impl FnMut(&Aabb<D>) -> Option<T>,
+        mut visit: impl FnMut(u32, T) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
+        if self.nodes.is_empty() {
+            return ControlFlow::Continue(());
+        }
+        self.descend_with(0, &mut test, &mut visit)
+    }
+
+    fn descend_with<T, B>(
+        &self,
+        node: u32,
+        test: &mut impl FnMut(&Aabb<D>) -> Option<T>,
+        visit: &mut impl FnMut(u32, T) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
+        let n = &self.nodes[node as usize];
+        if test(&n.bounds).is_none() {
+            return ControlFlow::Continue(());
+        }
+        if n.count == 0 {
+            self.descend_with(n.first + 1, test, visit)?;
+            return self.descend_with(n.first, test, visit);
+        }
+        let start = n.first as usize;
+        for &it in &self.items[start..start + n.count as usize] {
+            if let Some(t) = test(&self.boxes[it as usize]) {
+                visit(it, t)?;
+            }
+        }
+        ControlFlow::Continue(())
+    }
+
     /// Simultaneous descent of two trees (this one "a", `other` "b") with a window `W` that
     /// narrows on the way down: `test(a_node, a_bounds, b_bounds, w)` returns the window in
     /// which the two nodes' (swept) volumes may meet, or `None` to prune the pair. For each

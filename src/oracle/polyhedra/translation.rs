@@ -20,6 +20,7 @@ use super::{containment, Caches, Hits, Polyhedra, Pose};
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
+use std::ops::ControlFlow;
 
 type V3 = Vector3<f64>;
 
@@ -229,25 +230,33 @@ pub(crate) fn sweep(
         true
     };
     if ph.enveloping && robot.faces.len() <= super::SMALL_ROBOT {
-        // a robot of a few leaves: the obstacle tree queried with the robot's swept box, the
-        // robot's tree with each obstacle face's box swept back along the motion
+        // a robot of a few leaves: the obstacle tree descended with the robot's box moving
+        // along the motion, each node and face entered only for the λ at which the moving box
+        // meets it (exact for two boxes, so conservative for their contents; far tighter than
+        // the box around the whole sweep once the motion is long and not axis-parallel), then
+        // the robot's tree likewise with each obstacle face's box, for that face's λ only
         let robot_world = pose.world_box(&robot.aabb);
-        let swept = robot_world
-            .shifted(&(dir_w * window.lo))
-            .merge(&robot_world.shifted(&(dir_w * window.hi)))
-            .grown(margin);
-        obst.bvh.visit_overlapping(&swept, |o| {
-            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-            let obox = frame.box_of(&of.v);
-            let b = Aabb::of_points(of.v.iter());
-            let back = b
-                .shifted(&(-dir * window.lo))
-                .merge(&b.shifted(&(-dir * window.hi)))
-                .grown(margin);
-            robot
-                .bvh
-                .visit_overlapping(&back, |r| pair(r, o, &of, &obox, window, sink, counts))
-        });
+        let _ = obst.bvh.query_with(
+            |b| {
+                robot_world
+                    .sweep_range(dir_w, &b.grown(margin))
+                    .and_then(|x| x.meet(&window))
+            },
+            |o, wo| {
+                let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+                let obox = frame.box_of(&of.v);
+                let b = Aabb::of_points(of.v.iter()).grown(margin);
+                let go_on = robot.bvh.visit(
+                    |rb| rb.sweep_range(&dir, &b).and_then(|x| x.meet(&wo)).is_some(),
+                    |r| pair(r, o, &of, &obox, window, sink, counts),
+                );
+                if go_on {
+                    ControlFlow::Continue(())
+                } else {
+                    ControlFlow::Break(())
+                }
+            },
+        );
     } else if ph.enveloping {
         // both trees at once: a robot node's box, placed at the pose (world frame) and moved
         // by λ·dir_w, against an obstacle node's box grown by the margin gives the λ for
