@@ -10,6 +10,7 @@
 //! `log2(n / LEAF_SIZE)`, median splits keep it so) and never touch the heap.
 
 use super::aabb::Aabb;
+use crate::interval::Interval;
 use std::ops::ControlFlow;
 
 /// Most items in one leaf.
@@ -192,39 +193,54 @@ impl<const D: usize> Bvh<D> {
         ControlFlow::Continue(())
     }
 
-    /// Like [`Bvh::query`], but the test computes a value for each node and item box (the
-    /// window of a motion parameter in which a moving box meets it, say): `None` prunes, and
-    /// `visit` gets each item with its own value. Lets a sweep narrow its window per item
-    /// while it descends, instead of testing one box around the whole sweep.
-    pub(crate) fn query_with<T, B>(
+    /// Like [`Bvh::query`] for a moving box: `window` gives the interval of the motion
+    /// parameter in which the box meets a node's or an item's box (`None` prunes), and `visit`
+    /// gets each item with its own window. Lets a sweep narrow its window per item while it
+    /// descends, instead of testing one box around the whole sweep. Of two children, the one
+    /// met earlier is entered first: a yes/no question stops at the first collision, which
+    /// more often lies where the moving box arrives first (and a first-collision question
+    /// wants that one anyway).
+    pub(crate) fn query_windows<B>(
         &self,
-        mut test: impl FnMut(&Aabb<D>) -> Option<T>,
-        mut visit: impl FnMut(u32, T) -> ControlFlow<B>,
+        mut window: impl FnMut(&Aabb<D>) -> Option<Interval>,
+        mut visit: impl FnMut(u32, Interval) -> ControlFlow<B>,
     ) -> ControlFlow<B> {
-        if self.nodes.is_empty() {
+        let Some(root) = self.nodes.first() else {
             return ControlFlow::Continue(());
+        };
+        match window(&root.bounds) {
+            Some(_) => self.descend_windows(0, &mut window, &mut visit),
+            None => ControlFlow::Continue(()),
         }
-        self.descend_with(0, &mut test, &mut visit)
     }
 
-    fn descend_with<T, B>(
+    /// Below `node`, whose own window is not empty.
+    fn descend_windows<B>(
         &self,
         node: u32,
-        test: &mut impl FnMut(&Aabb<D>) -> Option<T>,
-        visit: &mut impl FnMut(u32, T) -> ControlFlow<B>,
+        window: &mut impl FnMut(&Aabb<D>) -> Option<Interval>,
+        visit: &mut impl FnMut(u32, Interval) -> ControlFlow<B>,
     ) -> ControlFlow<B> {
         let n = &self.nodes[node as usize];
-        if test(&n.bounds).is_none() {
+        if n.count > 0 {
+            let start = n.first as usize;
+            for &it in &self.items[start..start + n.count as usize] {
+                if let Some(w) = window(&self.boxes[it as usize]) {
+                    visit(it, w)?;
+                }
+            }
             return ControlFlow::Continue(());
         }
-        if n.count == 0 {
-            self.descend_with(n.first + 1, test, visit)?;
-            return self.descend_with(n.first, test, visit);
-        }
-        let start = n.first as usize;
-        for &it in &self.items[start..start + n.count as usize] {
-            if let Some(t) = test(&self.boxes[it as usize]) {
-                visit(it, t)?;
+        let (a, b) = (n.first + 1, n.first);
+        let wa = window(&self.nodes[a as usize].bounds);
+        let wb = window(&self.nodes[b as usize].bounds);
+        let (first, second) = match (wa, wb) {
+            (Some(x), Some(y)) if y.lo < x.lo => ((b, true), (a, true)),
+            (x, y) => ((a, x.is_some()), (b, y.is_some())),
+        };
+        for (child, met) in [first, second] {
+            if met {
+                self.descend_windows(child, window, visit)?;
             }
         }
         ControlFlow::Continue(())

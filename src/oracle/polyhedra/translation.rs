@@ -236,7 +236,7 @@ pub(crate) fn sweep(
         // the box around the whole sweep once the motion is long and not axis-parallel), then
         // the robot's tree likewise with each obstacle face's box, for that face's λ only
         let robot_world = pose.world_box(&robot.aabb);
-        let _ = obst.bvh.query_with(
+        let _ = obst.bvh.query_windows(
             |b| {
                 robot_world
                     .sweep_range(dir_w, &b.grown(margin))
