@@ -10,7 +10,7 @@
 //! length no blocked-free path can beat), typically after checking a handful of pairs instead
 //! of all `m(m-1)/2`.
 
-use super::{check_direct, direct_length};
+use super::{check_direct_known, direct_length, KnownPieces};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::space::{Config, Group, Space};
 
@@ -24,12 +24,29 @@ enum Pair {
 /// The shortest path through the visibility graph over the corners of `path`, whose
 /// consecutive corners must be joined by free direct paths. The result again consists of
 /// corners joined by single-group straight motions (a direct path across several groups is
-/// expanded into its pieces). Oracle calls are added to `counts`.
+/// expanded into its pieces). Oracle calls are added to `counts`; a piece shared by several
+/// pairs of corners, or one of the path's own, is not asked about ([`KnownPieces`]).
 pub fn shorten(
     space: &Space,
     oracle: &dyn CollisionOracle,
     groups: &[Group],
     path: &[Config],
+    counts: &mut CallCounts,
+) -> Result<Vec<Config>, OracleError> {
+    let mut known = KnownPieces::new();
+    known.certify_path(space, groups, path);
+    shorten_known(space, oracle, groups, path, &mut known, counts)
+}
+
+/// [`shorten()`] with the pieces known so far (those of `path` among them, see
+/// [`KnownPieces::certify_path`]), kept up to date: a query shares them between the greedy
+/// pass and the visibility graph.
+pub fn shorten_known(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    known: &mut KnownPieces,
     counts: &mut CallCounts,
 ) -> Result<Vec<Config>, OracleError> {
     let m = path.len();
@@ -61,7 +78,7 @@ pub fn shorten(
             let k = w[0].min(w[1]) * m + w[0].max(w[1]);
             if state[k] == Pair::Unknown {
                 let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
-                match check_direct(space, oracle, groups, &path[i], &path[j], counts)? {
+                match check_direct_known(space, oracle, groups, &path[i], &path[j], Some(known), counts)? {
                     Some(c) => {
                         state[k] = Pair::Free;
                         corners[k] = Some(c);
@@ -158,6 +175,21 @@ pub fn drop_corners(
     path: &[Config],
     counts: &mut CallCounts,
 ) -> Result<Vec<Config>, OracleError> {
+    let mut known = KnownPieces::new();
+    known.certify_path(space, groups, path);
+    drop_corners_known(space, oracle, groups, path, &mut known, counts)
+}
+
+/// [`drop_corners`] with the pieces known so far (see [`shorten_known`]). A check from a
+/// corner to the one after next that is the path's own two pieces costs no call.
+pub fn drop_corners_known(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    known: &mut KnownPieces,
+    counts: &mut CallCounts,
+) -> Result<Vec<Config>, OracleError> {
     let m = path.len();
     if m <= 2 {
         return Ok(path.to_vec());
@@ -168,7 +200,7 @@ pub fn drop_corners(
     let mut pending: Option<Vec<Config>> = None;
     for k in 1..m - 1 {
         let last = &out[out.len() - 1];
-        match check_direct(space, oracle, groups, last, &path[k + 1], counts)? {
+        match check_direct_known(space, oracle, groups, last, &path[k + 1], Some(known), counts)? {
             Some(corners) => pending = Some(corners),
             None => match pending.take() {
                 Some(corners) => out.extend(corners),
