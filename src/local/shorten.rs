@@ -124,14 +124,19 @@ pub fn shorten_known(
 fn astar(m: usize, cost: &[f64], h: &[f64]) -> Vec<usize> {
     let mut dist = vec![f64::INFINITY; m];
     let mut prev = vec![usize::MAX; m];
-    let mut done = vec![false; m];
+    // `dist + h` of the open corners, infinite once a corner is done (or before it is
+    // reached): the selection is one scan for the minimum instead of a sum and a flag per
+    // corner, and picks the same corner (the first of the smallest). A corner done gets
+    // `dist = −∞`, so that no relaxation passes `d < dist` (its distance is not read again).
+    let mut open = vec![f64::INFINITY; m];
     dist[0] = 0.0;
+    open[0] = h[0];
     loop {
         let mut best = usize::MAX;
         let mut best_f = f64::INFINITY;
-        for i in 0..m {
-            if !done[i] && dist[i] + h[i] < best_f {
-                best_f = dist[i] + h[i];
+        for (i, &f) in open.iter().enumerate() {
+            if f < best_f {
+                best_f = f;
                 best = i;
             }
         }
@@ -139,13 +144,22 @@ fn astar(m: usize, cost: &[f64], h: &[f64]) -> Vec<usize> {
             break;
         }
         let u = best;
-        done[u] = true;
+        let du = dist[u];
+        dist[u] = f64::NEG_INFINITY;
+        open[u] = f64::INFINITY;
         let row = &cost[u * m..(u + 1) * m];
-        for v in 0..m {
-            let d = dist[u] + row[v];
-            if d < dist[v] && !done[v] {
-                dist[v] = d;
-                prev[v] = u;
+        for ((((&c, dv), ov), &hv), pv) in row
+            .iter()
+            .zip(dist.iter_mut())
+            .zip(open.iter_mut())
+            .zip(h)
+            .zip(prev.iter_mut())
+        {
+            let d = du + c;
+            if d < *dv {
+                *dv = d;
+                *pv = u;
+                *ov = d + hv;
             }
         }
     }

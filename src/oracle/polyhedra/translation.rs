@@ -36,11 +36,7 @@ pub(crate) fn edge_face(
 ) -> Option<Interval> {
     let d = q - p;
     let nn = f.n_norm;
-    let dl = d.norm();
     let g = f.n.dot(&d);
-    if g.abs() <= tol.parallel * nn * dl {
-        return None;
-    }
     // outward (g > 0) or inward (g < 0): every atom is multiplied by the sign of g
     let s = g.signum();
     let (mut lo, mut hi) = (window.lo, window.hi);
@@ -58,8 +54,14 @@ pub(crate) fn edge_face(
     };
     let nr = f.n.dot(dir);
     let th = tol.dist * nn;
-    // the edge's tail is behind the plane, its head in front (outward; mirrored inward)
+    // the edge's tail is behind the plane, its head in front (outward; mirrored inward); these
+    // two atoms first, which rule out most pairs without the edge's length (a square root):
+    // a parallel pair gives none either way
     if !atom(-nr, f.offset - f.n.dot(p), th) || !atom(nr, f.n.dot(q) - f.offset, th) {
+        return None;
+    }
+    let dl = d.norm();
+    if g.abs() <= tol.parallel * nn * dl {
         return None;
     }
     let e = f.edges();
@@ -236,13 +238,17 @@ pub(crate) fn sweep(
         // the box around the whole sweep once the motion is long and not axis-parallel), then
         // the robot's tree likewise with each obstacle face's box, for that face's λ only
         let robot_world = pose.world_box(&robot.aabb);
+        // (a node or face whose window is known to collide already is skipped: the union
+        // cannot change)
         let _ = obst.bvh.query_windows(
-            |b| {
-                robot_world
-                    .sweep_range(dir_w, &b.grown(margin))
-                    .and_then(|x| x.meet(&window))
+            sink,
+            |sink, b| {
+                let w = robot_world
+                    .sweep_range(dir_w, &b.grown(margin))?
+                    .meet(&window)?;
+                (!sink.covers(w)).then_some(w)
             },
-            |o, wo| {
+            |sink, o, wo| {
                 let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
                 let obox = frame.box_of(&of.v);
                 let b = Aabb::of_points(of.v.iter()).grown(margin);
