@@ -254,7 +254,7 @@ pub(crate) fn sweep(
                 let b = Aabb::of_points(of.v.iter()).grown(margin);
                 let go_on = robot.bvh.visit(
                     |rb| rb.sweep_range(&dir, &b).and_then(|x| x.meet(&wo)).is_some(),
-                    |r| pair(r, o, &of, &obox, window, sink, counts),
+                    |r| pair(r, o, &of, &obox, wo, sink, counts),
                 );
                 if go_on {
                     ControlFlow::Continue(())
