@@ -78,7 +78,15 @@ pub fn shorten_known(
             let k = w[0].min(w[1]) * m + w[0].max(w[1]);
             if state[k] == Pair::Unknown {
                 let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
-                match check_direct_known(space, oracle, groups, &path[i], &path[j], Some(known), counts)? {
+                match check_direct_known(
+                    space,
+                    oracle,
+                    groups,
+                    &path[i],
+                    &path[j],
+                    Some(known),
+                    counts,
+                )? {
                     Some(c) => {
                         state[k] = Pair::Free;
                         corners[k] = Some(c);
@@ -214,7 +222,15 @@ pub fn drop_corners_known(
     let mut pending: Option<Vec<Config>> = None;
     for k in 1..m - 1 {
         let last = &out[out.len() - 1];
-        match check_direct_known(space, oracle, groups, last, &path[k + 1], Some(known), counts)? {
+        match check_direct_known(
+            space,
+            oracle,
+            groups,
+            last,
+            &path[k + 1],
+            Some(known),
+            counts,
+        )? {
             Some(corners) => pending = Some(corners),
             None => match pending.take() {
                 Some(corners) => out.extend(corners),
