@@ -16,7 +16,7 @@ pub mod spec;
 pub mod straight;
 pub mod viapoint;
 
-pub use shorten::{drop_corners, shorten};
+pub use shorten::{drop_corners, drop_corners_known, shorten, shorten_known};
 pub use spec::LocalSpec;
 pub use straight::StraightLine;
 pub use viapoint::{ViaPoint, ViaPointOptions};
@@ -26,6 +26,7 @@ use crate::interval::IntervalList;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, Motion, Space};
 use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
 
 /// How a connection attempt ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -253,12 +254,92 @@ pub fn check_direct(
     z: &[f64],
     counts: &mut CallCounts,
 ) -> Result<Option<Vec<Config>>, OracleError> {
+    check_direct_known(space, oracle, groups, a, z, None, counts)
+}
+
+/// The answers for single-group pieces of direct paths already known during one shortening,
+/// keyed by the piece's two ends (bit patterns; a piece is a function of its ends).
+///
+/// Not in the seed: a rigid body's path alternates translations and turns, so many pairs of
+/// corners share a piece (from corner `i`, the direct paths to the corner before a turn and
+/// to the one after it begin with the same translation; the direct path from a corner to the
+/// one after next is often the two pieces of the path itself), and the greedy pass and the
+/// visibility graph ask about the same pairs. Each piece is then asked once, and the pieces of
+/// the path being shortened, free by the caller's contract, never.
+#[derive(Debug, Default)]
+pub struct KnownPieces {
+    known: HashMap<Vec<u64>, bool>,
+}
+
+impl KnownPieces {
+    /// Nothing known.
+    pub fn new() -> KnownPieces {
+        KnownPieces::default()
+    }
+
+    /// Records every piece of the direct paths between consecutive corners of `path` as free
+    /// (the contract of [`shorten()`] and [`drop_corners`]: a path's consecutive corners are
+    /// joined by free direct paths).
+    pub fn certify_path(&mut self, space: &Space, groups: &[Group], path: &[Config]) {
+        for w in path.windows(2) {
+            let mut cur = w[0].clone();
+            for (_, next) in direct_pieces(space, groups, 0, &w[0], &w[1]) {
+                self.known.insert(Self::key(&cur, &next), true);
+                cur = next;
+            }
+        }
+    }
+
+    fn key(a: &[f64], z: &[f64]) -> Vec<u64> {
+        a.iter().chain(z).map(|x| x.to_bits()).collect()
+    }
+
+    /// Number of pieces known.
+    pub fn len(&self) -> usize {
+        self.known.len()
+    }
+
+    /// Whether nothing is known.
+    pub fn is_empty(&self) -> bool {
+        self.known.is_empty()
+    }
+}
+
+/// [`check_direct`] that first looks each piece up in `known` (and records what it asks
+/// there): the same answer, and the same corners, with no call for a piece already known.
+pub fn check_direct_known(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    a: &[f64],
+    z: &[f64],
+    mut known: Option<&mut KnownPieces>,
+    counts: &mut CallCounts,
+) -> Result<Option<Vec<Config>>, OracleError> {
     let mut corners = Vec::new();
-    for (motion, end) in direct_pieces(space, groups, 0, a, z) {
-        if !oracle.check_motion(&motion, counts)? {
+    let mut cur: &[f64] = a;
+    let pieces = direct_pieces(space, groups, 0, a, z);
+    for (motion, end) in &pieces {
+        let key = known.as_ref().map(|_| KnownPieces::key(cur, end));
+        let cached = match (&known, &key) {
+            (Some(k), Some(key)) => k.known.get(key).copied(),
+            _ => None,
+        };
+        let free = match cached {
+            Some(f) => f,
+            None => {
+                let f = oracle.check_motion(motion, counts)?;
+                if let (Some(k), Some(key)) = (known.as_mut(), key) {
+                    k.known.insert(key, f);
+                }
+                f
+            }
+        };
+        if !free {
             return Ok(None);
         }
-        corners.push(end);
+        corners.push(end.clone());
+        cur = end;
     }
     if corners.is_empty() {
         corners.push(z.to_vec());

@@ -10,7 +10,7 @@
 //! length no blocked-free path can beat), typically after checking a handful of pairs instead
 //! of all `m(m-1)/2`.
 
-use super::{check_direct, direct_length};
+use super::{check_direct_known, direct_length, KnownPieces};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::space::{Config, Group, Space};
 
@@ -24,12 +24,29 @@ enum Pair {
 /// The shortest path through the visibility graph over the corners of `path`, whose
 /// consecutive corners must be joined by free direct paths. The result again consists of
 /// corners joined by single-group straight motions (a direct path across several groups is
-/// expanded into its pieces). Oracle calls are added to `counts`.
+/// expanded into its pieces). Oracle calls are added to `counts`; a piece shared by several
+/// pairs of corners, or one of the path's own, is not asked about ([`KnownPieces`]).
 pub fn shorten(
     space: &Space,
     oracle: &dyn CollisionOracle,
     groups: &[Group],
     path: &[Config],
+    counts: &mut CallCounts,
+) -> Result<Vec<Config>, OracleError> {
+    let mut known = KnownPieces::new();
+    known.certify_path(space, groups, path);
+    shorten_known(space, oracle, groups, path, &mut known, counts)
+}
+
+/// [`shorten()`] with the pieces known so far (those of `path` among them, see
+/// [`KnownPieces::certify_path`]), kept up to date: a query shares them between the greedy
+/// pass and the visibility graph.
+pub fn shorten_known(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    known: &mut KnownPieces,
     counts: &mut CallCounts,
 ) -> Result<Vec<Config>, OracleError> {
     let m = path.len();
@@ -61,7 +78,15 @@ pub fn shorten(
             let k = w[0].min(w[1]) * m + w[0].max(w[1]);
             if state[k] == Pair::Unknown {
                 let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
-                match check_direct(space, oracle, groups, &path[i], &path[j], counts)? {
+                match check_direct_known(
+                    space,
+                    oracle,
+                    groups,
+                    &path[i],
+                    &path[j],
+                    Some(known),
+                    counts,
+                )? {
                     Some(c) => {
                         state[k] = Pair::Free;
                         corners[k] = Some(c);
@@ -107,14 +132,19 @@ pub fn shorten(
 fn astar(m: usize, cost: &[f64], h: &[f64]) -> Vec<usize> {
     let mut dist = vec![f64::INFINITY; m];
     let mut prev = vec![usize::MAX; m];
-    let mut done = vec![false; m];
+    // `dist + h` of the open corners, infinite once a corner is done (or before it is
+    // reached): the selection is one scan for the minimum instead of a sum and a flag per
+    // corner, and picks the same corner (the first of the smallest). A corner done gets
+    // `dist = −∞`, so that no relaxation passes `d < dist` (its distance is not read again).
+    let mut open = vec![f64::INFINITY; m];
     dist[0] = 0.0;
+    open[0] = h[0];
     loop {
         let mut best = usize::MAX;
         let mut best_f = f64::INFINITY;
-        for i in 0..m {
-            if !done[i] && dist[i] + h[i] < best_f {
-                best_f = dist[i] + h[i];
+        for (i, &f) in open.iter().enumerate() {
+            if f < best_f {
+                best_f = f;
                 best = i;
             }
         }
@@ -122,13 +152,22 @@ fn astar(m: usize, cost: &[f64], h: &[f64]) -> Vec<usize> {
             break;
         }
         let u = best;
-        done[u] = true;
+        let du = dist[u];
+        dist[u] = f64::NEG_INFINITY;
+        open[u] = f64::INFINITY;
         let row = &cost[u * m..(u + 1) * m];
-        for v in 0..m {
-            let d = dist[u] + row[v];
-            if d < dist[v] && !done[v] {
-                dist[v] = d;
-                prev[v] = u;
+        for ((((&c, dv), ov), &hv), pv) in row
+            .iter()
+            .zip(dist.iter_mut())
+            .zip(open.iter_mut())
+            .zip(h)
+            .zip(prev.iter_mut())
+        {
+            let d = du + c;
+            if d < *dv {
+                *dv = d;
+                *pv = u;
+                *ov = d + hv;
             }
         }
     }
@@ -158,6 +197,21 @@ pub fn drop_corners(
     path: &[Config],
     counts: &mut CallCounts,
 ) -> Result<Vec<Config>, OracleError> {
+    let mut known = KnownPieces::new();
+    known.certify_path(space, groups, path);
+    drop_corners_known(space, oracle, groups, path, &mut known, counts)
+}
+
+/// [`drop_corners`] with the pieces known so far (see [`shorten_known`]). A check from a
+/// corner to the one after next that is the path's own two pieces costs no call.
+pub fn drop_corners_known(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    known: &mut KnownPieces,
+    counts: &mut CallCounts,
+) -> Result<Vec<Config>, OracleError> {
     let m = path.len();
     if m <= 2 {
         return Ok(path.to_vec());
@@ -168,7 +222,15 @@ pub fn drop_corners(
     let mut pending: Option<Vec<Config>> = None;
     for k in 1..m - 1 {
         let last = &out[out.len() - 1];
-        match check_direct(space, oracle, groups, last, &path[k + 1], counts)? {
+        match check_direct_known(
+            space,
+            oracle,
+            groups,
+            last,
+            &path[k + 1],
+            Some(known),
+            counts,
+        )? {
             Some(corners) => pending = Some(corners),
             None => match pending.take() {
                 Some(corners) => out.extend(corners),

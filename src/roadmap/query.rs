@@ -28,7 +28,9 @@ use super::params::Budget;
 use super::persist::check_local_spec;
 use super::persist::RoadmapError;
 use crate::deadline::Deadline;
-use crate::local::{drop_corners, path_length, shorten, Connection, LocalMethod, Outcome};
+use crate::local::{
+    drop_corners_known, path_length, shorten_known, Connection, KnownPieces, LocalMethod, Outcome,
+};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
 use petgraph::graph::NodeIndex;
@@ -777,18 +779,30 @@ impl<'a> QueryPlanner<'a> {
         let space = self.roadmap.space();
         raw.dedup();
         let path = if self.options.shorten && !deadline.expired() {
+            // the pieces of the raw path are free (roadmap edges and attachments), and the
+            // greedy pass's answers are shared with the visibility graph
+            let mut known = KnownPieces::new();
+            known.certify_path(space, &self.groups, &raw);
             let fewer;
             let corners = if raw.len() > self.options.exact_shortening_limit {
-                fewer = drop_corners(space, self.oracle, &self.groups, &raw, &mut result.counts)?;
+                fewer = drop_corners_known(
+                    space,
+                    self.oracle,
+                    &self.groups,
+                    &raw,
+                    &mut known,
+                    &mut result.counts,
+                )?;
                 &fewer
             } else {
                 &raw
             };
-            shorten(
+            shorten_known(
                 space,
                 self.oracle,
                 &self.groups,
                 corners,
+                &mut known,
                 &mut result.counts,
             )?
         } else {

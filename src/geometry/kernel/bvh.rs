@@ -10,6 +10,7 @@
 //! `log2(n / LEAF_SIZE)`, median splits keep it so) and never touch the heap.
 
 use super::aabb::Aabb;
+use crate::interval::Interval;
 use std::ops::ControlFlow;
 
 /// Most items in one leaf.
@@ -188,6 +189,72 @@ impl<const D: usize> Bvh<D> {
             if overlaps(&self.boxes[it as usize]) {
                 visit(it as usize)?;
             }
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// Like [`Bvh::query`] for a moving box: `window` gives the interval of the motion
+    /// parameter in which the box meets a node's or an item's box (`None` prunes), and `visit`
+    /// gets each item with its own window. Lets a sweep narrow its window per item while it
+    /// descends, instead of testing one box around the whole sweep. Both see `ctx` (the hits
+    /// so far, say, so that a node whose window is known to collide is skipped whole). Of two
+    /// children, the one met earlier is entered first: a yes/no question stops at the first
+    /// collision, which more often lies where the moving box arrives first (and a
+    /// first-collision question wants that one anyway).
+    pub(crate) fn query_windows<C, B>(
+        &self,
+        ctx: &mut C,
+        mut window: impl FnMut(&C, &Aabb<D>) -> Option<Interval>,
+        mut visit: impl FnMut(&mut C, u32, Interval) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
+        let Some(root) = self.nodes.first() else {
+            return ControlFlow::Continue(());
+        };
+        match window(ctx, &root.bounds) {
+            Some(_) => self.descend_windows(0, ctx, &mut window, &mut visit),
+            None => ControlFlow::Continue(()),
+        }
+    }
+
+    /// Below `node`, whose own window is not empty.
+    fn descend_windows<C, B>(
+        &self,
+        node: u32,
+        ctx: &mut C,
+        window: &mut impl FnMut(&C, &Aabb<D>) -> Option<Interval>,
+        visit: &mut impl FnMut(&mut C, u32, Interval) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
+        let n = &self.nodes[node as usize];
+        if n.count > 0 {
+            let start = n.first as usize;
+            for &it in &self.items[start..start + n.count as usize] {
+                if let Some(w) = window(ctx, &self.boxes[it as usize]) {
+                    visit(ctx, it, w)?;
+                }
+            }
+            return ControlFlow::Continue(());
+        }
+        let (a, b) = (n.first + 1, n.first);
+        let wa = window(ctx, &self.nodes[a as usize].bounds);
+        let wb = window(ctx, &self.nodes[b as usize].bounds);
+        let (first, second) = match (wa, wb) {
+            (Some(x), Some(y)) if y.lo < x.lo => ((b, true), (a, true)),
+            (x, y) => ((a, x.is_some()), (b, y.is_some())),
+        };
+        self.descend_windows_if(first, ctx, window, visit)?;
+        self.descend_windows_if(second, ctx, window, visit)
+    }
+
+    /// The second child is tested again after the first: what the first found may cover it.
+    fn descend_windows_if<C, B>(
+        &self,
+        (child, met): (u32, bool),
+        ctx: &mut C,
+        window: &mut impl FnMut(&C, &Aabb<D>) -> Option<Interval>,
+        visit: &mut impl FnMut(&mut C, u32, Interval) -> ControlFlow<B>,
+    ) -> ControlFlow<B> {
+        if met && window(ctx, &self.nodes[child as usize].bounds).is_some() {
+            self.descend_windows(child, ctx, window, visit)?;
         }
         ControlFlow::Continue(())
     }

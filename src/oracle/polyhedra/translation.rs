@@ -21,6 +21,7 @@ use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
 use std::cell::Cell;
+use std::ops::ControlFlow;
 
 type V3 = Vector3<f64>;
 
@@ -36,11 +37,7 @@ pub(crate) fn edge_face(
 ) -> Option<Interval> {
     let d = q - p;
     let nn = f.n_norm;
-    let dl = d.norm();
     let g = f.n.dot(&d);
-    if g.abs() <= tol.parallel * nn * dl {
-        return None;
-    }
     // outward (g > 0) or inward (g < 0): every atom is multiplied by the sign of g
     let s = g.signum();
     let (mut lo, mut hi) = (window.lo, window.hi);
@@ -58,8 +55,14 @@ pub(crate) fn edge_face(
     };
     let nr = f.n.dot(dir);
     let th = tol.dist * nn;
-    // the edge's tail is behind the plane, its head in front (outward; mirrored inward)
+    // the edge's tail is behind the plane, its head in front (outward; mirrored inward); these
+    // two atoms first, which rule out most pairs without the edge's length (a square root):
+    // a parallel pair gives none either way
     if !atom(-nr, f.offset - f.n.dot(p), th) || !atom(nr, f.n.dot(q) - f.offset, th) {
+        return None;
+    }
+    let dl = d.norm();
+    if g.abs() <= tol.parallel * nn * dl {
         return None;
     }
     let e = f.edges();
@@ -230,25 +233,37 @@ pub(crate) fn sweep(
         true
     };
     if ph.enveloping && robot.faces.len() <= super::SMALL_ROBOT {
-        // a robot of a few leaves: the obstacle tree queried with the robot's swept box, the
-        // robot's tree with each obstacle face's box swept back along the motion
+        // a robot of a few leaves: the obstacle tree descended with the robot's box moving
+        // along the motion, each node and face entered only for the λ at which the moving box
+        // meets it (exact for two boxes, so conservative for their contents; far tighter than
+        // the box around the whole sweep once the motion is long and not axis-parallel), then
+        // the robot's tree likewise with each obstacle face's box, for that face's λ only
         let robot_world = pose.world_box(&robot.aabb);
-        let swept = robot_world
-            .shifted(&(dir_w * window.lo))
-            .merge(&robot_world.shifted(&(dir_w * window.hi)))
-            .grown(margin);
-        obst.bvh.visit_overlapping(&swept, |o| {
-            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-            let obox = frame.box_of(&of.v);
-            let b = Aabb::of_points(of.v.iter());
-            let back = b
-                .shifted(&(-dir * window.lo))
-                .merge(&b.shifted(&(-dir * window.hi)))
-                .grown(margin);
-            robot
-                .bvh
-                .visit_overlapping(&back, |r| pair(r, o, &of, &obox, window, sink, counts))
-        });
+        // (a node or face whose window is known to collide already is skipped: the union
+        // cannot change)
+        let _ = obst.bvh.query_windows(
+            sink,
+            |sink, b| {
+                let w = robot_world
+                    .sweep_range(dir_w, &b.grown(margin))?
+                    .meet(&window)?;
+                (!sink.covers(w)).then_some(w)
+            },
+            |sink, o, wo| {
+                let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+                let obox = frame.box_of(&of.v);
+                let b = Aabb::of_points(of.v.iter()).grown(margin);
+                let go_on = robot.bvh.visit(
+                    |rb| rb.sweep_range(&dir, &b).and_then(|x| x.meet(&wo)).is_some(),
+                    |r| pair(r, o, &of, &obox, wo, sink, counts),
+                );
+                if go_on {
+                    ControlFlow::Continue(())
+                } else {
+                    ControlFlow::Break(())
+                }
+            },
+        );
     } else if ph.enveloping {
         // both trees at once: a robot node's box, placed at the pose (world frame) and moved
         // by λ·dir_w, against an obstacle node's box grown by the margin gives the λ for
