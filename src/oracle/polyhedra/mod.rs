@@ -225,6 +225,14 @@ pub(crate) struct Caches {
     robot_edges: Memo<CylBox>,
     /// An obstacle edge's cylindrical box about the axis of a turn, in the robot's frame.
     obst_edges: Memo<CylBox>,
+    /// An obstacle node's cylindrical bounds (and sector) about the axis of a turn: a node
+    /// meets many robot nodes in one descent.
+    obst_nodes: Memo<rotation::ObstNodeBounds>,
+    /// An obstacle face's world box (a turn).
+    obst_world: Memo<Aabb>,
+    /// An obstacle face in the robot's frame with its cylindrical box about the axis of a
+    /// turn: a large face (a shelf board) is returned with many robot leaves.
+    obst_faces: Memo<(Face, CylBox)>,
     /// Containment along a path.
     pieces: containment::Pieces,
 }
@@ -562,7 +570,7 @@ impl Polyhedra {
             robot.bvh.visit_pairs(
                 &obst.bvh,
                 (),
-                |a, rb, ob, ()| {
+                |a, _, rb, ob, ()| {
                     let world = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
                     (world.overlaps(&ob.grown(m)) && rb.overlaps(&pose.body_box(ob).grown(m)))
                         .then_some(())

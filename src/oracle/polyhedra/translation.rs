@@ -259,7 +259,7 @@ pub(crate) fn sweep(
         robot.bvh.visit_pairs(
             &obst.bvh,
             window,
-            |a, rb, ob, w| {
+            |a, _, rb, ob, w| {
                 let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
                 let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
                 // the same test in the robot's frame (the obstacle box turned into it), which
