@@ -197,7 +197,7 @@ fn digest(arm: &Arm, objects: &[CollisionObject]) -> u64 {
 /// The collision oracle of an arm scene (wrapped in [`crate::oracle::Bounded`] by
 /// [`Scene::oracle`]): single-joint motions exactly, configurations statically.
 ///
-/// Answers of single-joint moves are kept ([`Answers`]): the via-point search asks about a
+/// Answers of single-joint moves are kept: the via-point search asks about a
 /// fifth of its moves again, the same question bit for bit (the same joint over its whole range
 /// from the same base point, say), and such a repeat is answered with the kept answer, which
 /// is the answer (`tests/arm_plan.rs` compares with an oracle that keeps nothing).
