@@ -243,3 +243,63 @@ fn yes_no_and_first_hit_agree_with_the_intervals() {
     }
     assert!(free > 0 && blocked > 0, "{free} free, {blocked} blocked");
 }
+
+/// Kept answers (`ArmCollision` answers a repeated move with what it answered before, the
+/// via-point search's repeats) are the arm oracle's answers: the same intervals, yes/no and
+/// first hit, bit for bit, on first asking and on every repeat, as an oracle that keeps
+/// nothing; and a move that differs in the last bit is asked anew.
+#[test]
+fn kept_answers_are_the_oracles_answers() {
+    use viaroad::oracle::CollisionOracle;
+    use viaroad::scene::arm::ArmCollision;
+    let scene = Scene::load(&arms("panda-box-1.toml")).unwrap();
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm scene")
+    };
+    let keeping = ArmCollision::new(a.arm_oracle().clone());
+    let fresh = ArmCollision::new(a.arm_oracle().clone()).with_kept_answers(false);
+    let c = checker(&scene);
+    let g = &c.arm().group;
+    let groups = scene.space.groups(false);
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    let mut motions = Vec::new();
+    while motions.len() < 60 {
+        let q: Vec<f64> = (0..g.dof())
+            .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+            .collect();
+        let j = rng.random_range(0..g.dof());
+        let (mut q, mut z) = (q.clone(), q);
+        if motions.len() % 2 == 0 {
+            z[j] = rng.random_range(g.lower[j]..=g.upper[j]);
+        } else {
+            // the joint over its whole range, as the via-point search's borderlines
+            (q[j], z[j]) = (g.lower[j], g.upper[j]);
+        }
+        motions.push(scene.space.group_motion(&q, &z, &groups[j]));
+        // the same move again at once, and one whose end differs in the last bit
+        motions.push(scene.space.group_motion(&q, &z, &groups[j]));
+        z[j] = f64::from_bits(z[j].to_bits() + 1);
+        motions.push(scene.space.group_motion(&q, &z, &groups[j]));
+    }
+    let mut counts = viaroad::oracle::CallCounts::default();
+    let mut hits = 0;
+    for round in 0..2 {
+        for m in &motions {
+            let want = fresh.intervals(m, &mut counts).unwrap();
+            hits += usize::from(!want.is_empty() && round == 0);
+            assert_eq!(
+                keeping.intervals(m, &mut counts).unwrap().as_slice(),
+                want.as_slice()
+            );
+            assert_eq!(
+                keeping.motion_is_free(m, &mut counts).unwrap(),
+                fresh.motion_is_free(m, &mut counts).unwrap()
+            );
+            assert_eq!(
+                keeping.first_collision(m, &mut counts).unwrap(),
+                fresh.first_collision(m, &mut counts).unwrap()
+            );
+        }
+    }
+    assert!(hits >= 9, "{hits}");
+}

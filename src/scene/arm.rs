@@ -42,9 +42,9 @@ use crate::robot::urdf::JointKind;
 use crate::robot::{Arm, ArmOptions, ArmOracle, RobotError};
 use crate::space::{Change, Motion, Space};
 use serde::Deserialize;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -196,14 +196,89 @@ fn digest(arm: &Arm, objects: &[CollisionObject]) -> u64 {
 
 /// The collision oracle of an arm scene (wrapped in [`crate::oracle::Bounded`] by
 /// [`Scene::oracle`]): single-joint motions exactly, configurations statically.
+///
+/// Answers of single-joint moves are kept: the via-point search asks about a
+/// fifth of its moves again, the same question bit for bit (the same joint over its whole range
+/// from the same base point, say), and such a repeat is answered with the kept answer, which
+/// is the answer (`tests/arm_plan.rs` compares with an oracle that keeps nothing).
 pub struct ArmCollision {
     oracle: Arc<ArmOracle>,
+    answers: Option<Mutex<Answers>>,
+}
+
+/// A single-joint move by its bits: only the same move gets a kept answer.
+#[derive(Hash, PartialEq, Eq)]
+struct Key {
+    joint: usize,
+    q0: Vec<u64>,
+    amount: u64,
+}
+
+/// Kept answers of one oracle, per question, in the move's own parameter (`t ∈ [0, 1]` of
+/// `q0 + t · amount · e_joint`); forgotten all at once when [`Answers::CAPACITY`] is reached
+/// (a bound on memory: a planner's repeats come soon after the first question).
+#[derive(Default)]
+struct Answers {
+    intervals: HashMap<Key, IntervalList>,
+    free: HashMap<Key, bool>,
+    first_hit: HashMap<Key, Option<f64>>,
+}
+
+impl Answers {
+    const CAPACITY: usize = 1 << 14;
+
+    fn len(&self) -> usize {
+        self.intervals.len() + self.free.len() + self.first_hit.len()
+    }
 }
 
 impl ArmCollision {
-    /// The oracle answering with `oracle`.
+    /// The oracle answering with `oracle`, keeping its answers.
     pub fn new(oracle: Arc<ArmOracle>) -> Self {
-        ArmCollision { oracle }
+        ArmCollision {
+            oracle,
+            answers: Some(Mutex::new(Answers::default())),
+        }
+    }
+
+    /// Switches keeping answers on or off (on by default). Off, every question is answered
+    /// by the arm oracle: the reference of the tests.
+    pub fn with_kept_answers(mut self, on: bool) -> Self {
+        self.answers = on.then(|| Mutex::new(Answers::default()));
+        self
+    }
+
+    /// The kept answer about this move in the map `pick` chooses (one per question), or
+    /// `ask`'s, kept.
+    fn kept<T: Clone>(
+        &self,
+        pick: fn(&mut Answers) -> &mut HashMap<Key, T>,
+        q0: &[f64],
+        joint: usize,
+        amount: f64,
+        ask: impl FnOnce() -> Result<T, RobotError>,
+    ) -> Result<T, OracleError> {
+        let Some(answers) = &self.answers else {
+            return ask().map_err(Self::unsupported);
+        };
+        let key = Key {
+            joint,
+            q0: q0.iter().map(|v| v.to_bits()).collect(),
+            amount: amount.to_bits(),
+        };
+        // a poisoned lock only means another thread panicked while holding it: the map is
+        // consistent (inserts and clears are single calls)
+        let lock = || answers.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(a) = pick(&mut lock()).get(&key) {
+            return Ok(a.clone());
+        }
+        let a = ask().map_err(Self::unsupported)?;
+        let mut kept = lock();
+        if kept.len() >= Answers::CAPACITY {
+            *kept = Answers::default();
+        }
+        pick(&mut kept).insert(key, a.clone());
+        Ok(a)
     }
 
     fn unsupported(e: RobotError) -> OracleError {
@@ -267,10 +342,13 @@ impl ArmCollision {
                 })
             }
             Move::Joint { q0, joint, amount } => {
-                let hits = self
-                    .oracle
-                    .joint_move(&q0, joint, amount, counts)
-                    .map_err(Self::unsupported)?;
+                let hits = self.kept(
+                    |a| &mut a.intervals,
+                    &q0,
+                    joint,
+                    amount,
+                    || self.oracle.joint_move(&q0, joint, amount, counts),
+                )?;
                 let span = range.hi - range.lo;
                 let mapped: Vec<Interval> = hits
                     .iter()
@@ -320,10 +398,13 @@ impl CollisionOracle for ArmCollision {
     ) -> Result<bool, OracleError> {
         let mut own = CallCounts::default();
         let r = match Self::resolve(motion) {
-            Ok(Move::Joint { q0, joint, amount }) => self
-                .oracle
-                .joint_move_free(&q0, joint, amount, &mut own)
-                .map_err(Self::unsupported),
+            Ok(Move::Joint { q0, joint, amount }) => self.kept(
+                |a| &mut a.free,
+                &q0,
+                joint,
+                amount,
+                || self.oracle.joint_move_free(&q0, joint, amount, &mut own),
+            ),
             Ok(Move::Static(q)) => self
                 .oracle
                 .collides(&q, &mut own)
@@ -346,12 +427,19 @@ impl CollisionOracle for ArmCollision {
         let range = motion.range;
         let r = match Self::resolve(motion) {
             Ok(Move::Joint { q0, joint, amount }) => self
-                .oracle
-                .joint_move_first_hit(&q0, joint, amount, &mut own)
+                .kept(
+                    |a| &mut a.first_hit,
+                    &q0,
+                    joint,
+                    amount,
+                    || {
+                        self.oracle
+                            .joint_move_first_hit(&q0, joint, amount, &mut own)
+                    },
+                )
                 .map(|t| {
                     t.map(|t| (range.lo + t * (range.hi - range.lo)).clamp(range.lo, range.hi))
-                })
-                .map_err(Self::unsupported),
+                }),
             Ok(Move::Static(q)) => self
                 .oracle
                 .collides(&q, &mut own)

@@ -260,10 +260,12 @@ impl<const D: usize> Bvh<D> {
     }
 
     /// Simultaneous descent of two trees (this one "a", `other` "b") with a window `W` that
-    /// narrows on the way down: `test(a_node, a_bounds, b_bounds, w)` returns the window in
-    /// which the two nodes' (swept) volumes may meet, or `None` to prune the pair. For each
-    /// pair of leaves that survives, `leaves(a_items, b_items, w)` is called; it returns
-    /// `false` to stop the whole traversal. Returns `false` if stopped.
+    /// narrows on the way down: `test(a_node, b_node, a_bounds, b_bounds, w)` returns the
+    /// window in which the two nodes' (swept) volumes may meet, or `None` to prune the pair.
+    /// For each pair of leaves that survives, `leaves(a_items, b_items, w)` is called with the
+    /// window `test` gave that pair; it returns `false` to stop the whole traversal. Returns
+    /// `false` if stopped. The node ids let callers keep per-call bounds of either tree's
+    /// nodes (`Memo`): a node meets many nodes of the other tree.
     ///
     /// The larger node (by box diagonal) is split first, so that a big robot part is not
     /// compared with tens of thousands of small obstacle leaves one by one.
@@ -271,7 +273,7 @@ impl<const D: usize> Bvh<D> {
         &self,
         other: &Bvh<D>,
         init: W,
-        mut test: impl FnMut(u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
+        mut test: impl FnMut(u32, u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
         mut leaves: impl FnMut(&[u32], &[u32], W) -> bool,
     ) -> bool {
         if self.nodes.is_empty() || other.nodes.is_empty() {
@@ -286,11 +288,11 @@ impl<const D: usize> Bvh<D> {
         a: u32,
         b: u32,
         w: W,
-        test: &mut impl FnMut(u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
+        test: &mut impl FnMut(u32, u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
         leaves: &mut impl FnMut(&[u32], &[u32], W) -> bool,
     ) -> bool {
         let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
-        let Some(w) = test(a, &na.bounds, &nb.bounds, w) else {
+        let Some(w) = test(a, b, &na.bounds, &nb.bounds, w) else {
             return true;
         };
         let (a_leaf, b_leaf) = (na.count > 0, nb.count > 0);
@@ -323,7 +325,7 @@ impl<const D: usize> Bvh<D> {
         &self,
         other: &Bvh<D>,
         init: W,
-        mut test: impl FnMut(u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
+        mut test: impl FnMut(u32, u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
         mut leaves: impl FnMut(&[u32], &[u32], W) -> bool,
         start: impl Fn(&W) -> f64,
         skip: impl Fn(&W) -> bool,
@@ -331,7 +333,7 @@ impl<const D: usize> Bvh<D> {
         if self.nodes.is_empty() || other.nodes.is_empty() {
             return true;
         }
-        let Some(w) = test(0, &self.nodes[0].bounds, &other.nodes[0].bounds, init) else {
+        let Some(w) = test(0, 0, &self.nodes[0].bounds, &other.nodes[0].bounds, init) else {
             return true;
         };
         self.pairs_earliest(other, 0, 0, w, &mut test, &mut leaves, &start, &skip)
@@ -344,7 +346,7 @@ impl<const D: usize> Bvh<D> {
         a: u32,
         b: u32,
         w: W,
-        test: &mut impl FnMut(u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
+        test: &mut impl FnMut(u32, u32, &Aabb<D>, &Aabb<D>, W) -> Option<W>,
         leaves: &mut impl FnMut(&[u32], &[u32], W) -> bool,
         start: &impl Fn(&W) -> f64,
         skip: &impl Fn(&W) -> bool,
@@ -370,6 +372,7 @@ impl<const D: usize> Bvh<D> {
         let tested = kids.map(|(x, y)| {
             test(
                 x,
+                y,
                 &self.nodes[x as usize].bounds,
                 &other.nodes[y as usize].bounds,
                 w,
@@ -503,7 +506,7 @@ mod tests {
         assert!(empty
             .query::<()>(|_| true, |_| ControlFlow::Break(()))
             .is_continue());
-        assert!(empty.visit_pairs(&empty, (), |_, _, _, _| Some(()), |_, _, _| false));
+        assert!(empty.visit_pairs(&empty, (), |_, _, _, _, _| Some(()), |_, _, _| false));
         let one = Bvh::build(vec![Aabb::of_plane_points(&[[0.0, 0.0], [1.0, 2.0]]); 10]);
         let mut seen = 0;
         let r = one.query(
@@ -530,7 +533,7 @@ mod tests {
         ta.visit_pairs(
             &tb,
             (),
-            |_, x, y, ()| x.overlaps(y).then_some(()),
+            |_, _, x, y, ()| x.overlaps(y).then_some(()),
             |ia, ib, ()| {
                 for &i in ia {
                     for &j in ib {

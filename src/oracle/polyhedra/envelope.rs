@@ -320,6 +320,21 @@ impl CylBounds {
     pub fn fixed_overlap(&self, o: &CylBounds) -> bool {
         self.h.0 <= o.h.1 && o.h.0 <= self.h.1 && self.rho.0 <= o.rho.1 && o.rho.0 <= self.rho.1
     }
+
+    /// Whether the fixed coordinates of this node and of a face's box overlap.
+    pub fn fixed_overlap_box(&self, o: &CylBox) -> bool {
+        self.h.0 <= o.h.1 && o.h.0 <= self.h.1 && self.rho.0 <= o.rho.1 && o.rho.0 <= self.rho.1
+    }
+
+    /// Bounds that meet everything (the start of a descent, before any node is bounded).
+    pub fn everything() -> CylBounds {
+        CylBounds {
+            h: (f64::NEG_INFINITY, f64::INFINITY),
+            rho: (0.0, f64::INFINITY),
+            centre: (0.0, 0.0),
+            spread: f64::INFINITY,
+        }
+    }
 }
 
 impl CylFrame {

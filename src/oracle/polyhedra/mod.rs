@@ -225,6 +225,14 @@ pub(crate) struct Caches {
     robot_edges: Memo<CylBox>,
     /// An obstacle edge's cylindrical box about the axis of a turn, in the robot's frame.
     obst_edges: Memo<CylBox>,
+    /// An obstacle node's cylindrical bounds (and sector) about the axis of a turn: a node
+    /// meets many robot nodes in one descent.
+    obst_nodes: Memo<rotation::ObstNodeBounds>,
+    /// An obstacle face's world box (a turn).
+    obst_world: Memo<Aabb>,
+    /// An obstacle face in the robot's frame with its cylindrical box about the axis of a
+    /// turn: a large face (a shelf board) is returned with many robot leaves.
+    obst_faces: Memo<(Face, CylBox)>,
     /// Containment along a path.
     pieces: containment::Pieces,
 }
@@ -562,7 +570,7 @@ impl Polyhedra {
             robot.bvh.visit_pairs(
                 &obst.bvh,
                 (),
-                |a, rb, ob, ()| {
+                |a, _, rb, ob, ()| {
                     let world = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
                     (world.overlaps(&ob.grown(m)) && rb.overlaps(&pose.body_box(ob).grown(m)))
                         .then_some(())
@@ -601,24 +609,22 @@ impl Polyhedra {
 /// The robot's tree against the obstacles' tree for a sweep into `sink`: in a first-collision
 /// sweep ([`Hits::is_prefix`]) the earlier window first, and node pairs that start after
 /// `cutoff` pruned — `leaves` keeps `cutoff` at the earliest piece ([`note_earliest`]).
-fn descend_pairs(
+/// `start` reads the parameter window out of a node pair's `W`.
+#[allow(clippy::too_many_arguments)]
+fn descend_pairs<W: Copy>(
     robot: &bvh::Bvh<3>,
     obstacles: &bvh::Bvh<3>,
-    window: Interval,
+    window: W,
     prefix: bool,
     cutoff: &std::cell::Cell<f64>,
-    test: impl FnMut(u32, &Aabb, &Aabb, Interval) -> Option<Interval>,
-    leaves: impl FnMut(&[u32], &[u32], Interval) -> bool,
+    start: impl Fn(&W) -> f64,
+    test: impl FnMut(u32, u32, &Aabb, &Aabb, W) -> Option<W>,
+    leaves: impl FnMut(&[u32], &[u32], W) -> bool,
 ) {
     if prefix {
-        robot.visit_pairs_earliest(
-            obstacles,
-            window,
-            test,
-            leaves,
-            |w| w.lo,
-            |w| w.lo >= cutoff.get(),
-        );
+        robot.visit_pairs_earliest(obstacles, window, test, leaves, &start, |w| {
+            start(w) >= cutoff.get()
+        });
     } else {
         robot.visit_pairs(obstacles, window, test, leaves);
     }

@@ -37,6 +37,9 @@ type V3 = Vector3<f64>;
 /// its ball sweeps.
 pub(crate) type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
 
+/// An obstacle node's bounds for a turn: cylindrical bounds and their angular sector.
+pub(crate) type ObstNodeBounds = (CylBounds, Option<(f64, f64)>);
+
 /// A piece of a pair's answer shorter than this (radians) …
 const DEGENERATE_SPAN: f64 = 1e-7;
 /// … at whose middle the edge is this close to parallel to the face (as a sine) is a
@@ -269,6 +272,9 @@ pub(crate) fn sweep(
         vertex_arcs,
         robot_edges,
         obst_edges,
+        obst_nodes,
+        obst_world,
+        obst_faces,
         pieces,
         ..
     } = caches;
@@ -432,15 +438,27 @@ pub(crate) fn sweep(
         // Besides, each robot node's ball (about its box's centre) swept along its arc gives
         // a world box for the whole turn (computed once per node and call), and each robot
         // face its swept world box (the arcs of its corners).
+        //
+        // Per call, every obstacle node's bounds and every obstacle face brought into the
+        // robot's frame (with its cylindrical box) are computed once (`obst_nodes`,
+        // `obst_faces`): the same values as before, so the same answer, bit for bit. Each pair
+        // of nodes hands the robot node's cylindrical bounds down with its window, so that at
+        // the leaves an obstacle face whose height or radius range misses the robot leaf's is
+        // skipped for all of the leaf's faces at once (each face's own range lies inside the
+        // leaf's, so `CylBox::fixed_overlap` would rule out every one of those pairs anyway).
         let world_cyl = cyl.rotated(&pose.rot);
         robot_nodes.reset(robot.bvh.node_count());
         robot_swept.reset(robot.faces.len());
         vertex_arcs.reset(robot.vertices.len());
+        obst_nodes.reset(obst.bvh.node_count());
+        obst_world.reset(obst.faces.len());
+        obst_faces.reset(obst.faces.len());
+        let unbounded = CylBounds::everything();
         // a first-collision question: node pairs whose window starts after the earliest piece
         // found so far are pruned (`cutoff`), and the earlier window is descended first
         let prefix = sink.is_prefix();
         let cutoff = Cell::new(f64::INFINITY);
-        let test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
+        let test = |a: u32, b: u32, rb: &Aabb, ob: &Aabb, (w, _): (Interval, CylBounds)| {
             let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
                 let half = 0.5 * (rb.hi - rb.lo);
                 let n = cyl.node_bounds(&rb.centre(), &half, margin);
@@ -452,23 +470,38 @@ pub(crate) fn sweep(
             if !swept.overlaps(ob) {
                 return None;
             }
-            let on =
-                world_cyl.node_bounds(&(ob.centre() - pose.pos), &(0.5 * (ob.hi - ob.lo)), margin);
+            let (on, osector) = *obst_nodes.get_or_insert_with(b as usize, || {
+                let on = world_cyl.node_bounds(
+                    &(ob.centre() - pose.pos),
+                    &(0.5 * (ob.hi - ob.lo)),
+                    margin,
+                );
+                (on, on.sector())
+            });
             if !rn.fixed_overlap(&on) {
                 return None;
             }
-            match (rsector, on.sector()) {
-                (Some(m), Some(f)) => sector_window(m, f, w),
-                _ => Some(w),
-            }
+            let w = match (rsector, osector) {
+                (Some(m), Some(f)) => sector_window(m, f, w)?,
+                _ => w,
+            };
+            Some((w, rn))
         };
-        let leaves = |ri: &[u32], oi: &[u32], w: Interval| {
+        let leaves = |ri: &[u32], oi: &[u32], (w, rn): (Interval, CylBounds)| {
             if sink.covers(w) {
                 return true;
             }
             for &o in oi {
-                let ow = obst.corners(o);
-                let owbox = Aabb::of_points(ow.iter());
+                let (of, obox) = obst_faces.get_or_insert_with(o as usize, || {
+                    let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+                    let obox = cyl.box_of(&of.v, margin);
+                    (of, obox)
+                });
+                if !rn.fixed_overlap_box(obox) {
+                    continue;
+                }
+                let owbox = *obst_world
+                    .get_or_insert_with(o as usize, || Aabb::of_points(obst.corners(o).iter()));
                 if !ri.iter().any(|&r| {
                     robot_swept
                         .get_or_insert_with(r as usize, || {
@@ -478,8 +511,6 @@ pub(crate) fn sweep(
                 }) {
                     continue;
                 }
-                let of = Face::new(ow.map(|x| pose.body_point(&x)));
-                let obox = cyl.box_of(&of.v, margin);
                 for &r in ri {
                     let swept = robot_swept.get_or_insert_with(r as usize, || {
                         face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
@@ -487,7 +518,7 @@ pub(crate) fn sweep(
                     if !swept.overlaps(&owbox) {
                         continue;
                     }
-                    if !pair(r, o, &of, &obox, w, sink, counts) {
+                    if !pair(r, o, of, obox, w, sink, counts) {
                         return false;
                     }
                 }
@@ -497,7 +528,16 @@ pub(crate) fn sweep(
             }
             true
         };
-        descend_pairs(&robot.bvh, &obst.bvh, phis, prefix, &cutoff, test, leaves);
+        descend_pairs(
+            &robot.bvh,
+            &obst.bvh,
+            (phis, unbounded),
+            prefix,
+            &cutoff,
+            |(w, _): &(Interval, CylBounds)| w.lo,
+            test,
+            leaves,
+        );
     } else {
         'all: for o in 0..obst.faces.len() as u32 {
             let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));

@@ -276,7 +276,7 @@ pub(crate) fn sweep(
         // found so far are pruned (`cutoff`), and the earlier window is descended first
         let prefix = sink.is_prefix();
         let cutoff = Cell::new(f64::INFINITY);
-        let test = |a: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
+        let test = |a: u32, _: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
             let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
             let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
             // the same test in the robot's frame (the obstacle box turned into it), which
@@ -302,7 +302,16 @@ pub(crate) fn sweep(
             }
             true
         };
-        descend_pairs(&robot.bvh, &obst.bvh, window, prefix, &cutoff, test, leaves);
+        descend_pairs(
+            &robot.bvh,
+            &obst.bvh,
+            window,
+            prefix,
+            &cutoff,
+            |w| w.lo,
+            test,
+            leaves,
+        );
     } else {
         'all: for o in 0..obst.faces.len() as u32 {
             let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
