@@ -8,8 +8,8 @@
 //! collision along the line (or turn) through the node in a direction, forwards and backwards,
 //! bounds the free section containing the node — the *chord* of free space through it —
 //! exactly (CHS §1.2; the same chord as every interval of the line would give, for less: an
-//! oracle skips whatever lies beyond the nearest obstacle on each side). Its midpoint is the point of that line
-//! farthest from the obstacles on both sides; moving there is a certified free single-group
+//! oracle skips whatever lies beyond the nearest obstacle on each side). Its midpoint is the
+//! point of that line farthest from the obstacles on both sides; moving there is a certified free single-group
 //! motion. Centring in the directions *across* the blocked motion (translations perpendicular
 //! to it, turns about axes perpendicular to it) is the coordinate-wise retraction towards the
 //! medial axis of MAPRM (Wilmarth, Amato, Stiller 1999), which runs through narrow passages;
@@ -135,11 +135,12 @@ fn reverse(motion: &mut crate::space::Motion) {
 }
 
 /// One centring round from the free configuration `q`: for every group in turn, every
-/// direction across `across` (see the [module](self)), one interval call on the line or turn
-/// through the current configuration, and a move to the midpoint of its free chord when the
-/// chord is bounded on both sides within `reach` (a distance, for lines) or `turn_reach`
-/// (in turns, at most [`MAX_TURN`], for turns). Returns the configurations reached (`q` excluded), each joined to the one before by
-/// a certified free single-group motion. Stops early when `deadline` has passed.
+/// direction across `across` (see the [module](self)), the free chord of the line or turn
+/// through the current configuration (first-collision calls), and a move to its midpoint when
+/// the chord is bounded on both sides within `reach` (a distance, for lines) or `turn_reach`
+/// (in turns, at most [`MAX_TURN`], for turns). Returns the configurations reached (`q`
+/// excluded), each joined to the one before by a certified free single-group motion. Stops
+/// early when `deadline` has passed.
 #[allow(clippy::too_many_arguments)]
 pub fn centre_round(
     space: &Space,
