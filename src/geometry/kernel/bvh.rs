@@ -295,19 +295,30 @@ impl<const D: usize> Bvh<D> {
         let Some(w) = test(a, b, &na.bounds, &nb.bounds, w) else {
             return true;
         };
+        match self.split(other, a, b) {
+            None => leaves(self.leaf_items(na), other.leaf_items(nb), w),
+            Some([(x1, y1), (x2, y2)]) => {
+                self.pairs(other, x1, y1, w, test, leaves)
+                    && self.pairs(other, x2, y2, w, test, leaves)
+            }
+        }
+    }
+
+    /// The two child pairs of the node pair `(a, b)` (`None`: two leaves): the larger node (by
+    /// box diagonal) is split, a leaf never.
+    fn split(&self, other: &Bvh<D>, a: u32, b: u32) -> Option<[(u32, u32); 2]> {
+        let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
         let (a_leaf, b_leaf) = (na.count > 0, nb.count > 0);
         if a_leaf && b_leaf {
-            leaves(self.leaf_items(na), other.leaf_items(nb), w)
+            None
         } else if b_leaf
             || (!a_leaf
                 && (na.bounds.hi - na.bounds.lo).norm_squared()
                     >= (nb.bounds.hi - nb.bounds.lo).norm_squared())
         {
-            self.pairs(other, na.first + 1, b, w, test, leaves)
-                && self.pairs(other, na.first, b, w, test, leaves)
+            Some([(na.first + 1, b), (na.first, b)])
         } else {
-            self.pairs(other, a, nb.first + 1, w, test, leaves)
-                && self.pairs(other, a, nb.first, w, test, leaves)
+            Some([(a, nb.first + 1), (a, nb.first)])
         }
     }
 
@@ -354,20 +365,9 @@ impl<const D: usize> Bvh<D> {
         if skip(&w) {
             return true;
         }
-        let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
-        let (a_leaf, b_leaf) = (na.count > 0, nb.count > 0);
-        if a_leaf && b_leaf {
+        let Some(kids) = self.split(other, a, b) else {
+            let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
             return leaves(self.leaf_items(na), other.leaf_items(nb), w);
-        }
-        // the same split as `pairs` (and its order for ties)
-        let split_a = !a_leaf
-            && (b_leaf
-                || (na.bounds.hi - na.bounds.lo).norm_squared()
-                    >= (nb.bounds.hi - nb.bounds.lo).norm_squared());
-        let kids = if split_a {
-            [(na.first + 1, b), (na.first, b)]
-        } else {
-            [(a, nb.first + 1), (a, nb.first)]
         };
         let tested = kids.map(|(x, y)| {
             test(
