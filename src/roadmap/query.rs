@@ -346,6 +346,14 @@ fn unjoined(
     }
 }
 
+/// The nearest nodes of one end with their distances, nearest first.
+type Near = Vec<(u32, f64)>;
+
+/// One way of trying to attach an end: from the first configuration to the second, counted in
+/// the result.
+type Connect<'c> =
+    dyn FnMut(&[f64], &[f64], &mut QueryResult) -> Result<Connection, QueryError> + 'c;
+
 /// An attachment of one end to a node.
 struct Attached {
     component: u32,
@@ -739,12 +747,12 @@ impl<'a> QueryPlanner<'a> {
     fn attach_pass(
         &self,
         k: usize,
-        (near_start, near_goal): &(Vec<(u32, f64)>, Vec<(u32, f64)>),
+        (near_start, near_goal): &(Near, Near),
         (start, goal): (&[f64], &[f64]),
         (at_start, at_goal): &mut (Vec<Attached>, Vec<Attached>),
         result: &mut QueryResult,
         deadline: &Deadline,
-        connect: &mut dyn FnMut(&[f64], &[f64], &mut QueryResult) -> Result<Connection, QueryError>,
+        connect: &mut Connect<'_>,
     ) -> Result<Option<(usize, usize)>, QueryError> {
         for i in 0..k.min(near_start.len().max(near_goal.len())) {
             for side in [Endpoint::Start, Endpoint::Goal] {
