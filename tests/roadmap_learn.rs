@@ -272,6 +272,7 @@ fn extreme_parameters_are_harmless() {
         .unwrap()
         .with_options(viaroad::roadmap::QueryOptions {
             attach_candidates: usize::MAX,
+            attach_direct_candidates: usize::MAX,
             try_direct: false,
             direct_calls: 0,
             shorten: true,

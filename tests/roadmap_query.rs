@@ -399,3 +399,63 @@ fn a_call_budget_bounds_each_query() {
     };
     assert!(total(&tight) < total(&unlimited));
 }
+
+/// Attaching tries the direct path to each of the nearest nodes before the via-point search
+/// (`QueryOptions::attach_direct_candidates`): where a candidate of the start is in straight
+/// sight, the answer leaves the start on a straight line to a roadmap node. With that first
+/// pass off, the search to the nearest node may dodge through via points instead — the scene
+/// has such queries, or this test would show nothing.
+#[test]
+fn attaching_tries_straight_lines_to_the_candidates_first() {
+    let (scene, roadmap) = scene_and_roadmap(true, 200);
+    let d = discs(&scene);
+    let oracle = scene.oracle();
+    let queries = random_queries(&scene, 150, 78);
+    let bits = |q: &[f64]| q.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
+    let nodes: std::collections::HashSet<Vec<u64>> = (0..roadmap.node_count() as u32)
+        .map(|i| bits(roadmap.node(i)))
+        .collect();
+    let k = QueryOptions::default().attach_candidates;
+    let mut via_first = [0usize; 2];
+    let mut in_sight = 0;
+    for (v, direct) in [0, QueryOptions::default().attach_direct_candidates]
+        .into_iter()
+        .enumerate()
+    {
+        let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+            .unwrap()
+            .with_options(QueryOptions {
+                try_direct: false,
+                attach_direct_candidates: direct,
+                ..QueryOptions::default()
+            });
+        for (s, g) in &queries {
+            let r = planner.query(s, g).unwrap();
+            if !r.is_solved() {
+                continue;
+            }
+            assert!(path_free(&r.raw_path, &d) && path_free(&r.path, &d));
+            let sight = roadmap
+                .nearest(s, k, None)
+                .iter()
+                .any(|&(n, _)| path_free(&[s.clone(), roadmap.node(n).to_vec()], &d));
+            if !sight {
+                continue;
+            }
+            in_sight += usize::from(v == 1);
+            if !nodes.contains(&bits(&r.raw_path[1])) {
+                via_first[v] += 1;
+            }
+        }
+    }
+    eprintln!("{in_sight} starts in sight of a candidate; via points first: {via_first:?}");
+    assert!(in_sight > 100, "only {in_sight} starts see a candidate");
+    assert_eq!(
+        via_first[1], 0,
+        "a start in sight of a node attached through via points"
+    );
+    assert!(
+        via_first[0] > 0,
+        "no query attaches through via points without the first pass"
+    );
+}

@@ -52,6 +52,11 @@ pub struct QueryArgs {
     /// (0: only the direct path is checked).
     #[arg(long, value_name = "N")]
     pub direct_calls: Option<u64>,
+    /// Nearest nodes of each end first tried with the direct path alone, before the local
+    /// method searches from the nearest (0: the local method from the first on). Default: all
+    /// the attach candidates (30).
+    #[arg(long, value_name = "N")]
+    pub attach_direct: Option<usize>,
     /// Landmarks guiding A* (0: the space's distance alone as the heuristic). Default: 8 for a
     /// batch of queries, 0 for a single one (they cost one graph search each, once).
     #[arg(long, value_name = "N")]
@@ -221,6 +226,9 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     defaults.grow = !a.no_grow;
     if let Some(n) = a.direct_calls {
         defaults.direct_calls = n;
+    }
+    if let Some(n) = a.attach_direct {
+        defaults.attach_direct_candidates = n;
     }
     match a.landmarks {
         Some(n) => defaults.landmarks = n,
