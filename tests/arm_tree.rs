@@ -20,7 +20,8 @@ fn arms(p: &str) -> PathBuf {
 }
 
 /// The parameters `bench mbm --planner tree` uses by default: sliding stairs, first-hit
-/// prefixes, a node budget instead of a deadline (the same answer on every machine).
+/// prefixes, the trees extended in turn; a node budget instead of a deadline (the same answer
+/// on every machine).
 fn params(scene: &Scene, max_nodes: usize) -> TreeParams {
     TreeParams {
         prefix: Prefix::FirstHit,

@@ -221,6 +221,13 @@ pub struct MbmArgs {
     /// on, the space is a joint space).
     #[arg(long, value_name = "MODE", default_value = "auto")]
     pub tree_slide: viaroad::roadmap::tree::Slide,
+    /// `--planner tree`: extend the smaller tree each time (`true`) instead of alternating
+    /// (`false`, default). With sliding stairs one tree can run into open space, where calls
+    /// are cheap, and grow 10⁵ nodes while the other stays in its pocket: balanced, bookshelf_thin
+    /// 8 and table_under_pick 4 and 8 are solved, but bookshelf_tall 2 and cage 1 and 10 are
+    /// lost (67 / 70 either way, 2026-12-02), so alternating stays the default.
+    #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set)]
+    pub tree_balance: bool,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
@@ -306,6 +313,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             prefix: a.tree_prefix,
             // every problem is a joint space: `auto` is on
             slide: !matches!(a.tree_slide, viaroad::roadmap::tree::Slide::Off),
+            balance: a.tree_balance,
             ..viaroad::roadmap::tree::TreeParams::default()
         },
     };

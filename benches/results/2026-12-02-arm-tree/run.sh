@@ -7,11 +7,14 @@
 P=/tmp/vamp/mbm/problems        # vamp-planner 0.6.4 sdist, resources/panda/problems.tar.bz2
 R=benches/results/2026-12-02-arm-tree
 cd "$(dirname "$0")/../../.."
-for side in before after after-roadmap; do
+for side in before after after-roadmap after-balance; do
   case $side in
     before) X=/tmp/viaroad-before; EXTRA= ;;
     after) X=/tmp/a4/viaroad-after; EXTRA= ;;
     after-roadmap) X=/tmp/a4/viaroad-after; EXTRA="--planner roadmap" ;;
+    # run at 17:15 with a build whose default was `--tree-balance true` (the option came after
+    # the three runs above; the committed default is false, so it is spelt out here)
+    after-balance) X=target/release/viaroad; EXTRA="--tree-balance true" ;;
   esac
   echo "== $side start $(date -u +%H:%M:%S) $(uptime)"
   $X bench mbm $P --robot scenes/arms/panda --time 5 --direct-calls 300 --limit 10 $EXTRA \
