@@ -18,6 +18,7 @@
 use crate::deadline::Deadline;
 use crate::local::{path_length, shorten, LocalSpec};
 use crate::oracle::CallCounts;
+use crate::roadmap::tree::{rrt_connect, shortcut, TreeParams};
 use crate::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
 use crate::robot::{Arm, ArmChecker, ArmOptions};
 use crate::scene::arm::{arm_scene, ArmRobot};
@@ -68,7 +69,38 @@ pub struct MbmOptions {
     pub seed: u64,
     /// At most this many problems per family (in name order).
     pub limit: Option<usize>,
+    /// What plans after the via-point planner alone: a grown roadmap or two trees.
+    pub planner: Planner,
+    /// The trees' parameters ([`Planner::Tree`]).
+    pub tree: TreeParams,
 }
+
+/// The stage after the via-point planner alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Planner {
+    /// A roadmap grown from start and goal until they meet (as `solve --roadmap`).
+    Roadmap,
+    /// Two trees from start and goal (as `solve --tree`, [`crate::roadmap::tree`]): cheap
+    /// short single-joint stairs, which build the fine staircases that a roadmap's long
+    /// connections do not (cage: the way in is free only as a staircase of ≥ 32 steps per
+    /// joint).
+    Tree,
+}
+
+impl std::str::FromStr for Planner {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "roadmap" => Ok(Planner::Roadmap),
+            "tree" => Ok(Planner::Tree),
+            _ => Err(format!("unknown planner {s:?} (roadmap | tree)")),
+        }
+    }
+}
+
+/// Corners ahead that a greedy shortcut pass of a tree path tries from each corner (as
+/// `solve --tree`).
+pub const SHORTCUT_WINDOW: usize = 32;
 
 /// The outcome of one problem.
 #[derive(Clone, Debug, Default, Serialize)]
@@ -83,13 +115,15 @@ pub struct ProblemResult {
     pub oracle_valid: bool,
     /// A path was found.
     pub solved: bool,
-    /// How: `direct` (via-point planner alone) or `roadmap` (grown roadmap); empty if unsolved.
+    /// How: `direct` (via-point planner alone), `roadmap` (grown roadmap) or `tree` (two
+    /// trees); empty if unsolved.
     pub stage: String,
     /// Planning time in seconds (setup of the robot and oracle excluded, see `setup_s`).
     pub time_s: f64,
     /// Loading the problem and building the oracle, seconds.
     pub setup_s: f64,
-    /// Nodes of the grown roadmap (0 when the via-point planner alone solved it).
+    /// Nodes of the grown roadmap, or of both trees (0 when the via-point planner alone
+    /// solved it).
     pub nodes: usize,
     /// Intersect calls (segment + line) of the whole attempt.
     pub calls: u64,
@@ -287,7 +321,58 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         }
         Err(e) => r.error = format!("local method: {e}"),
     }
-    if path.is_none() && !deadline.expired() {
+    if path.is_none() && !deadline.expired() && o.planner == Planner::Tree {
+        match rrt_connect(
+            &scene.space,
+            oracle.as_ref(),
+            &groups,
+            &start,
+            &goal,
+            &o.tree,
+            o.seed,
+            &deadline,
+        ) {
+            Ok(found) => {
+                r.nodes = found.nodes[0] + found.nodes[1];
+                counts += found.counts;
+                if let Some(raw) = found.path {
+                    // greedy shortcut passes in what is left of the budget, as in
+                    // `solve --tree`: the visibility-graph `shorten` of the other stages checks
+                    // long multi-joint pairs of a tree path's hundreds of corners for seconds
+                    // (cage 4: 8 s over a 5 s budget), so it is not run here
+                    let mut short = raw.clone();
+                    loop {
+                        match shortcut(
+                            &scene.space,
+                            oracle.as_ref(),
+                            &groups,
+                            &short,
+                            SHORTCUT_WINDOW,
+                            &mut counts,
+                            &deadline,
+                        ) {
+                            Ok(p) => {
+                                let better = p.len() < short.len();
+                                short = p;
+                                if !better || deadline.expired() {
+                                    break;
+                                }
+                            }
+                            // what was shortened so far is certified free corner to corner
+                            Err(e) => {
+                                r.error = format!("shortening: {e}");
+                                break;
+                            }
+                        }
+                    }
+                    path = Some((raw, short));
+                    r.stage = "tree".into();
+                }
+            }
+            Err(e) => r.error = format!("trees: {e}"),
+        }
+    }
+    if path.is_none() && !deadline.expired() && o.planner == Planner::Roadmap {
         let spec = LocalSpec::roadmap_default();
         let method = spec.build();
         let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref());

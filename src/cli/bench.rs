@@ -197,9 +197,37 @@ pub struct MbmArgs {
     /// At most this many problems per family.
     #[arg(long)]
     pub limit: Option<usize>,
-    /// Seed of the grown roadmaps (and of the workcell roadmaps).
+    /// Seed of the grown roadmaps or trees (and of the workcell roadmaps).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// What plans after the via-point planner alone: `tree` (default: two trees of sliding
+    /// single-joint stairs, as `solve --tree`; they build the fine staircases into the cage and
+    /// the box) or `roadmap` (grown from start and goal, as `solve --roadmap`; the stage
+    /// before 2026-12-02).
+    #[arg(long, value_name = "PLANNER", default_value = "tree")]
+    pub planner: viaroad::bench::mbm::Planner,
+    /// `--planner tree`: longest extend, as a share of the joint space's extent.
+    #[arg(long, value_name = "SHARE", default_value_t = 0.2)]
+    pub tree_range: f64,
+    /// `--planner tree`: longest stair of an extend, as a share of the extent.
+    #[arg(long, value_name = "SHARE", default_value_t = 0.01)]
+    pub tree_stair: f64,
+    /// `--planner tree`: how a stair finds its free prefix (`first`, default: one first-hit
+    /// call; `intervals`; `yesno`). Sliding asks blocked joints again at every stair, and the
+    /// first hit (`joint_move_first_hit`) answers those without the collisions beyond it.
+    #[arg(long, value_name = "MODE", default_value = "first")]
+    pub tree_prefix: viaroad::roadmap::tree::Prefix,
+    /// `--planner tree`: whether a blocked joint lets the stair's other joints go on (`auto`:
+    /// on, the space is a joint space).
+    #[arg(long, value_name = "MODE", default_value = "auto")]
+    pub tree_slide: viaroad::roadmap::tree::Slide,
+    /// `--planner tree`: extend the smaller tree each time (`true`) instead of alternating
+    /// (`false`, default). With sliding stairs one tree can run into open space, where calls
+    /// are cheap, and grow 10⁵ nodes while the other stays in its pocket: balanced, bookshelf_thin
+    /// 8 and table_under_pick 4 and 8 are solved, but bookshelf_tall 2 and cage 1 and 10 are
+    /// lost (67 / 70 either way, 2026-12-02), so alternating stays the default.
+    #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set)]
+    pub tree_balance: bool,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
@@ -278,7 +306,18 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         direct_calls: a.direct_calls,
         seed: a.seed,
         limit: a.limit,
+        planner: a.planner,
+        tree: viaroad::roadmap::tree::TreeParams {
+            range: a.tree_range,
+            stair: a.tree_stair,
+            prefix: a.tree_prefix,
+            // every problem is a joint space: `auto` is on
+            slide: !matches!(a.tree_slide, viaroad::roadmap::tree::Slide::Off),
+            balance: a.tree_balance,
+            ..viaroad::roadmap::tree::TreeParams::default()
+        },
     };
+    options.tree.validate().map_err(anyhow::Error::msg)?;
     let mut results = Vec::new();
     for p in &problems {
         let r = mbm::run_problem(&robot, p, &options);

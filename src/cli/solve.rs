@@ -82,6 +82,12 @@ pub struct SolveArgs {
     /// the first attempt is the run without restarts). Default: no restarts.
     #[arg(long, value_name = "NODES", requires = "tree")]
     pub tree_restart: Option<usize>,
+    /// `--tree`: whether a blocked stair of one DOF group lets the stair's other groups go on
+    /// (`on`), or ends the extend (`off`); `auto` (default): on for arms, whose one group per
+    /// joint stops almost every extend at its first blocked joint, off for rigid bodies (their
+    /// trees stay as they were).
+    #[arg(long, value_name = "MODE", default_value = "auto", requires = "tree")]
+    pub tree_slide: viaroad::roadmap::tree::Slide,
     /// Seed of the grown roadmap (`--roadmap`) or of the two trees (`--tree`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -364,6 +370,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         coarse: a.tree_coarse,
         max_nodes: a.nodes,
         restart: a.tree_restart,
+        slide: a.tree_slide.for_space(&scene.space),
     };
     params.validate().map_err(anyhow::Error::msg)?;
     let queries = scene.checked_queries()?;

@@ -16,8 +16,13 @@
 //! the other tree *connects* (extends repeatedly) towards the new node, as in OMPL's
 //! `RRTConnect`. With [`TreeParams::centre`] a blocked stair first moves its node to the middle
 //! of its free chords across the stair ([`crate::roadmap::centre`]) and is tried again: in a
-//! funnel (bugtrap) that lines the robot up with the funnel's axis. The stream of samples comes from one seeded generator, so with a node budget
-//! and no deadline the answer is the same on every machine.
+//! funnel (bugtrap) that lines the robot up with the funnel's axis. With [`TreeParams::slide`]
+//! (on for arms, [`Slide::Auto`]) a blocked group does not end the extend: the stair's other
+//! groups go on, and later stairs try the blocked one again — an arm has one group per joint,
+//! and stopping at the first blocked joint leaves its trees stuck at their frontiers (cage 1:
+//! the start tree stops at 1 852 nodes, about 2 calls per extend). The stream of samples comes
+//! from one seeded generator, so with a node budget and no deadline the answer is the same on
+//! every machine.
 
 use crate::deadline::Deadline;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
@@ -67,6 +72,41 @@ impl std::str::FromStr for Prefix {
     }
 }
 
+/// Whether an extend slides past a blocked group ([`TreeParams::slide`]), as asked on the
+/// command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slide {
+    /// On for joint spaces (one group per joint), off for every other space.
+    Auto,
+    /// Always.
+    On,
+    /// Never.
+    Off,
+}
+
+impl Slide {
+    /// The [`TreeParams::slide`] value for `space`.
+    pub fn for_space(self, space: &Space) -> bool {
+        match self {
+            Slide::Auto => matches!(space.kind(), crate::space::SpaceKind::Joints { .. }),
+            Slide::On => true,
+            Slide::Off => false,
+        }
+    }
+}
+
+impl std::str::FromStr for Slide {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(Slide::Auto),
+            "on" => Ok(Slide::On),
+            "off" => Ok(Slide::Off),
+            _ => Err(format!("unknown slide mode {s:?} (auto | on | off)")),
+        }
+    }
+}
+
 /// Parameters of [`rrt_connect`].
 #[derive(Clone, Debug)]
 pub struct TreeParams {
@@ -95,6 +135,14 @@ pub struct TreeParams {
     /// Most nodes of both trees together (a budget that gives the same answer on any machine);
     /// with restarts, of all attempts together.
     pub max_nodes: Option<usize>,
+    /// A blocked stair of one group does not end the extend (off by default): the stair's
+    /// other groups still move, later stairs try the blocked group again, and the extend ends
+    /// only when a whole stair moves no group (after the last stair, rounds towards the
+    /// extend's end go on while some group moves). With one group per joint (arms) an extend
+    /// that stops at its first blocked joint moves almost nowhere in clutter — about 2 oracle calls
+    /// per extend on cage 1 — although the other joints could carry on; sliding along the
+    /// obstacle this way keeps a path of certified single-group motions.
+    pub slide: bool,
     /// Restarts (`None`: one attempt, the default): the first attempt gets this many nodes,
     /// and each attempt that runs out starts afresh from the two ends with a new random stream
     /// and twice the nodes of the one before. RRT run times are heavy-tailed — the same problem
@@ -117,6 +165,7 @@ impl Default for TreeParams {
             centre_turn: CENTRE_TURN,
             max_nodes: None,
             restart: None,
+            slide: false,
         }
     }
 }
@@ -327,14 +376,24 @@ impl Grower<'_> {
         let mut current = from.clone();
         let mut parent = near;
         let mut moved = false;
-        for i in 1..=stairs {
-            let w = if i == stairs {
+        // sliding: after the last stair, at most as many rounds again towards `aim`
+        let rounds = if self.params.slide {
+            2 * stairs
+        } else {
+            stairs
+        };
+        for i in 1..=rounds {
+            let w = if i >= stairs {
                 aim.clone()
             } else {
                 self.space
                     .interpolate(&from, &aim, i as f64 / stairs as f64)
             };
-            for (gi, g) in self.groups.iter().enumerate() {
+            if i > stairs && current == aim {
+                break;
+            }
+            let mut stair_moved = false;
+            'groups: for (gi, g) in self.groups.iter().enumerate() {
                 let mut centred = 0;
                 loop {
                     if self.deadline.expired() {
@@ -367,6 +426,7 @@ impl Grower<'_> {
                         parent = tree.add(next.clone(), parent);
                         current = next;
                         moved = true;
+                        stair_moved = true;
                     }
                     if !blocked {
                         break;
@@ -394,8 +454,13 @@ impl Grower<'_> {
                                 current = c;
                             }
                             moved = true;
+                            stair_moved = true;
                             continue;
                         }
+                    }
+                    if self.params.slide {
+                        // the other groups of the stair may still move
+                        continue 'groups;
                     }
                     return Ok(if moved {
                         Extend::Advanced(parent)
@@ -404,10 +469,15 @@ impl Grower<'_> {
                     });
                 }
             }
+            if self.params.slide && !stair_moved {
+                break;
+            }
         }
+        // without sliding every group reached `aim` here; sliding may have stopped short
+        let arrived = !self.params.slide || current == aim;
         Ok(if !moved {
             Extend::Trapped
-        } else if full {
+        } else if full && arrived {
             Extend::Reached(parent)
         } else {
             Extend::Advanced(parent)
