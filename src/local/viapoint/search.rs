@@ -16,8 +16,8 @@
 //! allocations used to cost more than the oracle.
 
 use super::borderline::{
-    base_parameter, borderlines_into, candidates_into, free_sections_into, via_point, Candidate,
-    Crossing, Lines,
+    base_parameter, borderlines_into, candidates_into, free_sections_into, round_is_empty,
+    via_point, Candidate, Crossing, Lines,
 };
 use super::options::{BasePoint, Directions, ViaLimit, ViaPointOptions};
 use crate::deadline::Deadline;
@@ -496,6 +496,12 @@ impl<'a> Search<'a> {
             blocked.group,
         );
         let (space, groups, options) = (self.space, self.groups, self.options);
+        if round_is_empty(groups, options, group, round) {
+            // what erecting this round's (no) borderlines would conclude, without building the
+            // blocked motion first
+            self.b.nodes[id].rounds_exhausted = true;
+            return Ok(false);
+        }
         let mut base = std::mem::take(&mut self.b.base);
         base.clear();
         extend_small(&mut base, self.pt(base_pt));
