@@ -5,10 +5,12 @@
 //! same path. Cage 1 is the problem neither the via-point planner nor the roadmap solves: its
 //! way in is free only as a fine single-joint staircase.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::oracle::CallCounts;
-use viaroad::roadmap::tree::{rrt_connect, shortcut, Prefix, Slide, TreeOutcome, TreeParams};
+use viaroad::roadmap::tree::{shortcut, Prefix, Slide, TreeOutcome, TreeParams};
 use viaroad::robot::ArmChecker;
 use viaroad::scene::{Robot, Scene};
 use viaroad::space::Config;
@@ -32,20 +34,7 @@ fn params(scene: &Scene, max_nodes: usize) -> TreeParams {
 }
 
 fn grow(scene: &Scene, seed: u64) -> TreeOutcome {
-    let oracle = scene.oracle();
-    let groups = scene.space.groups(false);
-    let q = &scene.checked_queries().unwrap()[0];
-    rrt_connect(
-        &scene.space,
-        oracle.as_ref(),
-        &groups,
-        &q.start,
-        &q.goal,
-        &params(scene, 4000),
-        seed,
-        &Deadline::none(),
-    )
-    .unwrap()
+    common::tree::grow(scene, &params(scene, 4000), seed)
 }
 
 /// Start to goal, one joint per segment, free under the independent checker.

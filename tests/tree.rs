@@ -7,33 +7,17 @@
 mod common;
 
 use common::cli::{fails_with, stderr, stdout, viaroad};
+use common::tree::grow;
 use std::path::PathBuf;
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
 use viaroad::oracle::CallCounts;
-use viaroad::roadmap::tree::{rrt_connect, shortcut, Prefix, TreeOutcome, TreeParams, TreeStop};
+use viaroad::roadmap::tree::{shortcut, Prefix, TreeOutcome, TreeParams, TreeStop};
 use viaroad::scene::Scene;
 use viaroad::space::Config;
 
 fn scene(rel: &str) -> Scene {
     Scene::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel)).unwrap()
-}
-
-fn grow(scene: &Scene, params: &TreeParams, seed: u64) -> TreeOutcome {
-    let oracle = scene.oracle();
-    let groups = scene.space.groups(false);
-    let q = &scene.checked_queries().unwrap()[0];
-    rrt_connect(
-        &scene.space,
-        oracle.as_ref(),
-        &groups,
-        &q.start,
-        &q.goal,
-        params,
-        seed,
-        &Deadline::none(),
-    )
-    .unwrap()
 }
 
 /// Checks `path` independently: from the query's start to its goal, every step in one DOF

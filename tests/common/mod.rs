@@ -41,3 +41,4 @@ pub fn check_disc_path(
 pub mod cli;
 pub mod rigid;
 pub mod rigid2d;
+pub mod tree;
