@@ -52,9 +52,9 @@ pub struct QueryArgs {
     /// (0: only the direct path is checked).
     #[arg(long, value_name = "N")]
     pub direct_calls: Option<u64>,
-    /// Nearest nodes of each end first tried with the direct path alone, before the local
-    /// method searches from the nearest (0: the local method from the first on). Default: all
-    /// the attach candidates (30).
+    /// Via-point roadmaps: nearest nodes of each end first tried with the direct path alone,
+    /// before the via-point planner searches from the nearest (0: the planner from the first
+    /// on). Default: all the attach candidates (30).
     #[arg(long, value_name = "N")]
     pub attach_direct: Option<usize>,
     /// Landmarks guiding A* (0: the space's distance alone as the heuristic). Default: 8 for a

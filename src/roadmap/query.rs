@@ -30,7 +30,7 @@ use super::persist::RoadmapError;
 use crate::deadline::Deadline;
 use crate::local::{
     direct_connection, drop_corners_known, path_length, shorten_known, Connection, KnownPieces,
-    LocalMethod, Outcome,
+    LocalMethod, LocalSpec, Outcome,
 };
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
@@ -49,8 +49,8 @@ pub const ATTACH_SHARE: u32 = 2;
 pub struct QueryOptions {
     /// Nearest nodes considered for attaching each of start and goal.
     pub attach_candidates: usize,
-    /// Of those, the nearest this many (default: all) are first tried with the direct path
-    /// alone (a yes/no call per DOF group it changes, stopping at the first blocked one),
+    /// Of those, for a via-point roadmap, the nearest this many (default: all) are first tried
+    /// with the direct path alone (a yes/no call per DOF group it changes, stopping at the first blocked one),
     /// before any is tried with the local method: a free straight motion to the
     /// second-nearest node is cheaper than a search to the nearest that fails (OMPL.app's
     /// Home, query 17: 268 calls failing for the nearest node, 2 for the next; the 50 Home
@@ -714,7 +714,11 @@ impl<'a> QueryPlanner<'a> {
             self.roadmap.nearest(ends.0, k, None),
             self.roadmap.nearest(ends.1, k, None),
         );
-        let direct = direct.min(k);
+        // only a method that searches gains by it: `straight` and `sampled` are the direct
+        // check themselves (a first pass would ask each candidate twice), and a sampled
+        // roadmap's queries must not be answered by exact checks
+        let searches = matches!(method.spec(), LocalSpec::ViaPoint(_));
+        let direct = if searches { direct.min(k) } else { 0 };
         if direct > 0 {
             let space = self.space();
             let mut straight = |a: &[f64], z: &[f64], result: &mut QueryResult| {
