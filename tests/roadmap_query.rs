@@ -459,3 +459,42 @@ fn attaching_tries_straight_lines_to_the_candidates_first() {
         "no query attaches through via points without the first pass"
     );
 }
+
+/// A `straight` roadmap's method is the direct check itself: the first pass of direct paths is
+/// not run for it, so each candidate is asked once (the same attempts and calls as without it).
+#[test]
+fn straight_roadmaps_attach_without_a_first_pass() {
+    let scene = disc_scene(22, 150, 0.05);
+    let roadmap = learn(
+        &scene,
+        &LocalSpec::Straight,
+        &LearnParams::default(),
+        300,
+        5,
+    )
+    .roadmap;
+    let oracle = scene.oracle();
+    let queries = random_queries(&scene, 40, 79);
+    let answers = |direct: usize| -> Vec<(u32, u64)> {
+        let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+            .unwrap()
+            .with_options(QueryOptions {
+                try_direct: false,
+                attach_direct_candidates: direct,
+                ..QueryOptions::default()
+            });
+        queries
+            .iter()
+            .map(|(s, g)| {
+                let r = planner.query(s, g).unwrap();
+                (r.attach_attempts, r.counts.intersect_calls())
+            })
+            .collect()
+    };
+    let with = answers(QueryOptions::default().attach_direct_candidates);
+    assert!(
+        with.iter().any(|&(a, _)| a > 2),
+        "every end attached at once"
+    );
+    assert_eq!(with, answers(0));
+}
