@@ -20,6 +20,21 @@ fn scene(rel: &str) -> Scene {
     Scene::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel)).unwrap()
 }
 
+/// A uniform sample of `s`'s space that `oracle` finds free (rejection sampling).
+fn free_sample(
+    s: &Scene,
+    oracle: &dyn viaroad::oracle::CollisionOracle,
+    rng: &mut rand_chacha::ChaCha8Rng,
+    counts: &mut CallCounts,
+) -> Config {
+    loop {
+        let q = s.space.sample_uniform(rng);
+        if viaroad::oracle::CountedOracle::is_free(oracle, &q, counts) {
+            return q;
+        }
+    }
+}
+
 /// Checks `path` independently: from the query's start to its goal, every step in one DOF
 /// group, every corner and motion free under the scene's checker.
 fn check(scene: &Scene, path: &[Config]) {
@@ -242,7 +257,7 @@ fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
 #[test]
 fn first_collision_is_the_start_of_the_first_interval() {
     use rand::SeedableRng;
-    use viaroad::oracle::{CollisionOracle, CountedOracle};
+    use viaroad::oracle::CollisionOracle;
     for rel in [
         "scenes/ompl/3D/Twistycool.cfg",
         "scenes/ompl/3D/alpha-1.5.cfg",
@@ -262,12 +277,7 @@ fn first_collision_is_the_start_of_the_first_interval() {
             let from = if i % 2 == 0 {
                 q0.clone()
             } else {
-                loop {
-                    let q = s.space.sample_uniform(&mut rng);
-                    if oracle.is_free(&q, &mut counts) {
-                        break q;
-                    }
-                }
+                free_sample(&s, oracle.as_ref(), &mut rng, &mut counts)
             };
             let to = s.space.sample_uniform(&mut rng);
             let t: f64 = rand::Rng::random_range(&mut rng, 0.001..1.0);
@@ -405,7 +415,6 @@ fn centring_chords_from_first_collisions_are_the_chords_of_all_intervals() {
     // intervals puts it (two first-collision calls each way replace one interval call)
     use rand::SeedableRng;
     use viaroad::interval::Interval;
-    use viaroad::oracle::CountedOracle;
     use viaroad::roadmap::centre::{centre_round, Across};
     use viaroad::space::GroupKind;
     let mut moved = 0;
@@ -421,12 +430,7 @@ fn centring_chords_from_first_collisions_are_the_chords_of_all_intervals() {
             let q = if i % 2 == 0 {
                 q0.clone()
             } else {
-                loop {
-                    let q = s.space.sample_uniform(&mut rng);
-                    if oracle.is_free(&q, &mut counts) {
-                        break q;
-                    }
-                }
+                free_sample(&s, oracle.as_ref(), &mut rng, &mut counts)
             };
             let dir = [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.6, 0.0, 0.8]][i % 3];
             let across = Across::Translation {
