@@ -17,7 +17,7 @@
 
 use crate::deadline::Deadline;
 use crate::local::{path_length, shorten, LocalSpec};
-use crate::oracle::CallCounts;
+use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::tree::{rrt_connect, shortcut, TreeParams};
 use crate::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
 use crate::robot::{Arm, ArmChecker, ArmOptions};
@@ -322,8 +322,8 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         Err(e) => r.error = format!("local method: {e}"),
     }
     if path.is_none() && !deadline.expired() && o.planner == Planner::Tree {
-        match rrt_connect(
-            &scene.space,
+        match tree_stage(
+            &scene,
             oracle.as_ref(),
             &groups,
             &start,
@@ -333,39 +333,13 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
             &deadline,
         ) {
             Ok(found) => {
-                r.nodes = found.nodes[0] + found.nodes[1];
+                r.nodes = found.nodes;
                 counts += found.counts;
-                if let Some(raw) = found.path {
-                    // greedy shortcut passes in what is left of the budget, as in
-                    // `solve --tree`: the visibility-graph `shorten` of the other stages checks
-                    // long multi-joint pairs of a tree path's hundreds of corners for seconds
-                    // (cage 4: 8 s over a 5 s budget), so it is not run here
-                    let mut short = raw.clone();
-                    loop {
-                        match shortcut(
-                            &scene.space,
-                            oracle.as_ref(),
-                            &groups,
-                            &short,
-                            SHORTCUT_WINDOW,
-                            &mut counts,
-                            &deadline,
-                        ) {
-                            Ok(p) => {
-                                let better = p.len() < short.len();
-                                short = p;
-                                if !better || deadline.expired() {
-                                    break;
-                                }
-                            }
-                            // what was shortened so far is certified free corner to corner
-                            Err(e) => {
-                                r.error = format!("shortening: {e}");
-                                break;
-                            }
-                        }
-                    }
-                    path = Some((raw, short));
+                if let Some(e) = found.shortening_error {
+                    r.error = e;
+                }
+                if found.path.is_some() {
+                    path = found.path;
                     r.stage = "tree".into();
                 }
             }
@@ -426,6 +400,80 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         }
     }
     r
+}
+
+/// What [`tree_stage`] found.
+pub struct TreeStage {
+    /// Nodes of both trees.
+    pub nodes: usize,
+    /// Oracle work of the trees and the shortcuts.
+    pub counts: CallCounts,
+    /// The raw tree path and its shortcut version, if the trees met.
+    pub path: Option<(Vec<Config>, Vec<Config>)>,
+    /// Why shortcutting stopped early (the path shortened so far is kept).
+    pub shortening_error: Option<String>,
+}
+
+/// Two trees from `start` and `goal` ([`rrt_connect`]) within `deadline`, their path shortened
+/// by greedy shortcut passes in what is left: the visibility-graph `shorten` of the other
+/// stages checks long multi-joint pairs of a tree path's hundreds of corners for seconds (cage
+/// 4: 8 s over a 5 s budget), so it is not run here.
+#[allow(clippy::too_many_arguments)]
+pub fn tree_stage(
+    scene: &Scene,
+    oracle: &dyn CollisionOracle,
+    groups: &[crate::space::Group],
+    start: &Config,
+    goal: &Config,
+    tree: &TreeParams,
+    seed: u64,
+    deadline: &Deadline,
+) -> Result<TreeStage, OracleError> {
+    let found = rrt_connect(
+        &scene.space,
+        oracle,
+        groups,
+        start,
+        goal,
+        tree,
+        seed,
+        deadline,
+    )?;
+    let mut stage = TreeStage {
+        nodes: found.nodes[0] + found.nodes[1],
+        counts: found.counts,
+        path: None,
+        shortening_error: None,
+    };
+    if let Some(raw) = found.path {
+        let mut short = raw.clone();
+        loop {
+            match shortcut(
+                &scene.space,
+                oracle,
+                groups,
+                &short,
+                SHORTCUT_WINDOW,
+                &mut stage.counts,
+                deadline,
+            ) {
+                Ok(p) => {
+                    let better = p.len() < short.len();
+                    short = p;
+                    if !better || deadline.expired() {
+                        break;
+                    }
+                }
+                // what was shortened so far is certified free corner to corner
+                Err(e) => {
+                    stage.shortening_error = Some(format!("shortening: {e}"));
+                    break;
+                }
+            }
+        }
+        stage.path = Some((raw, short));
+    }
+    Ok(stage)
 }
 
 /// Mean, standard deviation and percentiles of a sample (VAMP's `evaluate_mbm` columns).
@@ -577,6 +625,9 @@ pub struct WorkcellResult {
     pub valid: usize,
     /// Valid requests answered.
     pub solved: usize,
+    /// Of those, answered by the trees after the roadmap did not answer in its share of the
+    /// query time.
+    pub by_trees: usize,
     /// Answered paths the independent checker certifies.
     pub certified: usize,
     /// Query latency over the valid requests, milliseconds.
@@ -586,12 +637,19 @@ pub struct WorkcellResult {
 /// Learns a roadmap of the family's first scene within `budget`, saves it to `save_to`, loads
 /// it back, and answers the start/goal pairs of every request of the family that are valid in
 /// that scene (each within `query_time`), re-checking each path.
+///
+/// With `trees`, a query asks the roadmap for half of `query_time` and, where it gets no
+/// answer, two trees from start to goal ([`tree_stage`]) for the rest: growing a copy of the
+/// roadmap does not build the fine single-joint staircases into a box or a cage
+/// (2026-12-02 evening: box 2 of 5, cage 0 of 4 on a 200-node roadmap), the trees do.
+#[allow(clippy::too_many_arguments)]
 pub fn run_workcell(
     robot: &Arm,
     problems: &[Problem],
     budget: &Budget,
     seed: u64,
     query_time: Duration,
+    trees: Option<&TreeParams>,
     save_to: &Path,
 ) -> Result<WorkcellResult, Box<dyn std::error::Error + Send + Sync>> {
     let first = problems.first().ok_or("no problems")?;
@@ -599,6 +657,7 @@ pub fn run_workcell(
     let check = checker(&scene).ok_or("no checker")?;
     let oracle = scene.oracle();
     let method = LocalSpec::roadmap_default().build();
+    let groups = method.groups(&scene.space);
     let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref()).learn(
         &LearnParams::default(),
         budget,
@@ -623,8 +682,13 @@ pub fn run_workcell(
         requests: problems.len(),
         ..WorkcellResult::default()
     };
+    let roadmap_time = if trees.is_some() {
+        query_time / 2
+    } else {
+        query_time
+    };
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?.with_options(QueryOptions {
-        time: Some(query_time),
+        time: Some(roadmap_time),
         ..QueryOptions::default()
     });
     let arm = &check.arm().clone();
@@ -647,17 +711,35 @@ pub fn run_workcell(
         };
         r.valid += 1;
         let t = Instant::now();
-        let answer = planner.query(&s, &g);
+        let deadline = Deadline::none().within(Some(query_time));
+        let mut path = planner
+            .query(&s, &g)
+            .ok()
+            .filter(|a| a.is_solved())
+            .map(|a| a.path);
+        if let (None, Some(tree)) = (&path, trees) {
+            if let Ok(found) = tree_stage(
+                &scene,
+                oracle.as_ref(),
+                &groups,
+                &s,
+                &g,
+                tree,
+                seed,
+                &deadline,
+            ) {
+                path = found.path.map(|(_, short)| short);
+                r.by_trees += usize::from(path.is_some());
+            }
+        }
         times.push(t.elapsed().as_secs_f64() * 1e3);
-        if let Ok(a) = answer {
-            if a.is_solved() {
-                r.solved += 1;
-                if check
-                    .check_path(&a.path, check_step(&check))
-                    .is_ok_and(|rep| rep.valid)
-                {
-                    r.certified += 1;
-                }
+        if let Some(path) = path {
+            r.solved += 1;
+            if check
+                .check_path(&path, check_step(&check))
+                .is_ok_and(|rep| rep.valid)
+            {
+                r.certified += 1;
             }
         }
     }

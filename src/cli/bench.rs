@@ -235,7 +235,9 @@ pub struct MbmArgs {
     /// Nodes of each workcell roadmap.
     #[arg(long, default_value_t = 1000)]
     pub nodes: usize,
-    /// Seconds one workcell query may take (it may grow the roadmap meanwhile).
+    /// Seconds one workcell query may take (it may grow the roadmap meanwhile; with `--planner
+    /// tree`, half of it, and two trees from start to goal the other half where the roadmap
+    /// did not answer).
     #[arg(long, default_value_t = 5.0)]
     pub query_time: f64,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
@@ -250,57 +252,6 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
     let robot = mbm::load_robot(&a.robot)?;
     let problems = mbm::find_problems(&a.dir, a.limit)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
-    if a.workcell {
-        let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
-        families.dedup();
-        let mut md = String::from(
-            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | certified | query p50 ms | p95 ms | max ms |\n\
-             |---|---|---|---|---|---|---|---|---|---|---|---|\n",
-        );
-        let mut all = Vec::new();
-        for f in &families {
-            let ps: Vec<mbm::Problem> = problems
-                .iter()
-                .filter(|p| &p.family == f)
-                .cloned()
-                .collect();
-            let save = a.out.join(format!("{f}.roadmap"));
-            let r = mbm::run_workcell(
-                &robot,
-                &ps,
-                &viaroad::roadmap::Budget::nodes(a.nodes),
-                a.seed,
-                super::limits::parse_seconds("--query-time", a.query_time)?,
-                &save,
-            )
-            .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
-            let line = format!(
-                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} |\n",
-                r.family,
-                r.nodes,
-                r.learn_s,
-                r.learn_calls,
-                r.load_ms,
-                r.requests,
-                r.valid,
-                r.solved,
-                r.certified,
-                r.query_ms.p50,
-                r.query_ms.p95,
-                r.query_ms.max
-            );
-            eprint!("{line}");
-            md.push_str(&line);
-            all.push(r);
-        }
-        print!("{md}");
-        super::output::save(&a.out.join("workcell.md"), md.as_bytes())?;
-        super::output::save(
-            &a.out.join("workcell.json"),
-            serde_json::to_string_pretty(&all)?.as_bytes(),
-        )?;
-        return Ok(());
-    }
     let options = mbm::MbmOptions {
         time,
         direct_calls: a.direct_calls,
@@ -318,6 +269,59 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         },
     };
     options.tree.validate().map_err(anyhow::Error::msg)?;
+    if a.workcell {
+        let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
+        families.dedup();
+        let mut md = String::from(
+            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | query p50 ms | p95 ms | max ms |\n\
+             |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        );
+        let mut all = Vec::new();
+        for f in &families {
+            let ps: Vec<mbm::Problem> = problems
+                .iter()
+                .filter(|p| &p.family == f)
+                .cloned()
+                .collect();
+            let save = a.out.join(format!("{f}.roadmap"));
+            let r = mbm::run_workcell(
+                &robot,
+                &ps,
+                &viaroad::roadmap::Budget::nodes(a.nodes),
+                a.seed,
+                super::limits::parse_seconds("--query-time", a.query_time)?,
+                (a.planner == mbm::Planner::Tree).then_some(&options.tree),
+                &save,
+            )
+            .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
+            let line = format!(
+                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} |\n",
+                r.family,
+                r.nodes,
+                r.learn_s,
+                r.learn_calls,
+                r.load_ms,
+                r.requests,
+                r.valid,
+                r.solved,
+                r.by_trees,
+                r.certified,
+                r.query_ms.p50,
+                r.query_ms.p95,
+                r.query_ms.max
+            );
+            eprint!("{line}");
+            md.push_str(&line);
+            all.push(r);
+        }
+        print!("{md}");
+        super::output::save(&a.out.join("workcell.md"), md.as_bytes())?;
+        super::output::save(
+            &a.out.join("workcell.json"),
+            serde_json::to_string_pretty(&all)?.as_bytes(),
+        )?;
+        return Ok(());
+    }
     let mut results = Vec::new();
     for p in &problems {
         let r = mbm::run_problem(&robot, p, &options);
