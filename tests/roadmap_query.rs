@@ -6,6 +6,7 @@ mod roadmap_support;
 use roadmap_support::*;
 use std::collections::BinaryHeap;
 use viaroad::local::LocalSpec;
+use viaroad::oracle::CollisionOracle;
 use viaroad::roadmap::{
     Endpoint, LearnParams, QueryError, QueryOptions, QueryOutcome, QueryPlanner, Roadmap,
 };
@@ -422,13 +423,7 @@ fn attaching_tries_straight_lines_to_the_candidates_first() {
         .into_iter()
         .enumerate()
     {
-        let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
-            .unwrap()
-            .with_options(QueryOptions {
-                try_direct: false,
-                attach_direct_candidates: direct,
-                ..QueryOptions::default()
-            });
+        let planner = attaching_planner(&roadmap, oracle.as_ref(), direct);
         for (s, g) in &queries {
             let r = planner.query(s, g).unwrap();
             if !r.is_solved() {
@@ -460,6 +455,22 @@ fn attaching_tries_straight_lines_to_the_candidates_first() {
     );
 }
 
+/// A planner that attaches start and goal (no quick try from one to the other), trying the
+/// direct path to the nearest `direct` candidates first.
+fn attaching_planner<'a>(
+    roadmap: &'a Roadmap,
+    oracle: &'a dyn CollisionOracle,
+    direct: usize,
+) -> QueryPlanner<'a> {
+    QueryPlanner::new(roadmap, oracle)
+        .unwrap()
+        .with_options(QueryOptions {
+            try_direct: false,
+            attach_direct_candidates: direct,
+            ..QueryOptions::default()
+        })
+}
+
 /// A `straight` roadmap's method is the direct check itself: the first pass of direct paths is
 /// not run for it, so each candidate is asked once (the same attempts and calls as without it).
 #[test]
@@ -476,13 +487,7 @@ fn straight_roadmaps_attach_without_a_first_pass() {
     let oracle = scene.oracle();
     let queries = random_queries(&scene, 40, 79);
     let answers = |direct: usize| -> Vec<(u32, u64)> {
-        let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
-            .unwrap()
-            .with_options(QueryOptions {
-                try_direct: false,
-                attach_direct_candidates: direct,
-                ..QueryOptions::default()
-            });
+        let planner = attaching_planner(&roadmap, oracle.as_ref(), direct);
         queries
             .iter()
             .map(|(s, g)| {
