@@ -6,7 +6,7 @@
 //! Findings are saved under `fuzz/artifacts/`; the exit status is 1 when there are any.
 //!
 //! ```text
-//! cargo run --release -p viaroad-fuzz -- all --execs 2000 --seed 1     # the CI smoke
+//! cargo run --release -p viaroad-fuzz -- all --execs 30000 --seed 1 --shard 1/2  # CI: half of the smoke
 //! cargo run --release -p viaroad-fuzz -- roadmap --execs 10000000      # the long mode
 //! cargo run --release -p viaroad-fuzz -- dae --run fuzz/artifacts/FILE # replay one input
 //! ```
@@ -28,8 +28,9 @@ static ALLOCATOR: alloc::Bounded = alloc::Bounded;
 static LAST_PANIC: Mutex<String> = Mutex::new(String::new());
 
 const USAGE: &str =
-    "usage: viaroad-fuzz TARGET|all [--execs N] [--seed S] [--timeout SECS] [--run FILE]
-targets: toml cfg obj stl dae queries roadmap";
+    "usage: viaroad-fuzz TARGET...|all [--execs N] [--seed S] [--timeout SECS] [--run FILE] [--shard K/N]
+targets: toml cfg obj stl dae queries roadmap urdf srdf moveit
+--shard K/N: only every N-th of the targets named, from the K-th on (one process per core)";
 
 /// What the worker publishes for the watchdog: the input it runs and how many it has run.
 struct Shared {
@@ -244,6 +245,7 @@ fn fuzz(name: &str, opts: &Options, root: &Path, artifacts: &Path) -> Result<Sta
 fn parse_args() -> Result<(Vec<String>, Options), String> {
     let mut args = std::env::args().skip(1);
     let mut names = Vec::new();
+    let mut shard = (1, 1);
     let mut opts = Options {
         execs: 1000,
         seed: 1,
@@ -276,6 +278,7 @@ fn parse_args() -> Result<(Vec<String>, Options), String> {
                 opts.timeout = Duration::from_secs_f64(s);
             }
             "--run" => opts.run = Some(PathBuf::from(value("--run")?)),
+            "--shard" => shard = parse_shard(&value("--shard")?)?,
             "-h" | "--help" => return Err(USAGE.into()),
             "all" => names.extend(targets::NAMES.iter().map(|s| s.to_string())),
             other if other.starts_with('-') => {
@@ -284,10 +287,23 @@ fn parse_args() -> Result<(Vec<String>, Options), String> {
             other => names.push(other.to_string()),
         }
     }
+    let (k, n) = shard;
+    let names: Vec<String> = names.into_iter().skip(k - 1).step_by(n).collect();
     if names.is_empty() {
         return Err(USAGE.into());
     }
     Ok((names, opts))
+}
+
+/// `K/N` with `1 ≤ K ≤ N`.
+fn parse_shard(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("--shard: K/N with 1 ≤ K ≤ N, not {s:?}");
+    let (k, n) = s.split_once('/').ok_or_else(bad)?;
+    let (k, n): (usize, usize) = (k.parse().map_err(|_| bad())?, n.parse().map_err(|_| bad())?);
+    if k == 0 || k > n {
+        return Err(bad());
+    }
+    Ok((k, n))
 }
 
 fn main() {
