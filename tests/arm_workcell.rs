@@ -2,12 +2,15 @@
 //! saved and loaded back, answering every request valid in that scene; where the roadmap does
 //! not answer in half the query time, two trees do. Every answer is re-checked by the
 //! independent [`viaroad::robot::ArmChecker`] inside `run_workcell`; this test holds it to that.
+//! With answers kept, every edge they add to the roadmap is re-checked here by the same checker.
 
 use std::path::Path;
 use std::time::Duration;
-use viaroad::bench::mbm::{find_problems, load_robot, run_workcell};
+use viaroad::bench::mbm::{
+    check_step, checker, find_problems, load_robot, problem_scene, run_workcell,
+};
 use viaroad::roadmap::tree::{Prefix, TreeParams};
-use viaroad::roadmap::Budget;
+use viaroad::roadmap::{Budget, Roadmap};
 
 #[test]
 fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
@@ -29,6 +32,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
         1,
         Duration::from_secs(4),
         Some(&trees),
+        false,
         &dir.join("cage.roadmap"),
     )
     .unwrap();
@@ -37,6 +41,53 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
     assert!(r.solved <= r.valid && r.by_trees <= r.solved);
     assert_eq!(r.certified, r.solved, "{r:?}");
     assert_eq!(r.query_ms.n, r.valid);
+    assert_eq!(r.latencies_ms.len(), r.valid);
+    assert_eq!(
+        (r.kept, r.nodes_after),
+        (0, r.nodes),
+        "nothing kept unless asked"
+    );
     assert!(dir.join("cage.roadmap").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn every_edge_a_kept_answer_adds_is_certified() {
+    let arms = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
+    let robot = load_robot(&arms.join("panda")).unwrap();
+    let problems = find_problems(&arms.join("mbm/table_pick"), None).unwrap();
+    let dir = std::env::temp_dir().join(format!("viaroad-arm-keep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let r = run_workcell(
+        &robot,
+        &problems,
+        &Budget::nodes(40),
+        1,
+        Duration::from_secs(4),
+        None,
+        true,
+        &dir.join("table_pick.roadmap"),
+    )
+    .unwrap();
+    assert_eq!(r.latencies_ms.len(), r.valid);
+    assert!(
+        r.solved >= 2,
+        "the shipped table_pick requests are answered: {r:?}"
+    );
+    assert_eq!(r.certified, r.solved, "{r:?}");
+    assert_eq!(r.kept, r.solved, "every answer is kept");
+    let scene = problem_scene(&robot, &problems[0]).unwrap();
+    let learnt = Roadmap::load(&dir.join("table_pick.roadmap"), scene.fingerprint()).unwrap();
+    let kept = Roadmap::load(&dir.join("table_pick.roadmap.kept"), scene.fingerprint()).unwrap();
+    assert_eq!(kept.node_count(), r.nodes_after);
+    assert!(kept.node_count() > learnt.node_count() && kept.edge_count() > learnt.edge_count());
+    assert_eq!(&kept.coords()[..learnt.coords().len()], learnt.coords());
+    let check = checker(&scene).unwrap();
+    for (e, edge) in kept.edges().iter().enumerate().skip(learnt.edge_count()) {
+        let report = check
+            .check_path(&kept.edge_path(e, edge.a), check_step(&check))
+            .unwrap();
+        assert!(report.valid, "kept edge {e}: {report:?}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

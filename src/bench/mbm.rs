@@ -632,6 +632,13 @@ pub struct WorkcellResult {
     pub certified: usize,
     /// Query latency over the valid requests, milliseconds.
     pub query_ms: Stats,
+    /// Each valid request's latency in request order, milliseconds (with `keep_answers`, the
+    /// later ones ask a roadmap that kept the earlier answers).
+    pub latencies_ms: Vec<f64>,
+    /// Answers fed back into the roadmap ([`Roadmap::with_path`]; 0 unless `keep_answers`).
+    pub kept: usize,
+    /// Nodes of the roadmap after the last request (more than `nodes` where answers were kept).
+    pub nodes_after: usize,
 }
 
 /// Learns a roadmap of the family's first scene within `budget`, saves it to `save_to`, loads
@@ -642,6 +649,11 @@ pub struct WorkcellResult {
 /// answer, two trees from start to goal ([`tree_stage`]) for the rest: growing a copy of the
 /// roadmap does not build the fine single-joint staircases into a box or a cage
 /// (2026-12-02 evening: box 2 of 5, cage 0 of 4 on a 200-node roadmap), the trees do.
+///
+/// With `keep_answers`, every answer is fed back into the roadmap before the next request
+/// ([`Roadmap::with_path`], the time it takes not counted as query time): the next query from
+/// the same home pose, or into the same pocket, attaches to it. The roadmap as it ends is
+/// saved beside `save_to` (`.kept` added to its name).
 #[allow(clippy::too_many_arguments)]
 pub fn run_workcell(
     robot: &Arm,
@@ -650,6 +662,7 @@ pub fn run_workcell(
     seed: u64,
     query_time: Duration,
     trees: Option<&TreeParams>,
+    keep_answers: bool,
     save_to: &Path,
 ) -> Result<WorkcellResult, Box<dyn std::error::Error + Send + Sync>> {
     let first = problems.first().ok_or("no problems")?;
@@ -687,62 +700,84 @@ pub fn run_workcell(
     } else {
         query_time
     };
-    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?.with_options(QueryOptions {
+    let options = QueryOptions {
         time: Some(roadmap_time),
         ..QueryOptions::default()
-    });
+    };
     let arm = &check.arm().clone();
+    let mut roadmap = roadmap;
     let mut times = Vec::new();
-    for p in problems {
-        let Ok(req) = load_motion_plan_request(&p.request) else {
-            continue;
-        };
-        let (Ok(s), Ok(g)) = (
-            arm.group_config(&req.start.names, &req.start.positions, "start"),
-            arm.group_config(&req.goal.names, &req.goal.positions, "goal"),
-        ) else {
-            continue;
-        };
-        let (Ok(s), Ok(g)) = (
-            scene.check_config(oracle.as_ref(), "start", &s),
-            scene.check_config(oracle.as_ref(), "goal", &g),
-        ) else {
-            continue;
-        };
-        r.valid += 1;
-        let t = Instant::now();
-        let deadline = Deadline::none().within(Some(query_time));
-        let mut path = planner
-            .query(&s, &g)
-            .ok()
-            .filter(|a| a.is_solved())
-            .map(|a| a.path);
-        if let (None, Some(tree)) = (&path, trees) {
-            if let Ok(found) = tree_stage(
-                &scene,
-                oracle.as_ref(),
-                &groups,
-                &s,
-                &g,
-                tree,
-                seed,
-                &deadline,
-            ) {
-                path = found.path.map(|(_, short)| short);
-                r.by_trees += usize::from(path.is_some());
+    let mut next = 0;
+    while next < problems.len() {
+        // one planner until an answer is to be kept, then a new one over the grown roadmap
+        let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?.with_options(options.clone());
+        let mut keep = None;
+        while keep.is_none() && next < problems.len() {
+            let p = &problems[next];
+            next += 1;
+            let Ok(req) = load_motion_plan_request(&p.request) else {
+                continue;
+            };
+            let (Ok(s), Ok(g)) = (
+                arm.group_config(&req.start.names, &req.start.positions, "start"),
+                arm.group_config(&req.goal.names, &req.goal.positions, "goal"),
+            ) else {
+                continue;
+            };
+            let (Ok(s), Ok(g)) = (
+                scene.check_config(oracle.as_ref(), "start", &s),
+                scene.check_config(oracle.as_ref(), "goal", &g),
+            ) else {
+                continue;
+            };
+            r.valid += 1;
+            let t = Instant::now();
+            let deadline = Deadline::none().within(Some(query_time));
+            let mut path = planner
+                .query(&s, &g)
+                .ok()
+                .filter(|a| a.is_solved())
+                .map(|a| a.path);
+            if let (None, Some(tree)) = (&path, trees) {
+                if let Ok(found) = tree_stage(
+                    &scene,
+                    oracle.as_ref(),
+                    &groups,
+                    &s,
+                    &g,
+                    tree,
+                    seed,
+                    &deadline,
+                ) {
+                    path = found.path.map(|(_, short)| short);
+                    r.by_trees += usize::from(path.is_some());
+                }
+            }
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            if let Some(path) = path {
+                r.solved += 1;
+                if check
+                    .check_path(&path, check_step(&check))
+                    .is_ok_and(|rep| rep.valid)
+                {
+                    r.certified += 1;
+                }
+                keep = keep_answers.then_some(path);
             }
         }
-        times.push(t.elapsed().as_secs_f64() * 1e3);
-        if let Some(path) = path {
-            r.solved += 1;
-            if check
-                .check_path(&path, check_step(&check))
-                .is_ok_and(|rep| rep.valid)
-            {
-                r.certified += 1;
-            }
+        drop(planner);
+        if let Some(path) = keep {
+            roadmap = roadmap.with_path(&path)?;
+            r.kept += 1;
         }
     }
+    r.nodes_after = roadmap.node_count();
+    if keep_answers {
+        let mut kept_name = save_to.as_os_str().to_owned();
+        kept_name.push(".kept");
+        roadmap.save(Path::new(&kept_name))?;
+    }
+    r.latencies_ms = times.clone();
     r.query_ms = Stats::of(&times);
     Ok(r)
 }

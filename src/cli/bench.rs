@@ -240,6 +240,12 @@ pub struct MbmArgs {
     /// did not answer).
     #[arg(long, default_value_t = 5.0)]
     pub query_time: f64,
+    /// Workcell mode: feed every answer back into the roadmap before the next request
+    /// (`Roadmap::with_path`: its corners become nodes, its single-joint pieces edges), as a
+    /// workcell that keeps learning from its queries would; the grown roadmap is saved as
+    /// `FAMILY.roadmap.kept`. Off: every request asks the roadmap as learnt.
+    #[arg(long)]
+    pub keep_answers: bool,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
     #[arg(long)]
     pub out: PathBuf,
@@ -273,8 +279,8 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
         families.dedup();
         let mut md = String::from(
-            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | query p50 ms | p95 ms | max ms |\n\
-             |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms |\n\
+             |---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         );
         let mut all = Vec::new();
         for f in &families {
@@ -291,11 +297,12 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
                 a.seed,
                 super::limits::parse_seconds("--query-time", a.query_time)?,
                 (a.planner == mbm::Planner::Tree).then_some(&options.tree),
+                a.keep_answers,
                 &save,
             )
             .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
             let line = format!(
-                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} |\n",
+                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} |\n",
                 r.family,
                 r.nodes,
                 r.learn_s,
@@ -306,6 +313,8 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
                 r.solved,
                 r.by_trees,
                 r.certified,
+                r.kept,
+                r.nodes_after,
                 r.query_ms.p50,
                 r.query_ms.p95,
                 r.query_ms.max

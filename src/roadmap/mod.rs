@@ -7,6 +7,7 @@
 //! | [`sampler`] | where new nodes are drawn: uniform, obstacle-based, Gaussian, bridge test |
 //! | [`nn`] | nearest neighbours: an incremental kd-tree over the space's embeddings |
 //! | [`graph`] | nodes, edges, components: the [`Roadmap`] |
+//! | [`keep`] | answers kept: a certified path fed back as nodes and edges |
 //! | [`bounce`] | random-bounce walks driven by exact free sections |
 //! | [`learn`] | construction and expansion in reproducible parallel rounds |
 //! | [`persist`] | the file: magic, version, header, checksum, atomic save |
@@ -43,6 +44,7 @@ pub mod bounce;
 pub mod centre;
 pub mod graph;
 pub mod info;
+pub mod keep;
 pub mod landmarks;
 pub mod learn;
 pub mod nn;
