@@ -4,21 +4,31 @@
 //! independent [`viaroad::robot::ArmChecker`] inside `run_workcell`; this test holds it to that.
 //! With answers kept, every edge they add to the roadmap is re-checked here by the same checker.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 use viaroad::bench::mbm::{
-    check_step, checker, find_problems, load_robot, problem_scene, run_workcell,
+    check_step, checker, find_problems, load_robot, problem_scene, run_workcell, Problem,
 };
 use viaroad::roadmap::tree::{Prefix, TreeParams};
 use viaroad::roadmap::{Budget, Roadmap};
+use viaroad::robot::Arm;
+
+/// The shipped Panda, the shipped problems of `family`, and a fresh directory for the files.
+fn family(family: &str) -> (Arm, Vec<Problem>, PathBuf) {
+    let arms = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
+    let robot = load_robot(&arms.join("panda")).unwrap();
+    let problems = find_problems(&arms.join("mbm").join(family), None).unwrap();
+    let dir = std::env::temp_dir().join(format!(
+        "viaroad-arm-workcell-{family}-{}",
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    (robot, problems, dir)
+}
 
 #[test]
 fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
-    let arms = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
-    let robot = load_robot(&arms.join("panda")).unwrap();
-    let problems = find_problems(&arms.join("mbm/cage"), None).unwrap();
-    let dir = std::env::temp_dir().join(format!("viaroad-arm-workcell-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let (robot, problems, dir) = family("cage");
     let trees = TreeParams {
         prefix: Prefix::FirstHit,
         slide: true,
@@ -41,7 +51,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
     assert!(r.solved <= r.valid && r.by_trees <= r.solved);
     assert_eq!(r.certified, r.solved, "{r:?}");
     assert_eq!(r.query_ms.n, r.valid);
-    assert_eq!(r.latencies_ms.len(), r.valid);
+    assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
     assert_eq!(
         (r.kept, r.nodes_after),
         (0, r.nodes),
@@ -53,11 +63,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
 
 #[test]
 fn every_edge_a_kept_answer_adds_is_certified() {
-    let arms = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
-    let robot = load_robot(&arms.join("panda")).unwrap();
-    let problems = find_problems(&arms.join("mbm/table_pick"), None).unwrap();
-    let dir = std::env::temp_dir().join(format!("viaroad-arm-keep-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let (robot, problems, dir) = family("table_pick");
     let r = run_workcell(
         &robot,
         &problems,
@@ -69,7 +75,7 @@ fn every_edge_a_kept_answer_adds_is_certified() {
         &dir.join("table_pick.roadmap"),
     )
     .unwrap();
-    assert_eq!(r.latencies_ms.len(), r.valid);
+    assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
     assert!(
         r.solved >= 2,
         "the shipped table_pick requests are answered: {r:?}"

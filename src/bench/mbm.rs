@@ -635,6 +635,8 @@ pub struct WorkcellResult {
     /// Each valid request's latency in request order, milliseconds (with `keep_answers`, the
     /// later ones ask a roadmap that kept the earlier answers).
     pub latencies_ms: Vec<f64>,
+    /// Each valid request's intersect calls (the query's and the trees'), in request order.
+    pub calls: Vec<u64>,
     /// Answers fed back into the roadmap ([`Roadmap::with_path`]; 0 unless `keep_answers`).
     pub kept: usize,
     /// Nodes of the roadmap after the last request (more than `nodes` where answers were kept).
@@ -733,11 +735,9 @@ pub fn run_workcell(
             r.valid += 1;
             let t = Instant::now();
             let deadline = Deadline::none().within(Some(query_time));
-            let mut path = planner
-                .query(&s, &g)
-                .ok()
-                .filter(|a| a.is_solved())
-                .map(|a| a.path);
+            let answer = planner.query(&s, &g).ok();
+            let mut calls = answer.as_ref().map_or(0, |a| a.counts.intersect_calls());
+            let mut path = answer.filter(|a| a.is_solved()).map(|a| a.path);
             if let (None, Some(tree)) = (&path, trees) {
                 if let Ok(found) = tree_stage(
                     &scene,
@@ -749,11 +749,13 @@ pub fn run_workcell(
                     seed,
                     &deadline,
                 ) {
+                    calls += found.counts.intersect_calls();
                     path = found.path.map(|(_, short)| short);
                     r.by_trees += usize::from(path.is_some());
                 }
             }
             times.push(t.elapsed().as_secs_f64() * 1e3);
+            r.calls.push(calls);
             if let Some(path) = path {
                 r.solved += 1;
                 if check
