@@ -28,7 +28,10 @@ fn family(family: &str) -> (Arm, Vec<Problem>, PathBuf) {
 
 #[test]
 fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
-    let (robot, problems, dir) = family("cage");
+    // the box: its requests need the trees (the 40-node roadmap grown for half the query time
+    // did not reach in, 2026-12-03), which answer each in ≈ 1.4 s of their 4 s on the 2-core VM;
+    // the cage needed ≈ 5 s of trees, more than a test should spend
+    let (robot, problems, dir) = family("box");
     let trees = TreeParams {
         prefix: Prefix::FirstHit,
         slide: true,
@@ -40,15 +43,16 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
         &problems,
         &Budget::nodes(40),
         1,
-        Duration::from_secs(4),
+        Duration::from_secs(8),
         Some(&trees),
         false,
-        &dir.join("cage.roadmap"),
+        &dir.join("box.roadmap"),
     )
     .unwrap();
     assert_eq!(r.requests, 3);
     assert!(r.valid >= 1, "the first request is valid in its own scene");
     assert!(r.solved <= r.valid && r.by_trees <= r.solved);
+    assert!(r.solved >= 1, "the box is answered: {r:?}");
     assert_eq!(r.certified, r.solved, "{r:?}");
     assert_eq!(r.query_ms.n, r.valid);
     assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
@@ -57,7 +61,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
         (0, r.nodes),
         "nothing kept unless asked"
     );
-    assert!(dir.join("cage.roadmap").exists());
+    assert!(dir.join("box.roadmap").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

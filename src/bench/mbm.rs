@@ -652,8 +652,9 @@ pub struct WorkcellResult {
 /// roadmap does not build the fine single-joint staircases into a box or a cage
 /// (2026-12-02 evening: box 2 of 5, cage 0 of 4 on a 200-node roadmap), the trees do.
 ///
-/// With `keep_answers`, every answer is fed back into the roadmap before the next request
-/// ([`Roadmap::with_path`], the time it takes not counted as query time): the next query from
+/// With `keep_answers`, every answer the independent checker passes is fed back into the
+/// roadmap before the next request ([`Roadmap::with_path`], the time it takes not counted as
+/// query time): the next query from
 /// the same home pose, or into the same pocket, attaches to it. The roadmap as it ends is
 /// saved beside `save_to` (`.kept` added to its name).
 #[allow(clippy::too_many_arguments)]
@@ -715,21 +716,9 @@ pub fn run_workcell(
         let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?.with_options(options.clone());
         let mut keep = None;
         while keep.is_none() && next < problems.len() {
-            let p = &problems[next];
             next += 1;
-            let Ok(req) = load_motion_plan_request(&p.request) else {
-                continue;
-            };
-            let (Ok(s), Ok(g)) = (
-                arm.group_config(&req.start.names, &req.start.positions, "start"),
-                arm.group_config(&req.goal.names, &req.goal.positions, "goal"),
-            ) else {
-                continue;
-            };
-            let (Ok(s), Ok(g)) = (
-                scene.check_config(oracle.as_ref(), "start", &s),
-                scene.check_config(oracle.as_ref(), "goal", &g),
-            ) else {
+            let Some((s, g)) = valid_request(arm, &scene, oracle.as_ref(), &problems[next - 1])
+            else {
                 continue;
             };
             r.valid += 1;
@@ -758,13 +747,12 @@ pub fn run_workcell(
             r.calls.push(calls);
             if let Some(path) = path {
                 r.solved += 1;
-                if check
+                let certified = check
                     .check_path(&path, check_step(&check))
-                    .is_ok_and(|rep| rep.valid)
-                {
-                    r.certified += 1;
-                }
-                keep = keep_answers.then_some(path);
+                    .is_ok_and(|rep| rep.valid);
+                r.certified += usize::from(certified);
+                // only what the independent checker passed is kept (all of it, so far)
+                keep = (keep_answers && certified).then_some(path);
             }
         }
         drop(planner);
@@ -782,6 +770,22 @@ pub fn run_workcell(
     r.latencies_ms = times.clone();
     r.query_ms = Stats::of(&times);
     Ok(r)
+}
+
+/// The start and goal of problem `p`'s request, in the group's joint order, if the request
+/// loads and both are free in `scene` (the workcell's first scene).
+fn valid_request(
+    arm: &Arm,
+    scene: &Scene,
+    oracle: &dyn CollisionOracle,
+    p: &Problem,
+) -> Option<(Config, Config)> {
+    let req = load_motion_plan_request(&p.request).ok()?;
+    let s = arm.group_config(&req.start.names, &req.start.positions, "start");
+    let g = arm.group_config(&req.goal.names, &req.goal.positions, "goal");
+    let s = scene.check_config(oracle, "start", &s.ok()?).ok()?;
+    let g = scene.check_config(oracle, "goal", &g.ok()?).ok()?;
+    Some((s, g))
 }
 
 #[cfg(test)]

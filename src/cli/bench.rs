@@ -240,8 +240,9 @@ pub struct MbmArgs {
     /// did not answer).
     #[arg(long, default_value_t = 5.0)]
     pub query_time: f64,
-    /// Workcell mode: feed every answer back into the roadmap before the next request
-    /// (`Roadmap::with_path`: its corners become nodes, its single-joint pieces edges), as a
+    /// Workcell mode: feed every answer the independent checker passes back into the roadmap
+    /// before the next request (`Roadmap::with_path`: its corners become nodes, its
+    /// single-joint pieces edges), as a
     /// workcell that keeps learning from its queries would; the grown roadmap is saved as
     /// `FAMILY.roadmap.kept`. Off: every request asks the roadmap as learnt.
     #[arg(long)]
