@@ -654,9 +654,8 @@ pub struct WorkcellResult {
 ///
 /// With `keep_answers`, every answer the independent checker passes is fed back into the
 /// roadmap before the next request ([`Roadmap::with_path`], the time it takes not counted as
-/// query time): the next query from
-/// the same home pose, or into the same pocket, attaches to it. The roadmap as it ends is
-/// saved beside `save_to` (`.kept` added to its name).
+/// query time): the next query from the same home pose, or into the same pocket, attaches to
+/// it. The roadmap as it ends is saved beside `save_to` (`.kept` added to its name).
 #[allow(clippy::too_many_arguments)]
 pub fn run_workcell(
     robot: &Arm,
@@ -767,8 +766,8 @@ pub fn run_workcell(
         kept_name.push(".kept");
         roadmap.save(Path::new(&kept_name))?;
     }
-    r.latencies_ms = times.clone();
     r.query_ms = Stats::of(&times);
+    r.latencies_ms = times;
     Ok(r)
 }
 

@@ -242,9 +242,9 @@ pub struct MbmArgs {
     pub query_time: f64,
     /// Workcell mode: feed every answer the independent checker passes back into the roadmap
     /// before the next request (`Roadmap::with_path`: its corners become nodes, its
-    /// single-joint pieces edges), as a
-    /// workcell that keeps learning from its queries would; the grown roadmap is saved as
-    /// `FAMILY.roadmap.kept`. Off: every request asks the roadmap as learnt.
+    /// single-joint pieces edges), as a workcell that keeps learning from its queries would;
+    /// the grown roadmap is saved as `FAMILY.roadmap.kept`. Off: every request asks the
+    /// roadmap as learnt.
     #[arg(long)]
     pub keep_answers: bool,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.

@@ -7,9 +7,8 @@
 //! | [`sampler`] | where new nodes are drawn: uniform, obstacle-based, Gaussian, bridge test |
 //! | [`nn`] | nearest neighbours: an incremental kd-tree over the space's embeddings |
 //! | [`graph`] | nodes, edges, components: the [`Roadmap`] |
-//! | [`keep`] | answers kept: a certified path fed back as nodes and edges |
 //! | [`bounce`] | random-bounce walks driven by exact free sections |
-//! | [`learn`] | construction and expansion in reproducible parallel rounds |
+//! | [`learn`] | construction and expansion in reproducible parallel rounds; answers kept ([`Roadmap::with_path`]) |
 //! | [`persist`] | the file: magic, version, header, checksum, atomic save |
 //! | [`query`] | attach, A*, shorten; batches in parallel |
 //! | [`landmarks`] | landmark lower bounds that guide A* around obstacles |
@@ -44,7 +43,6 @@ pub mod bounce;
 pub mod centre;
 pub mod graph;
 pub mod info;
-pub mod keep;
 pub mod landmarks;
 pub mod learn;
 pub mod nn;

@@ -57,6 +57,7 @@ mod construction;
 mod expansion;
 mod feedback;
 mod grow;
+mod keep;
 mod outcome;
 mod streams;
 mod work;

@@ -4,21 +4,23 @@
 //! pocket, so an answer that took a search (or two trees) becomes graph the next one attaches
 //! to with a direct path.
 
-use super::graph::{Edge, Roadmap};
-use crate::local::{direct_length, direct_pieces};
+use super::super::graph::Roadmap;
+use super::work::Work;
+use crate::local::direct_pieces;
 use crate::space::Config;
-use std::collections::{HashMap, HashSet};
 
 impl Roadmap {
     /// A copy of the roadmap with `path` kept: every corner becomes a node (the existing node
     /// where the coordinates agree bit for bit), and each pair of consecutive corners is joined
     /// by its direct path in the DOF groups of the roadmap's local method, one single-group edge
-    /// per piece, as learnt edges with feedback are ([`Edge`]). Existing nodes keep their
-    /// indices; an edge between nodes already joined directly is not added twice.
+    /// per piece, as learnt edges with feedback are ([`super::super::Edge`]); nodes and edges
+    /// are added as the learner adds them. Existing nodes keep their indices; a pair
+    /// of nodes already joined is not joined twice.
     ///
     /// `path` must be certified free in the roadmap's scene corner to corner (the answer of a
-    /// query or of [`super::tree::rrt_connect`] on this scene): nothing is checked against an
-    /// oracle here. Fails on a malformed path (a corner of the wrong dimension or not finite).
+    /// query or of [`crate::roadmap::tree::rrt_connect`] on this scene): nothing is checked
+    /// against an oracle here. Fails on a malformed path (a corner of the wrong dimension or not
+    /// finite).
     pub fn with_path(&self, path: &[Config]) -> Result<Roadmap, String> {
         let dim = self.dim();
         if let Some(bad) = path
@@ -29,44 +31,19 @@ impl Roadmap {
                 "a corner of the kept path is not {dim} finite numbers: {bad:?}"
             ));
         }
-        let space = self.space();
-        let groups = self.header().local_spec.build().groups(space);
-        let mut coords = self.coords().to_vec();
-        let mut edges = self.edges().to_vec();
-        let key = |q: &[f64]| q.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
-        let mut by_bits: HashMap<Vec<u64>, u32> = self
-            .nodes()
-            .enumerate()
-            .map(|(i, q)| (key(q), i as u32))
-            .collect();
-        let mut joined: HashSet<(u32, u32)> = edges
-            .iter()
-            .filter(|e| e.corners.is_empty())
-            .map(|e| (e.a.min(e.b), e.a.max(e.b)))
-            .collect();
-        let mut node = |q: &[f64], coords: &mut Vec<f64>| -> u32 {
-            *by_bits.entry(key(q)).or_insert_with(|| {
-                coords.extend_from_slice(q);
-                (coords.len() / dim - 1) as u32
-            })
-        };
+        let header = self.header();
+        let groups = header.local_spec.build().groups(self.space());
+        let mut work = Work::new(self.space(), groups, &header.params);
+        work.copy_roadmap(self);
         for w in path.windows(2) {
-            let mut from = node(&w[0], &mut coords);
-            let mut at = w[0].clone();
-            for (_, corner) in direct_pieces(space, &groups, 0, &w[0], &w[1]) {
-                let to = node(&corner, &mut coords);
-                if from != to && joined.insert((from.min(to), from.max(to))) {
-                    edges.push(Edge {
-                        a: from,
-                        b: to,
-                        length: direct_length(space, &groups, &at, &corner),
-                        corners: Vec::new(),
-                    });
-                }
-                (from, at) = (to, corner);
+            let mut from = work.add_node(&w[0]);
+            for (_, corner) in direct_pieces(work.space, &work.groups, 0, &w[0], &w[1]) {
+                let to = work.add_node(&corner);
+                work.add_edge(from, to, &[]);
+                from = to;
             }
         }
-        Roadmap::assemble(self.header().clone(), coords, edges)
+        Roadmap::assemble(header.clone(), work.coords, work.edges)
     }
 }
 
