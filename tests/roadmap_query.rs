@@ -503,3 +503,104 @@ fn straight_roadmaps_attach_without_a_first_pass() {
     );
     assert_eq!(with, answers(0));
 }
+
+/// Counts the questions asked of an oracle: all collision intervals, or yes/no.
+struct Asked<'a> {
+    inner: &'a dyn CollisionOracle,
+    intervals: std::sync::atomic::AtomicUsize,
+    yes_no: std::sync::atomic::AtomicUsize,
+}
+
+impl Asked<'_> {
+    /// (intervals, yes/no) asked since the last call; the counts start again from zero.
+    fn take(&self) -> (usize, usize) {
+        use std::sync::atomic::Ordering::Relaxed;
+        (
+            self.intervals.swap(0, Relaxed),
+            self.yes_no.swap(0, Relaxed),
+        )
+    }
+}
+
+impl CollisionOracle for Asked<'_> {
+    fn intervals(
+        &self,
+        motion: &viaroad::space::Motion,
+        counts: &mut viaroad::oracle::CallCounts,
+    ) -> Result<viaroad::interval::IntervalList, viaroad::oracle::OracleError> {
+        self.intervals
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.inner.intervals(motion, counts)
+    }
+
+    fn collides(&self, q: &[f64], counts: &mut viaroad::oracle::CallCounts) -> bool {
+        self.inner.collides(q, counts)
+    }
+
+    fn motion_is_free(
+        &self,
+        motion: &viaroad::space::Motion,
+        counts: &mut viaroad::oracle::CallCounts,
+    ) -> Result<bool, viaroad::oracle::OracleError> {
+        self.yes_no
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.inner.motion_is_free(motion, counts)
+    }
+}
+
+/// The quick try from start to goal is the direct path asked yes/no, piece by piece: where the
+/// via-point planner at depth 0 connects, the query answers `Direct` with the same path and
+/// asks no collision intervals at all (at depth 0 they are never used, and a blocked piece's
+/// intervals cost a whole sweep where yes/no stops at the first collision); where it does not,
+/// the query goes on to the roadmap. Axis-parallel groups, so a direct path has two pieces.
+#[test]
+fn the_quick_try_asks_yes_or_no_for_the_direct_path() {
+    let scene = disc_scene(23, 45, 0.06);
+    let spec: LocalSpec = "viapoint:max=3,calls=1000,split=true".parse().unwrap();
+    let roadmap = learn(&scene, &spec, &LearnParams::default(), 200, 5).roadmap;
+    let d = discs(&scene);
+    let plain = scene.oracle();
+    let asked = Asked {
+        inner: plain.as_ref(),
+        intervals: 0.into(),
+        yes_no: 0.into(),
+    };
+    let planner = QueryPlanner::new(&roadmap, &asked)
+        .unwrap()
+        .with_options(QueryOptions {
+            shorten: false,
+            ..QueryOptions::default()
+        });
+    let depth0 = spec.budgeted(0).unwrap().build();
+    let (mut direct, mut blocked) = (0, 0);
+    for (s, g) in random_queries(&scene, 150, 80) {
+        let reference = depth0
+            .connect(&scene.space, plain.as_ref(), &s, &g)
+            .unwrap();
+        asked.take();
+        let r = planner.query(&s, &g).unwrap();
+        let (intervals, yes_no) = asked.take();
+        if reference.is_connected() {
+            direct += 1;
+            assert_eq!(r.outcome, QueryOutcome::Direct);
+            assert_eq!(r.raw_path, reference.path);
+            assert!(path_free(&r.raw_path, &d));
+            assert_eq!((intervals, yes_no), (0, reference.path.len() - 1));
+            assert_eq!(
+                r.counts.intersect_calls(),
+                reference.counts.intersect_calls()
+            );
+        } else {
+            blocked += 1;
+            assert!(yes_no >= 1, "the blocked direct path was not asked");
+            if r.is_solved() {
+                assert!(path_free(&r.raw_path, &d));
+            }
+        }
+    }
+    eprintln!("{direct} direct, {blocked} blocked");
+    assert!(
+        direct >= 10 && blocked >= 10,
+        "{direct} direct, {blocked} blocked"
+    );
+}
