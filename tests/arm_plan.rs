@@ -247,7 +247,8 @@ fn yes_no_and_first_hit_agree_with_the_intervals() {
 /// Kept answers (`ArmCollision` answers a repeated move with what it answered before, the
 /// via-point search's repeats) are the arm oracle's answers: the same intervals, yes/no and
 /// first hit, bit for bit, on first asking and on every repeat, as an oracle that keeps
-/// nothing; and a move that differs in the last bit is asked anew.
+/// nothing, in either order of asking (a kept answer of one question that says the move is
+/// free answers the others); and a move that differs in the last bit is asked anew.
 #[test]
 fn kept_answers_are_the_oracles_answers() {
     use viaroad::oracle::CollisionOracle;
@@ -257,6 +258,8 @@ fn kept_answers_are_the_oracles_answers() {
         panic!("not an arm scene")
     };
     let keeping = ArmCollision::new(a.arm_oracle().clone());
+    // asked the other way round: a kept yes or "no first hit" answers the other questions
+    let reversed = ArmCollision::new(a.arm_oracle().clone());
     let fresh = ArmCollision::new(a.arm_oracle().clone()).with_kept_answers(false);
     let c = checker(&scene);
     let g = &c.arm().group;
@@ -299,6 +302,12 @@ fn kept_answers_are_the_oracles_answers() {
                 keeping.first_collision(m, &mut counts).unwrap(),
                 fresh.first_collision(m, &mut counts).unwrap()
             );
+            let first = reversed.first_collision(m, &mut counts).unwrap();
+            let free = reversed.motion_is_free(m, &mut counts).unwrap();
+            let all = reversed.intervals(m, &mut counts).unwrap();
+            assert_eq!(first, fresh.first_collision(m, &mut counts).unwrap());
+            assert_eq!(free, want.is_empty());
+            assert_eq!(all.as_slice(), want.as_slice());
         }
     }
     assert!(hits >= 9, "{hits}");

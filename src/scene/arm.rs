@@ -200,7 +200,9 @@ fn digest(arm: &Arm, objects: &[CollisionObject]) -> u64 {
 /// Answers of single-joint moves are kept: the via-point search asks about a
 /// fifth of its moves again, the same question bit for bit (the same joint over its whole range
 /// from the same base point, say), and such a repeat is answered with the kept answer, which
-/// is the answer (`tests/arm_plan.rs` compares with an oracle that keeps nothing).
+/// is the answer (`tests/arm_plan.rs` compares with an oracle that keeps nothing). A kept
+/// answer that the move is free also answers the other questions about it
+/// (`Answers::free`).
 pub struct ArmCollision {
     oracle: Arc<ArmOracle>,
     answers: Option<Mutex<Answers>>,
@@ -230,6 +232,27 @@ impl Answers {
     fn len(&self) -> usize {
         self.intervals.len() + self.free.len() + self.first_hit.len()
     }
+
+    /// Whether the move is free, as far as any kept answer about it says: the three questions
+    /// agree on that (empty intervals, yes, no first hit — `tests/arm_oracle.rs` holds the arm
+    /// oracle to it), so a query's yes/no question after the learner asked the intervals of
+    /// the same move, or the intervals of a move shortening found free, costs no sweep.
+    fn free(&self, key: &Key) -> Option<bool> {
+        self.free
+            .get(key)
+            .copied()
+            .or_else(|| self.intervals.get(key).map(IntervalList::is_empty))
+            .or_else(|| self.first_hit.get(key).map(Option::is_none))
+    }
+}
+
+/// One question about a single-joint move: where its kept answers live, and what the kept
+/// answers of the other questions say of it ([`Answers::free`]). Only what all three agree on
+/// is taken from another question: that the move is free (and for yes/no, that it is not),
+/// never where a collision lies.
+struct Question<T> {
+    own: fn(&mut Answers) -> &mut HashMap<Key, T>,
+    from_free: fn(bool) -> Option<T>,
 }
 
 impl ArmCollision {
@@ -248,11 +271,11 @@ impl ArmCollision {
         self
     }
 
-    /// The kept answer about this move in the map `pick` chooses (one per question), or
-    /// `ask`'s, kept.
+    /// The kept answer to question `q` about this move (its own, or what another question's
+    /// kept answer implies), or `ask`'s, kept.
     fn kept<T: Clone>(
         &self,
-        pick: fn(&mut Answers) -> &mut HashMap<Key, T>,
+        q: Question<T>,
         q0: &[f64],
         joint: usize,
         amount: f64,
@@ -269,15 +292,21 @@ impl ArmCollision {
         // a poisoned lock only means another thread panicked while holding it: the map is
         // consistent (inserts and clears are single calls)
         let lock = || answers.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(a) = pick(&mut lock()).get(&key) {
-            return Ok(a.clone());
+        {
+            let mut kept = lock();
+            if let Some(a) = (q.own)(&mut kept).get(&key) {
+                return Ok(a.clone());
+            }
+            if let Some(a) = kept.free(&key).and_then(q.from_free) {
+                return Ok(a);
+            }
         }
         let a = ask().map_err(Self::unsupported)?;
         let mut kept = lock();
         if kept.len() >= Answers::CAPACITY {
             *kept = Answers::default();
         }
-        pick(&mut kept).insert(key, a.clone());
+        (q.own)(&mut kept).insert(key, a.clone());
         Ok(a)
     }
 
@@ -343,7 +372,10 @@ impl ArmCollision {
             }
             Move::Joint { q0, joint, amount } => {
                 let hits = self.kept(
-                    |a| &mut a.intervals,
+                    Question {
+                        own: |a| &mut a.intervals,
+                        from_free: |free| free.then(IntervalList::new),
+                    },
                     &q0,
                     joint,
                     amount,
@@ -399,7 +431,10 @@ impl CollisionOracle for ArmCollision {
         let mut own = CallCounts::default();
         let r = match Self::resolve(motion) {
             Ok(Move::Joint { q0, joint, amount }) => self.kept(
-                |a| &mut a.free,
+                Question {
+                    own: |a| &mut a.free,
+                    from_free: Some,
+                },
                 &q0,
                 joint,
                 amount,
@@ -428,7 +463,10 @@ impl CollisionOracle for ArmCollision {
         let r = match Self::resolve(motion) {
             Ok(Move::Joint { q0, joint, amount }) => self
                 .kept(
-                    |a| &mut a.first_hit,
+                    Question {
+                        own: |a| &mut a.first_hit,
+                        from_free: |free| free.then_some(None),
+                    },
                     &q0,
                     joint,
                     amount,
