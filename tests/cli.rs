@@ -423,6 +423,108 @@ fn path_out_writes_ompl_state_files_the_independent_check_certifies() {
     );
 }
 
+/// `query --keep-answers FILE`: the queries are answered in their order, every path found is
+/// fed back into the roadmap before the next one, and the grown roadmap is saved: every corner
+/// of every answer is one of its nodes, it loads for the scene, and it answers the same
+/// queries again; every path printed is re-checked by the independent segment–disc test, and
+/// the roadmap given is left as it was.
+#[test]
+fn query_keeps_its_answers_in_the_roadmap() {
+    let d = temp_dir("keep");
+    let rm = d.join("r.bin").to_string_lossy().into_owned();
+    let kept = d.join("kept").join("r.bin").to_string_lossy().into_owned();
+    let o = viaroad(&[
+        "build", CLUTTERED, "-o", &rm, "--nodes", "40", "--seed", "2",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let before = std::fs::read(&rm).unwrap();
+    let q = write(
+        &d,
+        "queries.txt",
+        "0.02 0.98 0.98 0.02\n0.05 0.05 0.95 0.95\n0.5 0.97 0.5 0.03\n0.97 0.5 0.03 0.5\n",
+    );
+    let (centres, radii) = discs_of(CLUTTERED);
+    let answers = |map: &str, keep: Option<&str>| -> Vec<serde_json::Value> {
+        let mut args = vec![
+            "query",
+            map,
+            "--scene",
+            CLUTTERED,
+            "--queries",
+            &q,
+            "--json",
+        ];
+        args.extend(keep.map(|k| ["--keep-answers", k]).into_iter().flatten());
+        let o = viaroad(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: Vec<serde_json::Value> = stdout(&o)
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        for a in v.iter().filter(|a| a["solved"].as_bool().unwrap()) {
+            let p = json_path(&a["shortened"]);
+            common::check_disc_path(&p, &centres, &radii, &[0.0, 0.0], &[1.0, 1.0], 1e-9).unwrap();
+        }
+        v
+    };
+    let first = answers(&rm, Some(&kept));
+    // one after another, in the file's order
+    let numbers: Vec<u64> = first.iter().map(|a| a["query"].as_u64().unwrap()).collect();
+    assert_eq!(numbers, vec![1, 2, 3, 4]);
+    let solved: Vec<&serde_json::Value> = first
+        .iter()
+        .filter(|a| a["solved"].as_bool().unwrap())
+        .collect();
+    assert!(solved.len() >= 3, "{first:?}");
+    assert_eq!(
+        std::fs::read(&rm).unwrap(),
+        before,
+        "the roadmap given changed"
+    );
+    let nodes = |map: &str| -> u64 {
+        let o = viaroad(&["info", map, "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+        v["nodes"].as_u64().unwrap()
+    };
+    assert!(nodes(&kept) > nodes(&rm));
+    // every corner of every answer is a node of the kept roadmap, bit for bit
+    let roadmap = viaroad::roadmap::Roadmap::load(
+        std::path::Path::new(&kept),
+        viaroad::scene::Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(CLUTTERED))
+            .unwrap()
+            .fingerprint(),
+    )
+    .unwrap();
+    let bits = |q: &[f64]| q.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
+    let node_bits: std::collections::HashSet<Vec<u64>> = (0..roadmap.node_count() as u32)
+        .map(|i| bits(roadmap.node(i)))
+        .collect();
+    for a in &solved {
+        for c in json_path(&a["shortened"]) {
+            assert!(node_bits.contains(&bits(&c)), "{c:?} is not a node");
+        }
+    }
+    // the kept roadmap answers every query the first run answered
+    let again = answers(&kept, None);
+    for (a, b) in first.iter().zip(&again) {
+        assert!(!a["solved"].as_bool().unwrap() || b["solved"].as_bool().unwrap());
+    }
+    // a target that cannot be saved to is refused before any query is answered
+    let args = [
+        "query",
+        &rm,
+        "--scene",
+        CLUTTERED,
+        "--queries",
+        &q,
+        "--keep-answers",
+        "/dev/null",
+    ];
+    fails_with(&args, "/dev/null");
+    assert!(stdout(&viaroad(&args)).is_empty());
+}
+
 fn temp_dir(name: &str) -> PathBuf {
     common::cli::temp_dir("cli", name)
 }

@@ -70,6 +70,14 @@ pub struct QueryArgs {
     /// instead (and give up sooner).
     #[arg(long)]
     pub no_grow: bool,
+    /// Feed every path found back into the roadmap before the next query (its corners become
+    /// nodes, its single-group pieces edges: `Roadmap::with_path`), answering the queries one
+    /// after another in their order, and save the grown roadmap to FILE (it may be the roadmap
+    /// file itself: written beside it, then renamed). A fixed workcell's next request from
+    /// the same pose, or into the same pocket, attaches to what the earlier answers found.
+    /// Ctrl-C stops the batch and saves what was kept so far.
+    #[arg(long, value_name = "FILE")]
+    pub keep_answers: Option<PathBuf>,
 }
 
 /// How `query` shortens paths.
@@ -137,6 +145,39 @@ impl Printer {
             }
         }
     }
+}
+
+/// Answers `queries` in their order over `roadmap`, each path found fed back into it before
+/// the next query ([`Roadmap::with_path`]); every answer goes to `printer` as it comes. The
+/// grown roadmap and the number of answers kept.
+fn answer_keeping(
+    mut roadmap: Roadmap,
+    oracle: &dyn viaroad::oracle::CollisionOracle,
+    options: &QueryOptions,
+    queries: &[(Config, Config)],
+    deadline: &Deadline,
+    printer: &Printer,
+) -> anyhow::Result<(Roadmap, usize)> {
+    let mut kept = 0;
+    for (i, (s, g)) in queries.iter().enumerate() {
+        let began = Instant::now();
+        let result = QueryPlanner::new(&roadmap, oracle)
+            .context("roadmap")?
+            .with_options(options.clone())
+            .query_within(s, g, deadline);
+        let answer = BatchAnswer {
+            result,
+            elapsed: began.elapsed(),
+        };
+        printer.answer(i, &answer);
+        if let Ok(r) = &answer.result {
+            if r.is_solved() {
+                roadmap = roadmap.with_path(&r.path).map_err(anyhow::Error::msg)?;
+                kept += 1;
+            }
+        }
+    }
+    Ok((roadmap, kept))
 }
 
 /// One answer as printed: a JSON object or a line of text; `t` its time in ms.
@@ -232,8 +273,9 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     }
     match a.landmarks {
         Some(n) => defaults.landmarks = n,
-        // landmarks cost a Dijkstra each, repaid over a batch, not by one query
-        None if queries.len() == 1 => defaults.landmarks = 0,
+        // landmarks cost a Dijkstra each, repaid over a batch, not by one query (nor by a
+        // roadmap that changes after every answer kept)
+        None if queries.len() == 1 || a.keep_answers.is_some() => defaults.landmarks = 0,
         None => {}
     }
     let options = match a.shorten {
@@ -247,7 +289,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             ..defaults
         },
     };
-    let planner = planner.with_options(options);
+    let planner = planner.with_options(options.clone());
     let path_out = match &a.path_out {
         Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
         None => None,
@@ -273,8 +315,37 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             ..Printed::default()
         }),
     };
+    if let Some(out) = &a.keep_answers {
+        // a target that cannot be saved to is refused before the queries, not after them
+        viaroad::safe_file::resolve_target(out)?;
+    }
     let deadline = super::interrupt::on_ctrl_c(Deadline::none());
-    planner.query_each(&queries, &deadline, &|i, answer| printer.answer(i, &answer));
+    match &a.keep_answers {
+        None => planner.query_each(&queries, &deadline, &|i, answer| printer.answer(i, &answer)),
+        Some(out) => {
+            drop(planner);
+            let (grown, kept) = answer_keeping(
+                roadmap.clone(),
+                oracle.as_ref(),
+                &options,
+                &queries,
+                &deadline,
+                &printer,
+            )?;
+            super::output::create_parent(out)?;
+            grown
+                .save(out)
+                .context("saving the roadmap with its answers kept")?;
+            eprintln!(
+                "kept {kept} answers: {} nodes, {} edges ({} and {} before), saved to {}",
+                grown.node_count(),
+                grown.edge_count(),
+                roadmap.node_count(),
+                roadmap.edge_count(),
+                out.display()
+            );
+        }
+    }
     let mut st = printer
         .state
         .into_inner()
