@@ -248,7 +248,8 @@ fn yes_no_and_first_hit_agree_with_the_intervals() {
 /// via-point search's repeats) are the arm oracle's answers: the same intervals, yes/no and
 /// first hit, bit for bit, on first asking and on every repeat, as an oracle that keeps
 /// nothing, in either order of asking (a kept answer of one question that says the move is
-/// free answers the others); and a move that differs in the last bit is asked anew.
+/// free answers the others), static checks included; and a move that differs in the last bit
+/// is asked anew.
 #[test]
 fn kept_answers_are_the_oracles_answers() {
     use viaroad::oracle::CollisionOracle;
@@ -285,7 +286,7 @@ fn kept_answers_are_the_oracles_answers() {
         motions.push(scene.space.group_motion(&q, &z, &groups[j]));
     }
     let mut counts = viaroad::oracle::CallCounts::default();
-    let mut hits = 0;
+    let (mut hits, mut static_hits) = (0, 0);
     for round in 0..2 {
         for m in &motions {
             let want = fresh.intervals(m, &mut counts).unwrap();
@@ -308,7 +309,13 @@ fn kept_answers_are_the_oracles_answers() {
             assert_eq!(first, fresh.first_collision(m, &mut counts).unwrap());
             assert_eq!(free, want.is_empty());
             assert_eq!(all.as_slice(), want.as_slice());
+            // static checks are kept too, by the configuration's bits
+            let q = &m.origin;
+            let hit = fresh.collides(q, &mut counts);
+            static_hits += usize::from(hit && round == 0);
+            assert_eq!(keeping.collides(q, &mut counts), hit);
         }
     }
     assert!(hits >= 9, "{hits}");
+    assert!(static_hits >= 3, "{static_hits}");
 }

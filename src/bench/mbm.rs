@@ -707,6 +707,10 @@ pub fn run_workcell(
         ..QueryOptions::default()
     };
     let arm = &check.arm().clone();
+    // requests are validated with an oracle of their own: the queries' oracle keeps its
+    // answers (static checks among them), and a query must not find its ends checked by the
+    // validation outside its time
+    let validator = scene.oracle();
     let mut roadmap = roadmap;
     let mut times = Vec::new();
     let mut next = 0;
@@ -716,7 +720,7 @@ pub fn run_workcell(
         let mut keep = None;
         while keep.is_none() && next < problems.len() {
             next += 1;
-            let Some((s, g)) = valid_request(arm, &scene, oracle.as_ref(), &problems[next - 1])
+            let Some((s, g)) = valid_request(arm, &scene, validator.as_ref(), &problems[next - 1])
             else {
                 continue;
             };

@@ -202,7 +202,7 @@ fn digest(arm: &Arm, objects: &[CollisionObject]) -> u64 {
 /// from the same base point, say), and such a repeat is answered with the kept answer, which
 /// is the answer (`tests/arm_plan.rs` compares with an oracle that keeps nothing). A kept
 /// answer that the move is free also answers the other questions about it
-/// (`Answers::free`).
+/// (`Answers::free`). Static checks of configurations are kept too, by their bits.
 pub struct ArmCollision {
     oracle: Arc<ArmOracle>,
     answers: Option<Mutex<Answers>>,
@@ -224,13 +224,17 @@ struct Answers {
     intervals: HashMap<Key, IntervalList>,
     free: HashMap<Key, bool>,
     first_hit: HashMap<Key, Option<f64>>,
+    /// Static checks by the configuration's bits: a workcell's queries start from the same
+    /// home pose, each query checks it again, and a static check near contact (a grasp pose
+    /// beside its object) costs several single-joint moves.
+    states: HashMap<Vec<u64>, bool>,
 }
 
 impl Answers {
     const CAPACITY: usize = 1 << 14;
 
     fn len(&self) -> usize {
-        self.intervals.len() + self.free.len() + self.first_hit.len()
+        self.intervals.len() + self.free.len() + self.first_hit.len() + self.states.len()
     }
 
     /// Whether the move is free, as far as any kept answer about it says: the three questions
@@ -310,6 +314,25 @@ impl ArmCollision {
         Ok(a)
     }
 
+    /// Whether configuration `q` collides: the kept answer, or the arm oracle's, kept.
+    fn static_hit(&self, q: &[f64], counts: &mut CallCounts) -> Result<bool, RobotError> {
+        let Some(answers) = &self.answers else {
+            return self.oracle.collides(q, counts);
+        };
+        let key: Vec<u64> = q.iter().map(|v| v.to_bits()).collect();
+        let lock = || answers.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(&hit) = lock().states.get(&key) {
+            return Ok(hit);
+        }
+        let hit = self.oracle.collides(q, counts)?;
+        let mut kept = lock();
+        if kept.len() >= Answers::CAPACITY {
+            *kept = Answers::default();
+        }
+        kept.states.insert(key, hit);
+        Ok(hit)
+    }
+
     fn unsupported(e: RobotError) -> OracleError {
         OracleError::Unsupported(e.to_string())
     }
@@ -360,10 +383,7 @@ impl ArmCollision {
         let range = motion.range;
         match Self::resolve(motion)? {
             Move::Static(q) => {
-                let hit = self
-                    .oracle
-                    .collides(&q, counts)
-                    .map_err(Self::unsupported)?;
+                let hit = self.static_hit(&q, counts).map_err(Self::unsupported)?;
                 Ok(if hit {
                     IntervalList::single(range)
                 } else {
@@ -441,8 +461,7 @@ impl CollisionOracle for ArmCollision {
                 || self.oracle.joint_move_free(&q0, joint, amount, &mut own),
             ),
             Ok(Move::Static(q)) => self
-                .oracle
-                .collides(&q, &mut own)
+                .static_hit(&q, &mut own)
                 .map(|hit| !hit)
                 .map_err(Self::unsupported),
             Err(e) => Err(e),
@@ -479,8 +498,7 @@ impl CollisionOracle for ArmCollision {
                     t.map(|t| (range.lo + t * (range.hi - range.lo)).clamp(range.lo, range.hi))
                 }),
             Ok(Move::Static(q)) => self
-                .oracle
-                .collides(&q, &mut own)
+                .static_hit(&q, &mut own)
                 .map(|hit| hit.then_some(range.lo))
                 .map_err(Self::unsupported),
             Err(e) => Err(e),
@@ -492,7 +510,7 @@ impl CollisionOracle for ArmCollision {
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
         let mut own = CallCounts::default();
         // a configuration of the wrong shape cannot be placed: it counts as collision
-        let hit = self.oracle.collides(q, &mut own).unwrap_or(true);
+        let hit = self.static_hit(q, &mut own).unwrap_or(true);
         counts.pairs_tested += own.pairs_tested;
         hit
     }
