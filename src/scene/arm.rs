@@ -285,52 +285,63 @@ impl ArmCollision {
         amount: f64,
         ask: impl FnOnce() -> Result<T, RobotError>,
     ) -> Result<T, OracleError> {
-        let Some(answers) = &self.answers else {
-            return ask().map_err(Self::unsupported);
-        };
         let key = Key {
             joint,
             q0: q0.iter().map(|v| v.to_bits()).collect(),
             amount: amount.to_bits(),
+        };
+        self.remember(
+            q.own,
+            key,
+            |kept, key| kept.free(key).and_then(q.from_free),
+            ask,
+        )
+        .map_err(Self::unsupported)
+    }
+
+    /// Whether configuration `q` collides: the kept answer, or the arm oracle's, kept.
+    fn static_hit(&self, q: &[f64], counts: &mut CallCounts) -> Result<bool, RobotError> {
+        let key = q.iter().map(|v| v.to_bits()).collect();
+        self.remember(
+            |a| &mut a.states,
+            key,
+            |_, _| None,
+            || self.oracle.collides(q, counts),
+        )
+    }
+
+    /// The answer kept under `key` in the map `own` picks, else what `implied` reads from the
+    /// other kept answers, else `ask`'s, kept (all answers are forgotten at once when
+    /// [`Answers::CAPACITY`] is reached). Without kept answers, `ask`'s.
+    fn remember<K: std::hash::Hash + Eq, T: Clone>(
+        &self,
+        own: fn(&mut Answers) -> &mut HashMap<K, T>,
+        key: K,
+        implied: impl FnOnce(&Answers, &K) -> Option<T>,
+        ask: impl FnOnce() -> Result<T, RobotError>,
+    ) -> Result<T, RobotError> {
+        let Some(answers) = &self.answers else {
+            return ask();
         };
         // a poisoned lock only means another thread panicked while holding it: the map is
         // consistent (inserts and clears are single calls)
         let lock = || answers.lock().unwrap_or_else(|e| e.into_inner());
         {
             let mut kept = lock();
-            if let Some(a) = (q.own)(&mut kept).get(&key) {
+            if let Some(a) = own(&mut kept).get(&key) {
                 return Ok(a.clone());
             }
-            if let Some(a) = kept.free(&key).and_then(q.from_free) {
+            if let Some(a) = implied(&kept, &key) {
                 return Ok(a);
             }
         }
-        let a = ask().map_err(Self::unsupported)?;
+        let a = ask()?;
         let mut kept = lock();
         if kept.len() >= Answers::CAPACITY {
             *kept = Answers::default();
         }
-        (q.own)(&mut kept).insert(key, a.clone());
+        own(&mut kept).insert(key, a.clone());
         Ok(a)
-    }
-
-    /// Whether configuration `q` collides: the kept answer, or the arm oracle's, kept.
-    fn static_hit(&self, q: &[f64], counts: &mut CallCounts) -> Result<bool, RobotError> {
-        let Some(answers) = &self.answers else {
-            return self.oracle.collides(q, counts);
-        };
-        let key: Vec<u64> = q.iter().map(|v| v.to_bits()).collect();
-        let lock = || answers.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(&hit) = lock().states.get(&key) {
-            return Ok(hit);
-        }
-        let hit = self.oracle.collides(q, counts)?;
-        let mut kept = lock();
-        if kept.len() >= Answers::CAPACITY {
-            *kept = Answers::default();
-        }
-        kept.states.insert(key, hit);
-        Ok(hit)
     }
 
     fn unsupported(e: RobotError) -> OracleError {
