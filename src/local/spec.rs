@@ -48,6 +48,22 @@ pub struct SpecError {
     pub reason: String,
 }
 
+/// The via-point planner's keys in a spec string (`viapoint:KEY=VALUE,…`).
+const VIAPOINT_KEYS: [&str; 12] = [
+    "depth",
+    "max",
+    "beta",
+    "via",
+    "base",
+    "dirs",
+    "rotations",
+    "split",
+    "dodge",
+    "search",
+    "calls",
+    "seed",
+];
+
 impl LocalSpec {
     /// The local method roadmaps are learnt with by default: the via-point planner tuned to the
     /// fast end — deepening with re-use up to depth 3, at most 1000 intersect calls per
@@ -163,6 +179,14 @@ impl LocalSpec {
         for tok in rest.split(',').map(str::trim).filter(|t| !t.is_empty()) {
             match tok.split_once('=') {
                 Some((k, v)) => keys.push((k.trim().to_string(), vec![v.trim().to_string()])),
+                // a knob's name is no knob's value: `calls=1000,split` meant `split=true`, and
+                // read as a value of `calls` it would be reported as a bad number of calls
+                None if VIAPOINT_KEYS.contains(&tok) => {
+                    return Err(err(format!(
+                        "`{tok}` needs a value (`{tok}=…`): a word without `=` is another value \
+                         of the key before it"
+                    )))
+                }
                 None => match keys.last_mut() {
                     Some((_, vals)) => vals.push(tok.to_string()),
                     None => return Err(err(format!("`{tok}` is not key=value"))),
@@ -437,6 +461,18 @@ mod tests {
         let all = LocalSpec::parse_grid("viapoint:beta=0,0.5,1,via=2,all").unwrap();
         assert_eq!(all.len(), 6);
         assert!("viapoint:beta=0,1".parse::<LocalSpec>().is_err());
+    }
+
+    /// A knob written as a flag is named as such, not read as a value of the key before it.
+    #[test]
+    fn a_knob_without_a_value_is_named() {
+        let e = "viapoint:calls=1000,split"
+            .parse::<LocalSpec>()
+            .unwrap_err();
+        assert!(e.reason.contains("`split` needs a value"), "{}", e.reason);
+        assert!("viapoint:calls=1000,split=true"
+            .parse::<LocalSpec>()
+            .is_ok());
     }
 
     #[test]
