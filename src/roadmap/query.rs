@@ -62,9 +62,10 @@ pub struct QueryOptions {
     pub try_direct: bool,
     /// The call budget of the quick try from start to goal before the roadmap, for via-point
     /// roadmaps: 0 checks the direct path only, a yes/no call per piece; `n` runs the
-    /// via-point planner for at most `n` intersect calls. Where calls are cheap, the planner often joins random pairs directly
-    /// (80 discs, 10 000 nodes: p50 0.27 → 0.035 ms with 32); where they are dear it mostly
-    /// fails there and the roadmap would have been quicker (OMPL.app's Home: p50 12 → 27 ms).
+    /// via-point planner for at most `n` intersect calls. Where calls are cheap, the planner
+    /// often joins random pairs directly (80 discs, 10 000 nodes: p50 0.27 → 0.035 ms with
+    /// 32); where they are dear it mostly fails there and the roadmap would have been quicker
+    /// (OMPL.app's Home: p50 12 → 27 ms).
     pub direct_calls: u64,
     /// Shorten the path over its corners (CHS A.1).
     pub shorten: bool,
