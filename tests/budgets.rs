@@ -355,3 +355,114 @@ fn connect_pair_grows_a_roadmap_from_start_and_goal() {
     );
     roadmap_valid(roadmap, &discs(&scene)).unwrap();
 }
+
+/// Shortening honours the query's time (it did not: a workcell query of the cage ran its
+/// shortening to the end, 19 s on a 5 s budget): the greedy pass and the visibility graph stop
+/// within one check of the deadline, and what they return is still a valid path from start to
+/// goal (the greedy pass keeps the rest of its input; the visibility graph its input).
+#[test]
+fn shortening_stops_within_one_check_of_its_deadline() {
+    use viaroad::local::{drop_corners_known, shorten_known, KnownPieces};
+    let scene = disc_scene(4, 120, 0.05);
+    let d = discs(&scene);
+    let roadmap = learn(
+        &scene,
+        &LocalSpec::default(),
+        &LearnParams::default(),
+        300,
+        1,
+    )
+    .roadmap;
+    let oracle = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            shorten: false,
+            ..QueryOptions::default()
+        });
+    // the longest raw path of some queries: many corners, many pairs to check
+    let raw = random_queries(&scene, 60, 9)
+        .into_iter()
+        .filter_map(|(s, g)| planner.query(&s, &g).ok().filter(|r| r.is_solved()))
+        .map(|r| r.path)
+        .max_by_key(|p| p.len())
+        .unwrap();
+    assert!(
+        raw.len() >= 12,
+        "the test needs a long path, got {}",
+        raw.len()
+    );
+    assert!(path_free(&raw, &d));
+    let groups = scene.space.groups(false);
+    let known = || {
+        let mut k = KnownPieces::new();
+        k.certify_path(&scene.space, &groups, &raw);
+        k
+    };
+    let ends = |p: &[Vec<f64>]| (p[0].clone(), p[p.len() - 1].clone());
+    let want_ends = ends(&raw);
+    for trip in [1, 3] {
+        // unlimited, to know that the stop cut the work short
+        let c = &mut CallCounts::default();
+        drop_corners_known(
+            &scene.space,
+            oracle.as_ref(),
+            &groups,
+            &raw,
+            &mut known(),
+            c,
+            &Deadline::none(),
+        )
+        .unwrap();
+        assert!(c.intersect_calls() > trip + 1, "{c:?}");
+        let wire = Tripwire::new(scene.oracle(), trip);
+        let c = &mut CallCounts::default();
+        let p = drop_corners_known(
+            &scene.space,
+            &wire,
+            &groups,
+            &raw,
+            &mut known(),
+            c,
+            &wire.deadline(),
+        )
+        .unwrap();
+        assert_eq!(
+            wire.motions(),
+            trip,
+            "the greedy pass went on after its deadline"
+        );
+        assert!(path_free(&p, &d) && ends(&p) == want_ends, "{p:?}");
+
+        let c = &mut CallCounts::default();
+        shorten_known(
+            &scene.space,
+            oracle.as_ref(),
+            &groups,
+            &raw,
+            &mut known(),
+            c,
+            &Deadline::none(),
+        )
+        .unwrap();
+        assert!(c.intersect_calls() > trip + 1, "{c:?}");
+        let wire = Tripwire::new(scene.oracle(), trip);
+        let c = &mut CallCounts::default();
+        let p = shorten_known(
+            &scene.space,
+            &wire,
+            &groups,
+            &raw,
+            &mut known(),
+            c,
+            &wire.deadline(),
+        )
+        .unwrap();
+        assert_eq!(
+            wire.motions(),
+            trip,
+            "the visibility graph went on after its deadline"
+        );
+        assert_eq!(p, raw);
+    }
+}

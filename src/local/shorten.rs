@@ -11,6 +11,7 @@
 //! of all `m(m-1)/2`.
 
 use super::{check_direct_known, direct_length, KnownPieces};
+use crate::deadline::Deadline;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::space::{Config, Group, Space};
 
@@ -35,12 +36,21 @@ pub fn shorten(
 ) -> Result<Vec<Config>, OracleError> {
     let mut known = KnownPieces::new();
     known.certify_path(space, groups, path);
-    shorten_known(space, oracle, groups, path, &mut known, counts)
+    shorten_known(
+        space,
+        oracle,
+        groups,
+        path,
+        &mut known,
+        counts,
+        &Deadline::none(),
+    )
 }
 
 /// [`shorten()`] with the pieces known so far (those of `path` among them, see
 /// [`KnownPieces::certify_path`]), kept up to date: a query shares them between the greedy
-/// pass and the visibility graph.
+/// pass and the visibility graph. Once `deadline` passes (checked before every check of a
+/// pair) `path` itself is returned: a query's time is a promise, and the path is valid.
 pub fn shorten_known(
     space: &Space,
     oracle: &dyn CollisionOracle,
@@ -48,6 +58,7 @@ pub fn shorten_known(
     path: &[Config],
     known: &mut KnownPieces,
     counts: &mut CallCounts,
+    deadline: &Deadline,
 ) -> Result<Vec<Config>, OracleError> {
     let m = path.len();
     if m <= 2 {
@@ -77,6 +88,9 @@ pub fn shorten_known(
         for w in order.windows(2) {
             let k = w[0].min(w[1]) * m + w[0].max(w[1]);
             if state[k] == Pair::Unknown {
+                if deadline.expired() {
+                    return Ok(path.to_vec());
+                }
                 let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
                 match check_direct_known(
                     space,
@@ -199,11 +213,20 @@ pub fn drop_corners(
 ) -> Result<Vec<Config>, OracleError> {
     let mut known = KnownPieces::new();
     known.certify_path(space, groups, path);
-    drop_corners_known(space, oracle, groups, path, &mut known, counts)
+    drop_corners_known(
+        space,
+        oracle,
+        groups,
+        path,
+        &mut known,
+        counts,
+        &Deadline::none(),
+    )
 }
 
 /// [`drop_corners`] with the pieces known so far (see [`shorten_known`]). A check from a
-/// corner to the one after next that is the path's own two pieces costs no call.
+/// corner to the one after next that is the path's own two pieces costs no call. Once
+/// `deadline` passes (checked before every check) the rest of `path` is kept as it is.
 pub fn drop_corners_known(
     space: &Space,
     oracle: &dyn CollisionOracle,
@@ -211,6 +234,7 @@ pub fn drop_corners_known(
     path: &[Config],
     known: &mut KnownPieces,
     counts: &mut CallCounts,
+    deadline: &Deadline,
 ) -> Result<Vec<Config>, OracleError> {
     let m = path.len();
     if m <= 2 {
@@ -221,6 +245,16 @@ pub fn drop_corners_known(
     // corner was skipped on the way (else the input's own motion leads there)
     let mut pending: Option<Vec<Config>> = None;
     for k in 1..m - 1 {
+        if deadline.expired() {
+            // the way from the last kept corner to `path[k]` (the pending direct path, or the
+            // input's own motion), then the input as it is
+            match pending.take() {
+                Some(corners) => out.extend(corners),
+                None => out.push(path[k].clone()),
+            }
+            out.extend(path[k + 1..].iter().cloned());
+            return Ok(out);
+        }
         let last = &out[out.len() - 1];
         match check_direct_known(
             space,

@@ -884,7 +884,8 @@ impl<'a> QueryPlanner<'a> {
     }
 
     /// Drops repeated corners, shortens, measures.
-    /// Shortening is skipped once the query's time is up: the raw path is a valid answer.
+    /// Shortening stops when the query's time is up (before each check of a pair): what it
+    /// had shortened, or the raw path, is a valid answer.
     fn finish(
         &self,
         mut result: QueryResult,
@@ -907,6 +908,7 @@ impl<'a> QueryPlanner<'a> {
                     &raw,
                     &mut known,
                     &mut result.counts,
+                    deadline,
                 )?;
                 &fewer
             } else {
@@ -919,6 +921,7 @@ impl<'a> QueryPlanner<'a> {
                 corners,
                 &mut known,
                 &mut result.counts,
+                deadline,
             )?
         } else {
             raw.clone()
