@@ -19,6 +19,7 @@
 
 pub mod arm;
 pub mod checker;
+mod clearance;
 pub mod kinematics;
 pub mod oracle;
 pub mod shapes;

@@ -25,6 +25,14 @@
 //! if its own cylindrical box reaches the other face's. Everything that survives is solved
 //! exactly.
 //!
+//! Conservative advancement first ([`clearance`]): a moving link and an obstacle (a proximal
+//! link) that a separating plane shows apart stay apart until the turn could carry a vertex
+//! across the gap; from both ends of the move, plane after plane, the pair is proved free, and
+//! only the window in between, where they come close, is handed to the exact sweep (an oracle
+//! whose pairs are all proved free throughout is not asked at all). Static pairs are tested the
+//! same way before their exact test. Outside the windows the bodies stay 1e-6 of the scene's
+//! size apart, far beyond the exact predicate's slack: the answers do not change.
+//!
 //! One sweep per move: the oracles a move asks share one set of collision pieces
 //! ([`Polyhedra::gather`](crate::oracle::polyhedra::Polyhedra)), so a pair of faces whose
 //! window an earlier oracle already found colliding is skipped; the yes/no question
@@ -49,6 +57,7 @@
 //! the figures).
 
 use super::arm::Arm;
+use super::clearance::{self, Cloud, Move, Pair};
 use super::RobotError;
 use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
@@ -167,7 +176,28 @@ struct Prepared {
     sweep: Sweep,
 }
 
+/// How far apart, in units of an oracle's distance tolerance, conservative advancement must
+/// prove a pair before it leaves their exact sweep out (1e-6 of the scene's size: far beyond
+/// the slack with which the exact predicate reports contacts).
+const CLEARANCE_PER_TOLERANCE: f64 = 1e5;
+
 impl Prepared {
+    /// The move as conservative advancement sees it.
+    fn motion(&self) -> Move {
+        match self.sweep {
+            Sweep::Turn {
+                origin,
+                axis,
+                angle,
+            } => Move::Turn {
+                pivot: origin,
+                axis,
+                angle,
+            },
+            Sweep::Slide { offset } => Move::Slide { offset },
+        }
+    }
+
     /// The world pivot and axis of the move (for a slide: the child frame's origin and the
     /// offset).
     fn pivot_axis(&self) -> (Vector3<f64>, Vector3<f64>) {
@@ -191,6 +221,10 @@ pub struct ArmOracle {
     pair_oracles: HashMap<(usize, usize), Arc<Polyhedra>>,
     /// Per link with geometry: the link (in its frame) among the whole environment, built once.
     env_oracles: Vec<Option<Arc<Polyhedra>>>,
+    /// Per link and per environment polytope: its vertices, for conservative advancement
+    /// ([`clearance`]) ahead of the exact sweep.
+    link_clouds: Vec<Option<Cloud>>,
+    env_clouds: Vec<Option<Cloud>>,
     /// Whether the link oracles of a move share what they find ([`ArmOracle::with_culling`]).
     culling: bool,
 }
@@ -203,6 +237,11 @@ impl std::fmt::Debug for ArmOracle {
             .field("self_pairs", &self.pair_oracles.len())
             .finish()
     }
+}
+
+/// Link `l`'s cloud, if it has geometry.
+fn l_cloud(clouds: &[Option<Cloud>], l: usize) -> Option<&Cloud> {
+    clouds.get(l).and_then(Option::as_ref)
 }
 
 /// A mesh moved rigidly.
@@ -289,12 +328,22 @@ impl ArmOracle {
                     .map(|(m, _)| Arc::new(Polyhedra::new(m.clone(), env_meshes.clone())))
             })
             .collect();
+        let link_clouds = link_meshes
+            .iter()
+            .map(|m| m.as_ref().and_then(|(m, _)| Cloud::of(&m.vertices)))
+            .collect();
+        let env_clouds = environment
+            .iter()
+            .map(|(m, _)| Cloud::of(&m.vertices))
+            .collect();
         Ok(ArmOracle {
             arm: arm.clone(),
             environment,
             link_meshes,
             pair_oracles,
             env_oracles,
+            link_clouds,
+            env_clouds,
             culling: true,
         })
     }
@@ -304,7 +353,8 @@ impl ArmOracle {
         &self.arm
     }
 
-    /// Whether links `a` and `b` (a self-collision pair) meet at these link poses.
+    /// Whether links `a` and `b` (a self-collision pair) meet at these link poses (unless a
+    /// separating plane shows them apart first).
     fn pair_meets(
         &self,
         a: usize,
@@ -312,12 +362,19 @@ impl ArmOracle {
         poses: &[Isometry3<f64>],
         counts: &mut CallCounts,
     ) -> bool {
-        self.pair_oracles
-            .get(&(a, b))
-            .is_some_and(|o| o.collides(&se3(&(poses[b].inverse() * poses[a])), counts))
+        self.pair_oracles.get(&(a, b)).is_some_and(|o| {
+            !self.apart(
+                l_cloud(&self.link_clouds, a),
+                &poses[a],
+                l_cloud(&self.link_clouds, b),
+                &poses[b],
+                o,
+            ) && o.collides(&se3(&(poses[b].inverse() * poses[a])), counts)
+        })
     }
 
-    /// Whether link `l` at `pose` meets the environment (when its ball meets any obstacle's).
+    /// Whether link `l` at `pose` meets the environment (when its ball meets an obstacle's
+    /// and no separating plane shows it apart from every such obstacle).
     fn in_environment(
         &self,
         l: usize,
@@ -325,10 +382,42 @@ impl ArmOracle {
         ball: &Ball,
         counts: &mut CallCounts,
     ) -> bool {
-        self.environment.iter().any(|(_, b)| b.meets(ball))
-            && self.env_oracles[l]
-                .as_ref()
-                .is_some_and(|o| o.collides(&se3(pose), counts))
+        let Some(o) = &self.env_oracles[l] else {
+            return false;
+        };
+        let near = |(i, (_, b)): &(usize, &(TriMesh, Ball))| {
+            b.meets(ball)
+                && !self.apart(
+                    l_cloud(&self.link_clouds, l),
+                    pose,
+                    self.env_clouds[*i].as_ref(),
+                    &Isometry3::identity(),
+                    o,
+                )
+        };
+        self.environment.iter().enumerate().any(|e| near(&e)) && o.collides(&se3(pose), counts)
+    }
+
+    /// Whether conservative advancement's clouds (with culling on) show two bodies more than
+    /// the oracle's clearance margin apart.
+    fn apart(
+        &self,
+        a: Option<&Cloud>,
+        pose_a: &Isometry3<f64>,
+        b: Option<&Cloud>,
+        pose_b: &Isometry3<f64>,
+        o: &Polyhedra,
+    ) -> bool {
+        match (a, b) {
+            (Some(a), Some(b)) if self.culling => clearance::apart(
+                a,
+                pose_a,
+                b,
+                pose_b,
+                o.tolerance() * CLEARANCE_PER_TOLERANCE,
+            ),
+            _ => false,
+        }
     }
 
     fn exempt(&self, a: usize, b: usize) -> bool {
@@ -553,6 +642,7 @@ impl ArmOracle {
                        rel: &Isometry3<f64>,
                        into: &Isometry3<f64>,
                        sign: f64,
+                       window: Interval,
                        g: &mut Gathered<'_>,
                        counts: &mut CallCounts|
              -> Result<(), RobotError> {
@@ -566,33 +656,42 @@ impl ArmOracle {
                             [c.x, c.y, c.z],
                             [v.x, v.y, v.z],
                             sign * delta,
+                            window,
                             counts,
                         )
                     }
                     Sweep::Slide { .. } => {
                         let d = v * sign;
-                        g.slide(o, &se3(rel), [d.x, d.y, d.z], counts)
+                        g.slide(o, &se3(rel), [d.x, d.y, d.z], window, counts)
                     }
                 }
                 .map_err(unsupported)
             };
-            self.each_oracle(&p, |o, rel, into, sign| {
-                ask(o, &rel, &into, sign, g, counts)?;
+            self.each_oracle(&p, |o, rel, into, sign, window| {
+                ask(o, &rel, &into, sign, window, g, counts)?;
                 Ok(!g.done())
             })?;
             Ok(finish(g))
         })
     }
 
-    /// Calls `f(oracle, pose, into, sign)` for every oracle a moving link must ask (the
-    /// environment, with the swept link ball meeting some obstacle's; each proximal link it is
-    /// not exempt from, with the balls meeting): the robot placed at `pose` in the frame
+    /// Calls `f(oracle, pose, into, sign, window)` for every oracle a moving link must ask
+    /// (the environment, with the swept link ball meeting some obstacle's; each proximal link
+    /// it is not exempt from, with the balls meeting): the robot placed at `pose` in the frame
     /// `into` maps the world to, turning with the move (`sign` 1) or against it (−1, the
-    /// moving link is the obstacle). Stops when `f` answers `false`.
+    /// moving link is the obstacle), in the part `window` of `[0, 1]` that conservative
+    /// advancement could not prove free ([`clearance`]; with culling off, all of it, and
+    /// an oracle proved free throughout is not asked). Stops when `f` answers `false`.
     fn each_oracle(
         &self,
         p: &Prepared,
-        mut f: impl FnMut(&Polyhedra, Isometry3<f64>, Isometry3<f64>, f64) -> Result<bool, RobotError>,
+        mut f: impl FnMut(
+            &Polyhedra,
+            Isometry3<f64>,
+            Isometry3<f64>,
+            f64,
+            Interval,
+        ) -> Result<bool, RobotError>,
     ) -> Result<(), RobotError> {
         let Prepared {
             poses,
@@ -601,17 +700,49 @@ impl ArmOracle {
             sweep,
             ..
         } = p;
+        let mv = p.motion();
         for l in (0..balls.len()).filter(|&l| distal[l]) {
             let Some(ball) = &balls[l] else {
                 continue;
             };
-            if self
-                .environment
-                .iter()
-                .any(|(_, b)| sweep.may_meet(ball, b))
-            {
-                if let Some(o) = &self.env_oracles[l] {
-                    if !f(o, poses[l], Isometry3::identity(), 1.0)? {
+            let cloud = self.link_clouds[l].as_ref().filter(|_| self.culling);
+            let reach = cloud.map(|_| mv.reach(&ball.centre, ball.radius));
+            // the part of the move in which link `l` may meet a body `still` at `at`
+            let window = |still: Option<&Cloud>, at: Isometry3<f64>, margin: f64| match (
+                cloud, reach, still,
+            ) {
+                (Some(moving), Some(reach), Some(still)) => {
+                    let pair = Pair {
+                        moving,
+                        from: poses[l],
+                        still,
+                        at,
+                    };
+                    clearance::unproved(&pair, &mv, reach, margin)
+                }
+                _ => Some(Interval::UNIT),
+            };
+            if let Some(o) = &self.env_oracles[l] {
+                let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
+                let mut hull: Option<Interval> = None;
+                for (i, (_, b)) in self.environment.iter().enumerate() {
+                    if !sweep.may_meet(ball, b) {
+                        continue;
+                    }
+                    if let Some(w) =
+                        window(self.env_clouds[i].as_ref(), Isometry3::identity(), margin)
+                    {
+                        hull = Some(hull.map_or(w, |h| Interval {
+                            lo: h.lo.min(w.lo),
+                            hi: h.hi.max(w.hi),
+                        }));
+                    }
+                    if hull == Some(Interval::UNIT) {
+                        break;
+                    }
+                }
+                if let Some(w) = hull {
+                    if !f(o, poses[l], Isometry3::identity(), 1.0, w)? {
                         return Ok(());
                     }
                 }
@@ -626,12 +757,16 @@ impl ArmOracle {
                 let Some(o) = self.pair_oracles.get(&(l.min(m), l.max(m))) else {
                     continue;
                 };
+                let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
+                let Some(w) = window(self.link_clouds[m].as_ref(), poses[m], margin) else {
+                    continue;
+                };
                 let go = if l < m {
                     let into = poses[m].inverse();
-                    f(o, into * poses[l], into, 1.0)?
+                    f(o, into * poses[l], into, 1.0, w)?
                 } else {
                     let into = poses[l].inverse();
-                    f(o, into * poses[m], into, -1.0)?
+                    f(o, into * poses[m], into, -1.0, w)?
                 };
                 if !go {
                     return Ok(());
@@ -660,7 +795,7 @@ impl ArmOracle {
         };
         let (pivot_w, axis_w) = p.pivot_axis();
         let mut answer = IntervalList::new();
-        self.each_oracle(&p, |o, rel, into, sign| {
+        self.each_oracle(&p, |o, rel, into, sign, _| {
             let v = into.rotation * axis_w;
             let r = match p.sweep {
                 Sweep::Turn { .. } => {
@@ -672,6 +807,7 @@ impl ArmOracle {
                             [c.x, c.y, c.z],
                             [v.x, v.y, v.z],
                             sign * delta,
+                            Interval::UNIT,
                             counts,
                         )?;
                         Ok(g.to_list())

@@ -351,7 +351,7 @@ impl Polyhedra {
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
         Polyhedra::gather(Gather::All, |g| {
-            g.turn_about(self, pose, pivot, axis, angle, counts)?;
+            g.turn_about(self, pose, pivot, axis, angle, Interval::UNIT, counts)?;
             Ok(g.to_list())
         })
     }
@@ -661,7 +661,9 @@ pub(crate) struct Gathered<'s> {
 
 impl Gathered<'_> {
     /// Adds the pieces of `oracle`'s robot at `pose` turning by `t · angle` about the world
-    /// `axis` through `pivot` ([`Polyhedra::turn_about`]).
+    /// `axis` through `pivot` ([`Polyhedra::turn_about`]), `t ∈ range` (the caller knows the
+    /// rest of `[0, 1]` free).
+    #[allow(clippy::too_many_arguments)]
     pub fn turn_about(
         &mut self,
         oracle: &Polyhedra,
@@ -669,6 +671,7 @@ impl Gathered<'_> {
         pivot: [f64; 3],
         axis: [f64; 3],
         angle: f64,
+        range: Interval,
         counts: &mut CallCounts,
     ) -> Result<(), OracleError> {
         if self.done() {
@@ -682,7 +685,8 @@ impl Gathered<'_> {
         }
         let mut origin = pose.to_vec();
         origin[..3].copy_from_slice(&pivot);
-        let motion = Motion::segment(origin, Change::Rotation { axis, angle });
+        let mut motion = Motion::segment(origin, Change::Rotation { axis, angle });
+        motion.range = range;
         // body point v sits at rot · v + pos = rot · (v + s) + pivot with s = rotᵀ (pos − pivot)
         let s = at.rot.tr_mul(&(at.pos - V3::from(pivot)));
         if s == V3::zeros() {
@@ -702,21 +706,23 @@ impl Gathered<'_> {
         Ok(())
     }
 
-    /// Adds the pieces of `oracle`'s robot at `pose` translating by `t · dir`.
+    /// Adds the pieces of `oracle`'s robot at `pose` translating by `t · dir`, `t ∈ range`.
     pub fn slide(
         &mut self,
         oracle: &Polyhedra,
         pose: &[f64],
         dir: [f64; 3],
+        range: Interval,
         counts: &mut CallCounts,
     ) -> Result<(), OracleError> {
         if self.done() {
             return Ok(());
         }
-        let motion = Motion::segment(
+        let mut motion = Motion::segment(
             pose.to_vec(),
             Change::Linear(vec![dir[0], dir[1], dir[2], 0.0, 0.0, 0.0, 0.0]),
         );
+        motion.range = range;
         oracle.sweep(&motion, self.s, counts)?;
         self.narrow();
         Ok(())
