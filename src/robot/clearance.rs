@@ -34,13 +34,22 @@ const MAX_STEPS: usize = 4;
 /// hull is not a closed surface). The support in any direction is the whole body's, so the
 /// gap that proves does not depend on the hull's accuracy.
 #[derive(Clone, Debug)]
-pub(crate) struct Cloud(Vec<Point3<f64>>);
+pub(crate) struct Cloud {
+    vertices: Vec<Point3<f64>>,
+    /// The hull's vertices and, per vertex, its neighbours along the hull's edges
+    /// (`offsets[i]..offsets[i + 1]` in `neighbours`; empty without a closed hull): GJK's
+    /// support by hill climbing.
+    hull: Vec<Point3<f64>>,
+    offsets: Vec<u32>,
+    neighbours: Vec<u32>,
+}
 
+/// The exact support: every vertex scanned.
 impl SupportMap for Cloud {
     fn local_support_point(&self, dir: &Vector3<f64>) -> Point3<f64> {
-        let mut best = self.0[0];
+        let mut best = self.vertices[0];
         let mut top = dir.dot(&best.coords);
-        for p in &self.0[1..] {
+        for p in &self.vertices[1..] {
             let d = dir.dot(&p.coords);
             if d > top {
                 top = d;
@@ -51,9 +60,65 @@ impl SupportMap for Cloud {
     }
 }
 
+/// GJK's support while it searches: a climb along the hull's edges from where the last one
+/// ended (a linear function's local maximum on a convex polytope is its maximum, so this is
+/// the hull's support up to rounding; the gap that proves is measured with the exact one).
+struct Climb<'a> {
+    cloud: &'a Cloud,
+    at: std::cell::Cell<u32>,
+}
+
+impl<'a> Climb<'a> {
+    fn new(cloud: &'a Cloud) -> Self {
+        Climb {
+            cloud,
+            at: std::cell::Cell::new(0),
+        }
+    }
+}
+
+impl SupportMap for Climb<'_> {
+    fn local_support_point(&self, dir: &Vector3<f64>) -> Point3<f64> {
+        let c = self.cloud;
+        if c.offsets.is_empty() {
+            return c.local_support_point(dir);
+        }
+        let mut i = self.at.get() as usize;
+        let mut top = dir.dot(&c.hull[i].coords);
+        loop {
+            let mut moved = false;
+            for &j in &c.neighbours[c.offsets[i] as usize..c.offsets[i + 1] as usize] {
+                let d = dir.dot(&c.hull[j as usize].coords);
+                if d > top {
+                    top = d;
+                    i = j as usize;
+                    moved = true;
+                }
+            }
+            if !moved {
+                break;
+            }
+        }
+        self.at.set(i as u32);
+        c.hull[i]
+    }
+}
+
 /// How far inside every face of the hull, relative to the body's size, a vertex must lie to be
 /// left out of its cloud.
 const INSIDE: f64 = 1e-9;
+
+/// Points sorted and without repeats.
+fn sorted(mut points: Vec<Point3<f64>>) -> Vec<Point3<f64>> {
+    points.sort_by(|a, b| {
+        a.coords
+            .as_slice()
+            .partial_cmp(b.coords.as_slice())
+            .unwrap()
+    });
+    points.dedup();
+    points
+}
 
 impl Cloud {
     /// The cloud of a mesh's vertices (`None` without any, or with one not finite).
@@ -65,16 +130,15 @@ impl Cloud {
         {
             return None;
         }
-        let mut all = vertices.to_vec();
-        all.sort_by(|a, b| {
-            a.coords
-                .as_slice()
-                .partial_cmp(b.coords.as_slice())
-                .unwrap()
-        });
-        all.dedup();
+        let all = sorted(vertices.to_vec());
+        let plain = |all: Vec<Point3<f64>>| Cloud {
+            vertices: all,
+            hull: Vec::new(),
+            offsets: Vec::new(),
+            neighbours: Vec::new(),
+        };
         let Ok((hull, faces)) = parry3d_f64::transformation::try_convex_hull(&all) else {
-            return Some(Cloud(all));
+            return Some(plain(all));
         };
         // a closed surface: every edge in exactly two faces, once each way
         let mut edges: Vec<(u32, u32)> = faces
@@ -86,9 +150,10 @@ impl Cloud {
             && edges.windows(2).all(|w| w[0] != w[1])
             && edges
                 .iter()
-                .all(|&(a, b)| edges.binary_search(&(b, a)).is_ok());
+                .all(|&(a, b)| edges.binary_search(&(b, a)).is_ok())
+            && edges.iter().all(|&(a, _)| (a as usize) < hull.len());
         if !closed {
-            return Some(Cloud(all));
+            return Some(plain(all));
         }
         let centre = hull.iter().map(|p| p.coords).sum::<Vector3<f64>>() / hull.len() as f64;
         let size = all
@@ -119,14 +184,20 @@ impl Cloud {
         };
         let mut kept = hull.clone();
         kept.extend(all.iter().filter(|v| !held(v)));
-        kept.sort_by(|a, b| {
-            a.coords
-                .as_slice()
-                .partial_cmp(b.coords.as_slice())
-                .unwrap()
-        });
-        kept.dedup();
-        Some(Cloud(kept))
+        // the hull's edges, each way, grouped by their first vertex (`edges` is sorted)
+        let mut offsets = vec![0u32; hull.len() + 1];
+        for &(a, _) in &edges {
+            offsets[a as usize + 1] += 1;
+        }
+        for i in 0..hull.len() {
+            offsets[i + 1] += offsets[i];
+        }
+        Some(Cloud {
+            vertices: sorted(kept),
+            hull,
+            offsets,
+            neighbours: edges.iter().map(|&(_, b)| b).collect(),
+        })
     }
 }
 
@@ -193,8 +264,8 @@ const GJK_STEPS: usize = 32;
 /// positive gap was found (the hulls meet).
 fn gap(
     pos12: &Isometry3<f64>,
-    a: &Cloud,
-    b: &Cloud,
+    a: &Climb<'_>,
+    b: &Climb<'_>,
     init: Option<Vector3<f64>>,
     enough: f64,
     simplex: &mut VoronoiSimplex,
@@ -204,7 +275,7 @@ fn gap(
         .or_else(|| Unit::try_new(-pos12.translation.vector, 1e-12))
         .unwrap_or_else(Vector3::x_axis);
     simplex.reset(CSOPoint::from_shapes(pos12, a, b, &start));
-    let mut best: Option<(Vector3<f64>, f64)> = None;
+    let mut best: Option<(Unit<Vector3<f64>>, f64)> = None;
     for _ in 0..GJK_STEPS {
         let proj = simplex.project_origin_and_reduce();
         if simplex.dimension() == 3 {
@@ -217,13 +288,16 @@ fn gap(
         let p = CSOPoint::from_shapes(pos12, a, b, &dir);
         let lower = -dir.dot(&p.point.coords);
         if lower > best.map_or(0.0, |(_, g)| g) {
-            best = Some((dir.into_inner(), lower));
+            best = Some((dir, lower));
         }
         if lower > enough || upper - lower <= ROUGH * upper || !simplex.add_point(p) {
             break;
         }
     }
-    best
+    // the gap along the best direction, by the exact supports
+    let (dir, _) = best?;
+    let p = CSOPoint::from_shapes(pos12, a.cloud, b.cloud, &dir);
+    Some((dir.into_inner(), -dir.dot(&p.point.coords))).filter(|(_, g)| *g > 0.0)
 }
 
 /// Whether the clouds at these world poses are more than `margin` apart (a static pair's test
@@ -236,7 +310,9 @@ pub(crate) fn apart(
     margin: f64,
 ) -> bool {
     let mut simplex = VoronoiSimplex::new();
-    gap(&pose_a.inv_mul(pose_b), a, b, None, margin, &mut simplex).is_some_and(|(_, g)| g > margin)
+    let (a, b) = (Climb::new(a), Climb::new(b));
+    gap(&pose_a.inv_mul(pose_b), &a, &b, None, margin, &mut simplex)
+        .is_some_and(|(_, g)| g > margin)
 }
 
 /// The part of `[0, 1]` in which the pair may come within `margin` of each other during `mv`
@@ -245,6 +321,7 @@ pub(crate) fn apart(
 /// ([`Move::reach`]; unused for a slide).
 pub(crate) fn unproved(pair: &Pair<'_>, mv: &Move, reach: f64, margin: f64) -> Option<Interval> {
     let mut simplex = VoronoiSimplex::new();
+    let (moving, still) = (Climb::new(pair.moving), Climb::new(pair.still));
     // how far a vertex may move towards any plane per unit of `t`
     let fastest = match mv {
         Move::Turn { angle, .. } => reach * angle.abs(),
@@ -256,7 +333,7 @@ pub(crate) fn unproved(pair: &Pair<'_>, mv: &Move, reach: f64, margin: f64) -> O
         let pose = mv.at(t) * pair.from;
         let pos12 = pose.inv_mul(&pair.at);
         let enough = fastest * rest + 2.0 * margin;
-        let Some((n, g)) = gap(&pos12, pair.moving, pair.still, *dir, enough, &mut simplex) else {
+        let Some((n, g)) = gap(&pos12, &moving, &still, *dir, enough, &mut simplex) else {
             return 0.0;
         };
         *dir = Some(n);
@@ -351,7 +428,10 @@ mod tests {
         for _ in 0..20 {
             let pts = blob(&mut rng, 1.0);
             let cloud = Cloud::of(&pts).unwrap();
-            assert!(cloud.0.len() < pts.len(), "the points inside are left out");
+            assert!(
+                cloud.vertices.len() < pts.len(),
+                "the points inside are left out"
+            );
             for _ in 0..50 {
                 let d = Vector3::new(
                     rng.random_range(-1.0..1.0),
@@ -365,13 +445,30 @@ mod tests {
                 assert_eq!(d.dot(&cloud.local_support_point(&d).coords), want);
             }
         }
+        // the climb along the hull's edges finds the same support value
+        for _ in 0..20 {
+            let pts = blob(&mut rng, 1.0);
+            let cloud = Cloud::of(&pts).unwrap();
+            assert!(!cloud.offsets.is_empty(), "a closed hull");
+            let climb = Climb::new(&cloud);
+            for _ in 0..50 {
+                let d = Vector3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
+                let want = d.dot(&cloud.local_support_point(&d).coords);
+                let got = d.dot(&climb.local_support_point(&d).coords);
+                assert!((want - got).abs() <= 1e-12, "{want} {got}");
+            }
+        }
         assert!(Cloud::of(&[]).is_none());
         assert!(Cloud::of(&[Point3::new(f64::NAN, 0.0, 0.0)]).is_none());
         // flat: no closed hull, every point kept
         let flat: Vec<_> = (0..5)
             .map(|i| Point3::new(i as f64, (i * i) as f64, 0.0))
             .collect();
-        assert_eq!(Cloud::of(&flat).unwrap().0.len(), 5);
+        assert_eq!(Cloud::of(&flat).unwrap().vertices.len(), 5);
     }
 
     proptest! {
