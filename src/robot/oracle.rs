@@ -138,8 +138,12 @@ impl Sweep {
                 let (rm, ro) = (rad_m.norm(), rad_o.norm());
                 let reach = reach * (1.0 + 1e-9) + 1e-12;
                 let full = (hm - ho).hypot(rm - ro);
+                // the closest the two circles about the axis come: no angle brings them nearer
+                if full > reach {
+                    return false;
+                }
                 if angle.abs() >= TAU || rm <= 1e-12 || ro <= 1e-12 {
-                    return full <= reach;
+                    return true;
                 }
                 let u = rad_m / rm;
                 let v = axis.cross(&u);
