@@ -27,7 +27,7 @@ use parry3d_f64::shape::SupportMap;
 
 /// Planes sought from each end of a move before the rest is left to the exact sweep: a pair
 /// that stays close (a finger beside a shelf) would otherwise advance in ever smaller steps.
-const MAX_STEPS: usize = 4;
+const MAX_STEPS: usize = 8;
 
 /// A body's vertices (in its own frame) that its support function needs: the vertices of
 /// its convex hull and any vertex the hull's faces do not clearly hold (all of them if the
