@@ -25,7 +25,7 @@
 //! if its own cylindrical box reaches the other face's. Everything that survives is solved
 //! exactly.
 //!
-//! Conservative advancement first ([`clearance`]): a moving link and an obstacle (a proximal
+//! Conservative advancement first (`robot::clearance`): a moving link and an obstacle (a proximal
 //! link) that a separating plane shows apart stay apart until the turn could carry a vertex
 //! across the gap; from both ends of the move, plane after plane, the pair is proved free, and
 //! only the window in between, where they come close, is handed to the exact sweep (an oracle
