@@ -7,18 +7,19 @@
 //! a stretch of the move free at once: if the moving link's vertices lie at least `gap` on one
 //! side of a plane with normal `n` and the other body's on the other side, a turn by `θ` about
 //! an axis `a` moves no vertex towards the plane by more than `2 |sin(θ/2)| |n⊥| ρ ≤ |θ| |n⊥| ρ`
-//! (`n⊥`: `n` without its component along `a`; `ρ`: the largest distance of a vertex from the
-//! axis; the displacement `(R(θ) − I) u` lies in the plane across the axis and has length
+//! (`n⊥`: `n` without its component along `a`; `ρ`: a bound on the vertices' distances from
+//! the axis; the displacement `(R(θ) − I) u` lies in the plane across the axis and has length
 //! `2 |sin(θ/2)| |u⊥|`), and a slide by `s` moves every vertex by `|n · s|`. So the pair is free
 //! for `|θ| < (gap − margin) / (|n⊥| ρ)`; from there a new plane is sought (Mirtich's
 //! conservative advancement, with the whole rigid motion's bound instead of a velocity).
 //!
-//! The plane's normal is GJK's separating direction between the convex hulls (parry), but the
-//! gap is measured over the bodies' own vertices (all but those clearly inside the hull),
-//! exactly as the dot products round: the proof does not depend on GJK's accuracy. What the advancement cannot prove
-//! from either end, a window `[lo, hi]` of the move, is left to the exact sweep, which finds
-//! the same pieces there (outside the window the bodies stay `margin` apart, far beyond the
-//! exact predicate's slack): the answers do not change, only the work.
+//! The plane's normal is GJK's separating direction between the convex hulls (parry's simplex,
+//! the support found by climbing the hull's edges), but the gap is then measured with the exact
+//! support over the bodies' own vertices (all but those clearly inside the hull), as the dot
+//! products round: the proof does not depend on GJK's accuracy. What the advancement cannot
+//! prove from either end, a window `[lo, hi]` of the move, is left to the exact sweep, which
+//! finds the same pieces there (outside the window the bodies stay `margin` apart, far beyond
+//! the exact predicate's slack): the answers do not change, only the work.
 
 use crate::interval::Interval;
 use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
@@ -485,7 +486,13 @@ mod tests {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let (a, b) = (blob(&mut rng, 0.3), blob(&mut rng, 0.5));
             let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
-            let mut v = || Vector3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+            let mut v = || {
+                Vector3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                )
+            };
             let from = Isometry3::new(v() * 1.5, v());
             let at = Isometry3::new(v() * 0.5, v());
             let mv = if slide {
