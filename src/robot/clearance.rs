@@ -411,6 +411,15 @@ mod tests {
             .collect()
     }
 
+    /// A random vector in the cube `[-1, 1]³`.
+    fn cube(rng: &mut ChaCha8Rng) -> Vector3<f64> {
+        Vector3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        )
+    }
+
     /// The independent distance: parry's convex polyhedra built from all the points.
     fn distance(
         a: &[Point3<f64>],
@@ -486,13 +495,7 @@ mod tests {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let (a, b) = (blob(&mut rng, 0.3), blob(&mut rng, 0.5));
             let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
-            let mut v = || {
-                Vector3::new(
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                )
-            };
+            let mut v = || cube(&mut rng);
             let from = Isometry3::new(v() * 1.5, v());
             let at = Isometry3::new(v() * 0.5, v());
             let mv = if slide {
@@ -533,13 +536,7 @@ mod tests {
         for _ in 0..300 {
             let (a, b) = (blob(&mut rng, 0.3), blob(&mut rng, 0.5));
             let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
-            let mut v = || {
-                Vector3::new(
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                )
-            };
+            let mut v = || cube(&mut rng);
             let from = Isometry3::new(v(), v());
             let at = Isometry3::new(v() * 0.5, v());
             let axis = v().normalize();
