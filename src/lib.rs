@@ -28,6 +28,7 @@
 pub mod bench;
 pub mod deadline;
 pub mod export;
+mod fast_hash;
 pub mod geometry;
 pub mod global;
 pub mod interval;

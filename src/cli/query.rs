@@ -233,7 +233,9 @@ fn answer_line(i: usize, a: &BatchAnswer, t: f64, json_lines: bool) -> String {
 
 /// Runs `query`.
 pub fn run(a: QueryArgs) -> anyhow::Result<()> {
+    let t = Instant::now();
     let scene = Scene::load(&a.scene)?;
+    let scene_ms = t.elapsed().as_secs_f64() * 1e3;
     let t = Instant::now();
     let roadmap = Roadmap::load(&a.roadmap, scene.fingerprint())?;
     let load_ms = t.elapsed().as_secs_f64() * 1e3;
@@ -298,7 +300,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     // input is the command's error, so its status comes after the answer
     let loaded = || {
         eprintln!(
-            "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms",
+            "loaded {} ({} nodes, {} edges) in {load_ms:.2} ms (the scene in {scene_ms:.1} ms)",
             a.roadmap.display(),
             roadmap.node_count(),
             roadmap.edge_count()

@@ -1,8 +1,8 @@
 //! Triangle meshes (a boundary representation with triangular, hence convex, faces).
 
 use super::GeometryError;
+use crate::fast_hash::FastMap;
 use nalgebra::{Point3, Vector3};
-use std::collections::HashMap;
 
 /// A triangle mesh: vertices and counter-clockwise (seen from outside) triangles.
 ///
@@ -139,7 +139,7 @@ impl TriMesh {
     pub fn is_closed(&self) -> bool {
         // faces by their sorted vertex triple: +1 per counter-clockwise (even permutation of the
         // sorted order) occurrence, −1 per clockwise one
-        let mut faces: HashMap<[u32; 3], (u32, u32)> = HashMap::new();
+        let mut faces: FastMap<[u32; 3], (u32, u32)> = FastMap::default();
         for t in &self.triangles {
             let mut s = *t;
             s.sort_unstable();
@@ -151,7 +151,7 @@ impl TriMesh {
                 e.1 += 1;
             }
         }
-        let mut balance: HashMap<(u32, u32), i64> = HashMap::new();
+        let mut balance: FastMap<(u32, u32), i64> = FastMap::default();
         let mut remaining = 0usize;
         for t in &self.triangles {
             let mut s = *t;

@@ -59,15 +59,15 @@
 use super::arm::Arm;
 use super::clearance::{self, Cloud, Move, Pair};
 use super::RobotError;
+use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
-use crate::oracle::polyhedra::{Gather, Gathered, Polyhedra};
+use crate::oracle::polyhedra::{Body, Gather, Gathered, Polyhedra};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::robot::urdf::JointKind;
 use crate::scene::moveit::{CollisionObject, ObjectShape};
 use crate::space::{Change, Motion};
 use nalgebra::{Isometry3, Point3, Vector3};
-use std::collections::HashMap;
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
@@ -106,66 +106,52 @@ impl Ball {
     }
 }
 
-/// How the moving ball sweeps: about an axis by an angle (a piece of a torus) or along it (a
-/// capsule).
-enum Sweep {
-    Turn {
-        origin: Vector3<f64>,
-        axis: Vector3<f64>,
-        angle: f64,
-    },
-    Slide {
-        offset: Vector3<f64>,
-    },
-}
-
-impl Sweep {
-    /// Whether ball `m`, swept, can meet the fixed ball `o`.
-    fn may_meet(&self, m: &Ball, o: &Ball) -> bool {
-        let reach = m.radius + o.radius;
-        match self {
-            Sweep::Turn {
-                origin,
-                axis,
-                angle,
-            } => {
-                // m's centre runs on an arc of the circle of radius rm about the axis; the
-                // squared distance to o's centre is dh² + rm² + ro² − 2 rm ro cos(θ − θo),
-                // smallest at θ = θo if the arc reaches it, else at an end of the arc
-                let (pm, po) = (m.centre - origin, o.centre - origin);
-                let (hm, ho) = (axis.dot(&pm), axis.dot(&po));
-                let (rad_m, rad_o) = (pm - axis * hm, po - axis * ho);
-                let (rm, ro) = (rad_m.norm(), rad_o.norm());
-                let reach = reach * (1.0 + 1e-9) + 1e-12;
-                let full = (hm - ho).hypot(rm - ro);
-                // the closest the two circles about the axis come: no angle brings them nearer
-                if full > reach {
-                    return false;
-                }
-                if angle.abs() >= TAU || rm <= 1e-12 || ro <= 1e-12 {
-                    return true;
-                }
-                let u = rad_m / rm;
-                let v = axis.cross(&u);
-                let theta_o = rad_o.dot(&v).atan2(rad_o.dot(&u));
-                let delta = (angle.signum() * theta_o).rem_euclid(TAU);
-                let best_cos = if delta <= angle.abs() {
-                    1.0
-                } else {
-                    delta.cos().max((delta - angle.abs()).cos())
-                };
-                let d2 = (hm - ho).powi(2) + rm * rm + ro * ro - 2.0 * rm * ro * best_cos;
-                d2.max(0.0).sqrt() <= reach
+/// Whether ball `m`, moved by `mv` (a piece of a torus for a turn, a capsule for a slide),
+/// can meet the fixed ball `o`.
+fn may_meet(mv: &Move, m: &Ball, o: &Ball) -> bool {
+    let reach = m.radius + o.radius;
+    match mv {
+        Move::Turn {
+            pivot: origin,
+            axis,
+            angle,
+        } => {
+            // m's centre runs on an arc of the circle of radius rm about the axis; the
+            // squared distance to o's centre is dh² + rm² + ro² − 2 rm ro cos(θ − θo),
+            // smallest at θ = θo if the arc reaches it, else at an end of the arc
+            let (pm, po) = (m.centre - origin, o.centre - origin);
+            let (hm, ho) = (axis.dot(&pm), axis.dot(&po));
+            let (rad_m, rad_o) = (pm - axis * hm, po - axis * ho);
+            let (rm, ro) = (rad_m.norm(), rad_o.norm());
+            let reach = reach * (1.0 + 1e-9) + 1e-12;
+            let full = (hm - ho).hypot(rm - ro);
+            // the closest the two circles about the axis come: no angle brings them nearer
+            if full > reach {
+                return false;
             }
-            Sweep::Slide { offset } => {
-                let len2 = offset.norm_squared();
-                let t = if len2 > 0.0 {
-                    ((o.centre - m.centre).dot(offset) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (m.centre + offset * t - o.centre).norm() <= reach
+            if angle.abs() >= TAU || rm <= 1e-12 || ro <= 1e-12 {
+                return true;
             }
+            let u = rad_m / rm;
+            let v = axis.cross(&u);
+            let theta_o = rad_o.dot(&v).atan2(rad_o.dot(&u));
+            let delta = (angle.signum() * theta_o).rem_euclid(TAU);
+            let best_cos = if delta <= angle.abs() {
+                1.0
+            } else {
+                delta.cos().max((delta - angle.abs()).cos())
+            };
+            let d2 = (hm - ho).powi(2) + rm * rm + ro * ro - 2.0 * rm * ro * best_cos;
+            d2.max(0.0).sqrt() <= reach
+        }
+        Move::Slide { offset } => {
+            let len2 = offset.norm_squared();
+            let t = if len2 > 0.0 {
+                ((o.centre - m.centre).dot(offset) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (m.centre + offset * t - o.centre).norm() <= reach
         }
     }
 }
@@ -177,7 +163,7 @@ struct Prepared {
     balls: Vec<Option<Ball>>,
     distal: Vec<bool>,
     child: usize,
-    sweep: Sweep,
+    sweep: Move,
 }
 
 /// How far apart, in units of an oracle's distance tolerance, conservative advancement must
@@ -186,28 +172,12 @@ struct Prepared {
 const CLEARANCE_PER_TOLERANCE: f64 = 1e5;
 
 impl Prepared {
-    /// The move as conservative advancement sees it.
-    fn motion(&self) -> Move {
-        match self.sweep {
-            Sweep::Turn {
-                origin,
-                axis,
-                angle,
-            } => Move::Turn {
-                pivot: origin,
-                axis,
-                angle,
-            },
-            Sweep::Slide { offset } => Move::Slide { offset },
-        }
-    }
-
     /// The world pivot and axis of the move (for a slide: the child frame's origin and the
     /// offset).
     fn pivot_axis(&self) -> (Vector3<f64>, Vector3<f64>) {
         match &self.sweep {
-            Sweep::Turn { origin, axis, .. } => (*origin, *axis),
-            Sweep::Slide { offset } => (self.poses[self.child].translation.vector, *offset),
+            Move::Turn { pivot, axis, .. } => (*pivot, *axis),
+            Move::Slide { offset } => (self.poses[self.child].translation.vector, *offset),
         }
     }
 }
@@ -222,7 +192,7 @@ pub struct ArmOracle {
     link_meshes: Vec<Option<(TriMesh, Ball)>>,
     /// Per self-collision pair `(a, b)`: link `a` as the robot among link `b`, both in their
     /// own frames, built once (a static test places `a` at `pose_b⁻¹ · pose_a`).
-    pair_oracles: HashMap<(usize, usize), Arc<Polyhedra>>,
+    pair_oracles: FastMap<(usize, usize), Arc<Polyhedra>>,
     /// Per link with geometry: the link (in its frame) among the whole environment, built once.
     env_oracles: Vec<Option<Arc<Polyhedra>>>,
     /// Per link and per environment polytope: its vertices, for conservative advancement
@@ -314,22 +284,48 @@ impl ArmOracle {
             })
             .collect();
         let link_meshes: Vec<Option<(TriMesh, Ball)>> = link_meshes;
-        let mut pair_oracles = HashMap::new();
+        // each link's body and the environment's built once (a link is the moving body of its
+        // environment oracle and of some self pairs, the still one of others: the same body)
+        let bodies: Vec<Option<(Arc<TriMesh>, Arc<Body>)>> = link_meshes
+            .iter()
+            .map(|m| {
+                m.as_ref().map(|(m, _)| {
+                    let body = Body::new(std::slice::from_ref(m));
+                    (Arc::new(m.clone()), Arc::new(body))
+                })
+            })
+            .collect();
+        let mut pair_oracles = FastMap::default();
         for &(a, b) in &arm.self_pairs {
-            if let (Some((ma, _)), Some((mb, _))) = (&link_meshes[a], &link_meshes[b]) {
+            if let (Some((ma, ba)), Some((mb, bb))) = (&bodies[a], &bodies[b]) {
+                let still = Arc::new(vec![TriMesh::clone(mb)]);
                 pair_oracles.insert(
                     (a, b),
-                    Arc::new(Polyhedra::new(ma.clone(), vec![mb.clone()])),
+                    Arc::new(Polyhedra::of_bodies(
+                        Arc::clone(ma),
+                        Body::clone(ba),
+                        still,
+                        Arc::clone(bb),
+                    )),
                 );
             }
         }
-        let env_meshes: Vec<TriMesh> = environment.iter().map(|(m, _)| m.clone()).collect();
-        let env_oracles = link_meshes
+        let env_meshes: Arc<Vec<TriMesh>> =
+            Arc::new(environment.iter().map(|(m, _)| m.clone()).collect());
+        let env_body = Arc::new(Body::new(&env_meshes));
+        let env_oracles = bodies
             .iter()
-            .map(|m| {
-                m.as_ref()
+            .map(|b| {
+                b.as_ref()
                     .filter(|_| !env_meshes.is_empty())
-                    .map(|(m, _)| Arc::new(Polyhedra::new(m.clone(), env_meshes.clone())))
+                    .map(|(m, body)| {
+                        Arc::new(Polyhedra::of_bodies(
+                            Arc::clone(m),
+                            Body::clone(body),
+                            Arc::clone(&env_meshes),
+                            Arc::clone(&env_body),
+                        ))
+                    })
             })
             .collect();
         let link_clouds = link_meshes
@@ -527,12 +523,12 @@ impl ArmOracle {
         let frame = poses[child];
         let axis = frame.rotation * model.urdf.joints[k].axis.into_inner();
         let sweep = match model.urdf.joints[k].kind {
-            JointKind::Revolute { .. } | JointKind::Continuous => Sweep::Turn {
-                origin: frame.translation.vector,
+            JointKind::Revolute { .. } | JointKind::Continuous => Move::Turn {
+                pivot: frame.translation.vector,
                 axis,
                 angle: delta,
             },
-            JointKind::Prismatic { .. } => Sweep::Slide {
+            JointKind::Prismatic { .. } => Move::Slide {
                 offset: axis * delta,
             },
             JointKind::Fixed => return Err(unsupported("a fixed joint does not move".into())),
@@ -652,7 +648,7 @@ impl ArmOracle {
              -> Result<(), RobotError> {
                 let v = into.rotation * axis_w;
                 match p.sweep {
-                    Sweep::Turn { .. } => {
+                    Move::Turn { .. } => {
                         let c = into * Point3::from(pivot_w);
                         g.turn_about(
                             o,
@@ -664,7 +660,7 @@ impl ArmOracle {
                             counts,
                         )
                     }
-                    Sweep::Slide { .. } => {
+                    Move::Slide { .. } => {
                         let d = v * sign;
                         g.slide(o, &se3(rel), [d.x, d.y, d.z], window, counts)
                     }
@@ -704,13 +700,12 @@ impl ArmOracle {
             sweep,
             ..
         } = p;
-        let mv = p.motion();
         for l in (0..balls.len()).filter(|&l| distal[l]) {
             let Some(ball) = &balls[l] else {
                 continue;
             };
             let cloud = self.link_clouds[l].as_ref().filter(|_| self.culling);
-            let reach = cloud.map(|_| mv.reach(&ball.centre, ball.radius));
+            let reach = cloud.map(|_| sweep.reach(&ball.centre, ball.radius));
             // the part of the move in which link `l` may meet a body `still` at `at`
             let window = |still: Option<&Cloud>, at: Isometry3<f64>, margin: f64| match (
                 cloud, reach, still,
@@ -722,7 +717,7 @@ impl ArmOracle {
                         still,
                         at,
                     };
-                    clearance::unproved(&pair, &mv, reach, margin)
+                    clearance::unproved(&pair, sweep, reach, margin)
                 }
                 _ => Some(Interval::UNIT),
             };
@@ -730,7 +725,7 @@ impl ArmOracle {
                 let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
                 let mut hull: Option<Interval> = None;
                 for (i, (_, b)) in self.environment.iter().enumerate() {
-                    if !sweep.may_meet(ball, b) {
+                    if !may_meet(sweep, ball, b) {
                         continue;
                     }
                     if let Some(w) =
@@ -755,7 +750,7 @@ impl ArmOracle {
                 let Some(bm) = &balls[m] else {
                     continue;
                 };
-                if !sweep.may_meet(ball, bm) {
+                if !may_meet(sweep, ball, bm) {
                     continue;
                 }
                 let Some(o) = self.pair_oracles.get(&(l.min(m), l.max(m))) else {
@@ -802,7 +797,7 @@ impl ArmOracle {
         self.each_oracle(&p, |o, rel, into, sign, _| {
             let v = into.rotation * axis_w;
             let r = match p.sweep {
-                Sweep::Turn { .. } => {
+                Move::Turn { .. } => {
                     let c = into * Point3::from(pivot_w);
                     Polyhedra::gather_unclipped(Gather::All, |g| {
                         g.turn_about(
@@ -817,7 +812,7 @@ impl ArmOracle {
                         Ok(g.to_list())
                     })
                 }
-                Sweep::Slide { .. } => {
+                Move::Slide { .. } => {
                     let d = v * sign;
                     o.intervals(
                         &Motion::segment(
@@ -863,11 +858,11 @@ impl ArmOracle {
         } = p;
         let frame = poses[child];
         let change = match &sweep {
-            Sweep::Turn { axis, angle, .. } => Change::Rotation {
+            Move::Turn { axis, angle, .. } => Change::Rotation {
                 axis: [axis.x, axis.y, axis.z],
                 angle: *angle,
             },
-            Sweep::Slide { offset: d } => Change::Linear(vec![d.x, d.y, d.z, 0.0, 0.0, 0.0, 0.0]),
+            Move::Slide { offset: d } => Change::Linear(vec![d.x, d.y, d.z, 0.0, 0.0, 0.0, 0.0]),
         };
         // the moving part, link by link, in the joint's child frame at q
         let motion = Motion::segment(se3(&frame), change);
@@ -884,7 +879,7 @@ impl ArmOracle {
             let near_env = self
                 .environment
                 .iter()
-                .any(|(_, b)| sweep.may_meet(ball, b));
+                .any(|(_, b)| may_meet(&sweep, ball, b));
             let mut obstacles: Vec<TriMesh> = Vec::new();
             if l == child {
                 // the link's frame is the joint frame: the cached oracle answers the move
@@ -897,13 +892,13 @@ impl ArmOracle {
                 obstacles.extend(
                     self.environment
                         .iter()
-                        .filter(|(_, b)| sweep.may_meet(ball, b))
+                        .filter(|(_, b)| may_meet(&sweep, ball, b))
                         .map(|(m, _)| m.clone()),
                 );
             }
             for m in (0..balls.len()).filter(|&m| !distal[m] && !self.exempt(l, m)) {
                 if let (Some((mesh_m, _)), Some(bm)) = (&self.link_meshes[m], &balls[m]) {
-                    if sweep.may_meet(ball, bm) {
+                    if may_meet(&sweep, ball, bm) {
                         obstacles.push(placed(mesh_m, &poses[m]));
                     }
                 }
@@ -949,8 +944,8 @@ mod tests {
                 radius: 0.1,
             };
             let angle = 8.0 * (v().x);
-            let sweep = Sweep::Turn {
-                origin,
+            let sweep = Move::Turn {
+                pivot: origin,
                 axis: axis.into_inner(),
                 angle,
             };
@@ -959,7 +954,7 @@ mod tests {
                 let c = UnitQuaternion::from_axis_angle(&axis, phi) * (m.centre - origin) + origin;
                 (c - o.centre).norm() <= m.radius + o.radius
             });
-            let may = sweep.may_meet(&m, &o);
+            let may = may_meet(&sweep, &m, &o);
             assert!(may || !touched, "{axis:?} {origin:?} {angle}");
             meets += usize::from(touched);
             culled += usize::from(!may);

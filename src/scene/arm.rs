@@ -35,6 +35,7 @@
 
 use super::moveit::{load_motion_plan_request, load_planning_scene, CollisionObject};
 use super::{Fnv, Query, Robot, Scene, SceneError};
+use crate::fast_hash::FastMap;
 use crate::interval::{Interval, IntervalList};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::robot::arm::GroupChoice;
@@ -42,7 +43,7 @@ use crate::robot::urdf::JointKind;
 use crate::robot::{Arm, ArmOptions, ArmOracle, RobotError};
 use crate::space::{Change, Motion, Space};
 use serde::Deserialize;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
@@ -221,13 +222,13 @@ struct Key {
 /// (a bound on memory: a planner's repeats come soon after the first question).
 #[derive(Default)]
 struct Answers {
-    intervals: HashMap<Key, IntervalList>,
-    free: HashMap<Key, bool>,
-    first_hit: HashMap<Key, Option<f64>>,
+    intervals: FastMap<Key, IntervalList>,
+    free: FastMap<Key, bool>,
+    first_hit: FastMap<Key, Option<f64>>,
     /// Static checks by the configuration's bits: a workcell's queries start from the same
     /// home pose, each query checks it again, and a static check near contact (a grasp pose
     /// beside its object) costs several single-joint moves.
-    states: HashMap<Vec<u64>, bool>,
+    states: FastMap<Vec<u64>, bool>,
 }
 
 impl Answers {
@@ -255,7 +256,7 @@ impl Answers {
 /// is taken from another question: that the move is free (and for yes/no, that it is not),
 /// never where a collision lies.
 struct Question<T> {
-    own: fn(&mut Answers) -> &mut HashMap<Key, T>,
+    own: fn(&mut Answers) -> &mut FastMap<Key, T>,
     from_free: fn(bool) -> Option<T>,
 }
 
@@ -315,7 +316,7 @@ impl ArmCollision {
     /// [`Answers::CAPACITY`] is reached). Without kept answers, `ask`'s.
     fn remember<K: std::hash::Hash + Eq, T: Clone>(
         &self,
-        own: fn(&mut Answers) -> &mut HashMap<K, T>,
+        own: fn(&mut Answers) -> &mut FastMap<K, T>,
         key: K,
         implied: impl FnOnce(&Answers, &K) -> Option<T>,
         ask: impl FnOnce() -> Result<T, RobotError>,

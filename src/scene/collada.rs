@@ -24,13 +24,13 @@
 
 use super::mesh_io::Welder;
 use super::SceneError;
+use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
 use dae_parser::{
     ArrayElement, Document, Geometry, Input, InputList, LocalMap, Node, Primitive, Semantic,
     Source, Transform, UpAxis, Vertices, VisualScene,
 };
 use nalgebra::{Matrix4, Point3, Vector3};
-use std::collections::HashMap;
 use std::path::Path;
 
 /// A Collada mesh in OMPL.app's frame, with what OMPL.app derives from it.
@@ -636,7 +636,7 @@ fn read_primitive(
                 .zip(b)
                 .all(|(x, y)| x.iter().zip(y).map(|(u, v)| (u - v) * (u - v)).sum::<f32>() <= 1e-10)
     };
-    let mut unique: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
+    let mut unique: FastMap<[u32; 3], Vec<usize>> = FastMap::default();
     for k in 0..n {
         let key = local[k].map(|c| (c + 0.0).to_bits());
         let candidates = unique.entry(key).or_default();

@@ -9,9 +9,9 @@
 
 use super::collada;
 use super::SceneError;
+use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
 use nalgebra::Point3;
-use std::collections::HashMap;
 use std::path::Path;
 
 /// Reads a mesh, choosing the format by the file extension (`obj`, `stl`, `dae`; any case).
@@ -139,7 +139,7 @@ pub fn load_stl(path: &Path) -> Result<TriMesh, SceneError> {
 #[derive(Default)]
 pub(crate) struct Welder {
     vertices: Vec<Point3<f64>>,
-    index: HashMap<[u64; 3], u32>,
+    index: FastMap<[u64; 3], u32>,
     pub(crate) triangles: Vec<[u32; 3]>,
 }
 

@@ -21,6 +21,7 @@ use super::borderline::{
 };
 use super::options::{BasePoint, Directions, ViaLimit, ViaPointOptions};
 use crate::deadline::Deadline;
+use crate::fast_hash::{FastMap, FastSet};
 use crate::interval::{Interval, IntervalList};
 use crate::local::{Borderline, Discoveries};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError, Workspace};
@@ -29,8 +30,6 @@ use crate::space::{Config, Group, Motion, Space};
 use rand::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::hash_map::Entry;
-use std::collections::{HashMap, HashSet};
-use std::hash::{BuildHasherDefault, Hasher};
 
 pub(super) type NodeId = usize;
 type Pt = u32;
@@ -946,14 +945,14 @@ impl<'a> Search<'a> {
 #[derive(Default)]
 pub(super) struct Merge {
     /// Hash of a configuration's bits → its canonical id (collisions probe onwards).
-    index: HashMap<u64, u32, BuildHasherDefault<MixHasher>>,
+    index: FastMap<u64, u32>,
     /// Canonical id → arena index of its first appearance.
     configs: Vec<Pt>,
     segments: Vec<(u32, u32)>,
     vias: Vec<u32>,
     parent: Vec<u32>,
     new_index: Vec<u32>,
-    seen: HashSet<u64, BuildHasherDefault<MixHasher>>,
+    seen: FastSet<u64>,
     vias_seen: Vec<bool>,
 }
 
@@ -970,30 +969,10 @@ impl Merge {
     }
 }
 
-/// A hasher for the search's own `u64` keys: one multiply and a fold, where the standard
-/// SipHash over a `Vec<u64>` key cost a sixth of a shallow search (issue 11: cheap node keys).
-#[derive(Default)]
-pub(super) struct MixHasher(u64);
-
-impl Hasher for MixHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(b as u64);
-        }
-    }
-    fn write_u64(&mut self, x: u64) {
-        let h = (self.0 ^ x).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        self.0 = h ^ (h >> 32);
-    }
-}
-
 /// The canonical id of arena point `p`: the id of an earlier point with the same bits, or a
 /// new one (`fixed`, or the next free id, recorded in `configs`).
 fn canonical(
-    index: &mut HashMap<u64, u32, BuildHasherDefault<MixHasher>>,
+    index: &mut FastMap<u64, u32>,
     configs: &mut Vec<Pt>,
     pts: &[f64],
     dim: usize,

@@ -15,9 +15,10 @@
 //! containment is never reported for it — the surface-only behaviour of FCL on such meshes.
 
 use super::{Aabb, Bvh};
+use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
 use nalgebra::Vector3;
-use std::collections::HashMap;
+use std::sync::Arc;
 
 type V3 = Vector3<f64>;
 
@@ -68,7 +69,7 @@ pub(crate) struct Part {
     /// that can change a ray's parity.
     pub solid: bool,
     /// Faces of odd multiplicity (indices into [`Body::vertices`]).
-    pub parity: Vec<[u32; 3]>,
+    pub parity: Arc<[[u32; 3]]>,
     /// Tree over `parity`.
     pub parity_bvh: Bvh,
     /// Box around the part.
@@ -85,7 +86,7 @@ pub(crate) struct Part {
 #[derive(Clone, Debug)]
 pub(crate) struct Component {
     /// Indices into [`Part::parity`].
-    pub faces: Vec<u32>,
+    pub faces: Arc<[u32]>,
     /// Box around the piece.
     pub aabb: Aabb,
 }
@@ -95,16 +96,16 @@ pub(crate) struct Component {
 pub(crate) struct Body {
     /// Welded vertices.
     pub vertices: Vec<V3>,
-    /// Faces, each geometric triangle once.
-    pub faces: Vec<[u32; 3]>,
+    /// Faces, each geometric triangle once (shared with shifted copies, [`Body::shifted`]).
+    pub faces: Arc<[[u32; 3]]>,
     /// Every face with its plane and norms, in this body's frame (the robot's faces never
     /// move in it, so they are prepared once).
     geo: Vec<Face>,
     /// Unique edges.
-    pub edges: Vec<[u32; 2]>,
+    pub edges: Arc<[[u32; 2]]>,
     /// `owned[owned_start[f]..owned_start[f + 1]]` are the edges owned by face `f`.
-    owned_start: Vec<u32>,
-    owned: Vec<u32>,
+    owned_start: Arc<[u32]>,
+    owned: Arc<[u32]>,
     /// Tree over `faces`.
     pub bvh: Bvh,
     /// The parts.
@@ -132,8 +133,8 @@ fn sorted(t: [u32; 3]) -> [u32; 3] {
 
 /// Connected pieces of `faces` (sharing a vertex), by union–find.
 fn components(faces: &[[u32; 3]], boxes: &[Aabb]) -> Vec<Component> {
-    let mut parent: HashMap<u32, u32> = HashMap::new();
-    fn find(parent: &mut HashMap<u32, u32>, x: u32) -> u32 {
+    let mut parent: FastMap<u32, u32> = FastMap::default();
+    fn find(parent: &mut FastMap<u32, u32>, x: u32) -> u32 {
         let mut r = x;
         while let Some(&p) = parent.get(&r) {
             if p == r {
@@ -162,21 +163,23 @@ fn components(faces: &[[u32; 3]], boxes: &[Aabb]) -> Vec<Component> {
             }
         }
     }
-    let mut index: HashMap<u32, usize> = HashMap::new();
-    let mut out: Vec<Component> = Vec::new();
+    let mut index: FastMap<u32, usize> = FastMap::default();
+    let mut out: Vec<(Vec<u32>, Aabb)> = Vec::new();
     for (i, t) in faces.iter().enumerate() {
         let root = find(&mut parent, t[0]);
         let k = *index.entry(root).or_insert_with(|| {
-            out.push(Component {
-                faces: Vec::new(),
-                aabb: Aabb::EMPTY,
-            });
+            out.push((Vec::new(), Aabb::EMPTY));
             out.len() - 1
         });
-        out[k].faces.push(i as u32);
-        out[k].aabb = out[k].aabb.merge(&boxes[i]);
+        out[k].0.push(i as u32);
+        out[k].1 = out[k].1.merge(&boxes[i]);
     }
-    out
+    out.into_iter()
+        .map(|(faces, aabb)| Component {
+            faces: faces.into(),
+            aabb,
+        })
+        .collect()
 }
 
 impl Body {
@@ -187,9 +190,9 @@ impl Body {
         let mut vertices: Vec<V3> = Vec::new();
         let mut faces: Vec<[u32; 3]> = Vec::new();
         let mut parts = Vec::with_capacity(meshes.len());
-        let mut seen_face: HashMap<[u32; 3], ()> = HashMap::new();
+        let mut seen_face: FastMap<[u32; 3], ()> = FastMap::default();
         for mesh in meshes {
-            let mut weld: HashMap<[u64; 3], u32> = HashMap::new();
+            let mut weld: FastMap<[u64; 3], u32> = FastMap::default();
             let mut index: Vec<Option<u32>> = Vec::with_capacity(mesh.vertices.len());
             for v in &mesh.vertices {
                 let p = V3::new(v.x, v.y, v.z);
@@ -203,7 +206,7 @@ impl Body {
                 });
                 index.push(Some(id));
             }
-            let mut multiplicity: HashMap<[u32; 3], (u32, [u32; 3])> = HashMap::new();
+            let mut multiplicity: FastMap<[u32; 3], (u32, [u32; 3])> = FastMap::default();
             let mut order: Vec<[u32; 3]> = Vec::new();
             for t in &mesh.triangles {
                 let ids: Option<Vec<u32>> = t
@@ -254,7 +257,7 @@ impl Body {
             parts.push(Part {
                 solid,
                 parity_bvh: Bvh::build(boxes.clone()),
-                parity,
+                parity: parity.into(),
                 aabb,
                 sphere: (centre, radius),
                 components,
@@ -262,7 +265,7 @@ impl Body {
         }
 
         // unique edges, each owned by the first face using it
-        let mut edge_id: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut edge_id: FastMap<(u32, u32), u32> = FastMap::default();
         let mut edges: Vec<[u32; 2]> = Vec::new();
         let mut owned_start = Vec::with_capacity(faces.len() + 1);
         let mut owned = Vec::new();
@@ -297,11 +300,11 @@ impl Body {
         Body {
             bvh: Bvh::build(boxes),
             vertices,
-            faces,
+            faces: faces.into(),
             geo,
-            edges,
-            owned_start,
-            owned,
+            edges: edges.into(),
+            owned_start: owned_start.into(),
+            owned: owned.into(),
             parts,
             aabb,
             radius,

@@ -75,7 +75,8 @@ use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
 use crate::space::rotation::quat_from_slice;
 use crate::space::{Change, Motion};
-use body::{Body, Face};
+pub(crate) use body::Body;
+use body::Face;
 use envelope::{CylBox, FrameBox};
 use nalgebra::{Matrix3, Vector3};
 use predicate::Tolerance;
@@ -274,6 +275,18 @@ impl Polyhedra {
     pub fn new(robot: TriMesh, obstacles: Vec<TriMesh>) -> Polyhedra {
         let r = Body::new(std::slice::from_ref(&robot));
         let o = Body::new(&obstacles);
+        Polyhedra::of_bodies(Arc::new(robot), r, Arc::new(obstacles), Arc::new(o))
+    }
+
+    /// [`Polyhedra::new`] from bodies already prepared (`robot` from `robot_mesh`, `obstacles`
+    /// from `obstacle_meshes`, by [`Body::new`]): an arm's oracles share one body per link and
+    /// one of the environment instead of welding and indexing them again for every pair.
+    pub(crate) fn of_bodies(
+        robot_mesh: Arc<TriMesh>,
+        r: Body,
+        obstacle_meshes: Arc<Vec<TriMesh>>,
+        o: Arc<Body>,
+    ) -> Polyhedra {
         let scale = r.radius + o.aabb.diagonal() + o.aabb.lo.abs().max().max(o.aabb.hi.abs().max());
         let scale = if scale.is_finite() && scale > 0.0 {
             scale
@@ -281,10 +294,10 @@ impl Polyhedra {
             1.0
         };
         Polyhedra {
-            robot_mesh: Arc::new(robot),
-            obstacle_meshes: Arc::new(obstacles),
+            robot_mesh,
+            obstacle_meshes,
             robot: r,
-            obstacles: Arc::new(o),
+            obstacles: o,
             tol: Tolerance::for_scale(scale),
             enveloping: true,
         }

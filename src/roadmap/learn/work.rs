@@ -4,11 +4,11 @@
 use super::super::graph::{Edge, Roadmap};
 use super::super::nn::NearestNeighbours;
 use super::super::params::LearnParams;
+use crate::fast_hash::{FastMap, FastSet};
 use crate::local::{direct_length, path_length};
 use crate::oracle::CallCounts;
 use crate::space::{Config, Group, Space};
 use petgraph::unionfind::UnionFind;
-use std::collections::{HashMap, HashSet};
 
 /// The roadmap while it grows.
 pub(super) struct Work<'s> {
@@ -19,8 +19,8 @@ pub(super) struct Work<'s> {
     pub(super) cycle_edges: bool,
     pub(super) coords: Vec<f64>,
     pub(super) edges: Vec<Edge>,
-    pub(super) edge_set: HashSet<(u32, u32)>,
-    pub(super) by_bits: HashMap<Vec<u64>, u32>,
+    pub(super) edge_set: FastSet<(u32, u32)>,
+    pub(super) by_bits: FastMap<Vec<u64>, u32>,
     pub(super) uf: UnionFind<u32>,
     pub(super) components: usize,
     /// Connection attempts and failures per node (OS94's failure ratio).
@@ -45,8 +45,8 @@ impl<'s> Work<'s> {
             cycle_edges: params.cycle_edges,
             coords: Vec::new(),
             edges: Vec::new(),
-            edge_set: HashSet::new(),
-            by_bits: HashMap::new(),
+            edge_set: FastSet::default(),
+            by_bits: FastMap::default(),
             uf: UnionFind::new(0),
             components: 0,
             tries: Vec::new(),
