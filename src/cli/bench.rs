@@ -228,6 +228,15 @@ pub struct MbmArgs {
     /// lost (67 / 70 either way, 2026-12-02), so alternating stays the default.
     #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set)]
     pub tree_balance: bool,
+    /// `--planner tree`: try each extend as one stair first (a yes/no call per joint), the
+    /// staircase only when that is blocked (as `solve --tree-coarse`).
+    #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set)]
+    pub tree_coarse: bool,
+    /// `--planner tree`: restart both trees when an attempt has grown this many nodes, each
+    /// later attempt with a new random stream and twice the nodes (as `solve --tree-restart`).
+    /// Default: no restarts.
+    #[arg(long, value_name = "NODES")]
+    pub tree_restart: Option<usize>,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
@@ -272,6 +281,8 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             // every problem is a joint space: `auto` is on
             slide: !matches!(a.tree_slide, viaroad::roadmap::tree::Slide::Off),
             balance: a.tree_balance,
+            coarse: a.tree_coarse,
+            restart: a.tree_restart,
             ..viaroad::roadmap::tree::TreeParams::default()
         },
     };
