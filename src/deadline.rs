@@ -29,6 +29,8 @@ use std::time::{Duration, Instant};
 pub struct Deadline {
     at: Option<Instant>,
     cancel: Option<Arc<AtomicBool>>,
+    /// A second flag ([`Deadline::or_cancelled_by`]): another stream of a portfolio has won.
+    also: Option<Arc<AtomicBool>>,
 }
 
 impl Deadline {
@@ -43,6 +45,7 @@ impl Deadline {
         Deadline {
             at: Instant::now().checked_add(budget),
             cancel: None,
+            also: None,
         }
     }
 
@@ -57,7 +60,17 @@ impl Deadline {
         self
     }
 
-    /// The earlier of this deadline and `budget` from now, with this deadline's cancel flag:
+    /// The same deadline (time and cancel flag), also stopped when `flag` becomes true: one of
+    /// several streams racing for the same answer stops when another has it.
+    pub fn or_cancelled_by(&self, flag: Arc<AtomicBool>) -> Self {
+        Deadline {
+            at: self.at,
+            cancel: self.cancel.clone(),
+            also: Some(flag),
+        }
+    }
+
+    /// The earlier of this deadline and `budget` from now, with this deadline's cancel flags:
     /// a query's own budget inside a batch's, a learning stage inside a build.
     pub fn within(&self, budget: Option<Duration>) -> Self {
         let mine = budget.and_then(|b| Instant::now().checked_add(b));
@@ -68,6 +81,7 @@ impl Deadline {
         Deadline {
             at,
             cancel: self.cancel.clone(),
+            also: self.also.clone(),
         }
     }
 
@@ -77,11 +91,12 @@ impl Deadline {
         self.cancelled() || self.at.is_some_and(|at| Instant::now() >= at)
     }
 
-    /// Whether the cancel flag was raised.
+    /// Whether a cancel flag was raised.
     pub fn cancelled(&self) -> bool {
-        self.cancel
-            .as_ref()
-            .is_some_and(|c| c.load(Ordering::Relaxed))
+        [&self.cancel, &self.also]
+            .into_iter()
+            .flatten()
+            .any(|c| c.load(Ordering::Relaxed))
     }
 
     /// Time left (zero once expired); `None` without a time limit.
@@ -92,7 +107,7 @@ impl Deadline {
 
     /// Whether anything can end it: a time limit or a cancel flag.
     pub fn is_limited(&self) -> bool {
-        self.at.is_some() || self.cancel.is_some()
+        self.at.is_some() || self.cancel.is_some() || self.also.is_some()
     }
 }
 
@@ -119,5 +134,19 @@ mod tests {
                 > Duration::ZERO
         );
         assert!(!Deadline::none().within(Some(Duration::MAX)).expired());
+    }
+
+    #[test]
+    fn a_second_flag_stops_it_too_and_survives_within() {
+        let ctrl_c = Arc::new(AtomicBool::new(false));
+        let won = Arc::new(AtomicBool::new(false));
+        let outer = Deadline::none().with_cancel(ctrl_c.clone());
+        let racing = outer.or_cancelled_by(won.clone()).within(None);
+        assert!(!racing.expired() && racing.is_limited());
+        won.store(true, Ordering::Relaxed);
+        assert!(racing.expired() && racing.cancelled() && !outer.expired());
+        won.store(false, Ordering::Relaxed);
+        ctrl_c.store(true, Ordering::Relaxed);
+        assert!(racing.expired() && outer.expired());
     }
 }

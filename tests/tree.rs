@@ -602,3 +602,52 @@ fn restarts_begin_with_the_plain_run_and_keep_to_the_node_budget() {
     .validate()
     .is_err());
 }
+
+/// Streams race (`TreeParams::streams`), but without a time limit each runs to its node budget
+/// and the first in stream order that connected answers: the same path, nodes and calls in a
+/// pool of one thread and of three; stream 0 is the run without streams; and a later stream
+/// answers where stream 0 alone does not.
+#[test]
+fn streams_answer_the_same_on_any_thread_count() {
+    let s = scene("scenes/discs-cluttered.toml");
+    let pool = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+    };
+    let (one, three) = (pool(1), pool(3));
+    let racing = TreeParams {
+        streams: 3,
+        ..params(BUDGET)
+    };
+    const BUDGET: usize = 550;
+    let (mut alone_solved, mut rescued) = (0, 0);
+    for seed in 1..=40 {
+        let a = one.install(|| grow(&s, &racing, seed));
+        let b = three.install(|| grow(&s, &racing, seed));
+        assert_eq!(
+            a.path, b.path,
+            "seed {seed}: the thread count changed the path"
+        );
+        assert_eq!(a.nodes, b.nodes, "seed {seed}");
+        assert_eq!(a.counts, b.counts, "seed {seed}");
+        let alone = grow(&s, &params(BUDGET), seed);
+        match (&alone.path, &a.path) {
+            (Some(p), Some(q)) => {
+                assert_eq!(p, q, "seed {seed}: stream 0 connected, so it answers");
+                alone_solved += 1;
+            }
+            (Some(_), None) => panic!("seed {seed}: streams lost stream 0's answer"),
+            (None, Some(q)) => {
+                check(&s, q);
+                rescued += 1;
+            }
+            (None, None) => {}
+        }
+    }
+    assert!(
+        alone_solved > 0 && rescued > 0,
+        "{alone_solved} answered by stream 0, {rescued} by a later stream: both cases needed"
+    );
+}

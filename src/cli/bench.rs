@@ -237,6 +237,10 @@ pub struct MbmArgs {
     /// Default: no restarts.
     #[arg(long, value_name = "NODES")]
     pub tree_restart: Option<usize>,
+    /// `--planner tree`: pairs of trees racing from the same ends with different random
+    /// streams, on the rayon pool (`RAYON_NUM_THREADS`); the first to connect answers. 1: one.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub tree_streams: usize,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
@@ -283,6 +287,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             balance: a.tree_balance,
             coarse: a.tree_coarse,
             restart: a.tree_restart,
+            streams: a.tree_streams,
             ..viaroad::roadmap::tree::TreeParams::default()
         },
     };

@@ -82,6 +82,11 @@ pub struct SolveArgs {
     /// the first attempt is the run without restarts). Default: no restarts.
     #[arg(long, value_name = "NODES", requires = "tree")]
     pub tree_restart: Option<usize>,
+    /// `--tree`: pairs of trees racing from the same ends with different random streams, on
+    /// the rayon pool; the first to connect answers (without a time limit: the first in stream
+    /// order, the same on any thread count). Default 1.
+    #[arg(long, value_name = "N", default_value_t = 1, requires = "tree")]
+    pub tree_streams: usize,
     /// `--tree`: whether a blocked stair of one DOF group lets the stair's other groups go on
     /// (`on`), or ends the extend (`off`); `auto` (default): on for arms, whose one group per
     /// joint stops almost every extend at its first blocked joint, off for rigid bodies (their
@@ -370,6 +375,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         coarse: a.tree_coarse,
         max_nodes: a.nodes,
         restart: a.tree_restart,
+        streams: a.tree_streams,
         slide: a.tree_slide.for_space(&scene.space),
     };
     params.validate().map_err(anyhow::Error::msg)?;

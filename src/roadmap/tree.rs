@@ -45,6 +45,9 @@ pub const CENTRE_REACH: f64 = 0.05;
 /// sweeps much of the scene in a full turn, and only narrow arcs are centred anyway.
 pub const CENTRE_TURN: f64 = 0.05;
 
+/// Most streams of [`TreeParams::streams`].
+pub const MAX_STREAMS: usize = 64;
+
 /// How an extend finds the free prefix of one single-group stair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Prefix {
@@ -151,6 +154,15 @@ pub struct TreeParams {
     /// best fixed cut-off without knowing it (Luby, Sinclair, Zuckerman 1993; for RRTs, Wedge
     /// and Branicky 2008).
     pub restart: Option<usize>,
+    /// Independent streams (1, the default: one). With more, as many pairs of trees grow at
+    /// once on the rayon pool from the same ends with different random streams, and the first
+    /// to connect answers (the others stop). The solved set of hard problems follows the random
+    /// stream more than any extend policy (two runs of the 700 Panda problems with different
+    /// policies solve 676 and 679, 691 together), and threads buy streams, not a faster one.
+    /// Without a time limit every stream runs to its node budget and the first in stream order
+    /// that connected answers, so the answer is the same on any machine and thread count; with
+    /// one thread the streams run one after another, each until the deadline.
+    pub streams: usize,
 }
 
 impl Default for TreeParams {
@@ -166,6 +178,7 @@ impl Default for TreeParams {
             max_nodes: None,
             restart: None,
             slide: false,
+            streams: 1,
         }
     }
 }
@@ -177,6 +190,12 @@ impl TreeParams {
             if !(v.is_finite() && v > 0.0 && v <= 10.0) {
                 return Err(format!("tree {name} must be a share in (0, 10], got {v}"));
             }
+        }
+        if self.streams == 0 || self.streams > MAX_STREAMS {
+            return Err(format!(
+                "tree streams must be 1 to {MAX_STREAMS}, got {}",
+                self.streams
+            ));
         }
         if self.restart == Some(0) {
             return Err("tree restarts need a first attempt of at least one node".into());
@@ -216,7 +235,8 @@ pub struct TreeOutcome {
     /// Why it stopped.
     pub stop: TreeStop,
     /// Attempts made (1 without restarts); `nodes` are those of the last one, `extends` and
-    /// `counts` those of all.
+    /// `counts` those of all (with [`TreeParams::streams`]: `path`, `nodes`, `stop` and
+    /// `attempts` of the answering stream, else of stream 0; `extends` and `counts` of all).
     pub attempts: u32,
 }
 
@@ -516,9 +536,85 @@ fn across_of(motion: &crate::space::Motion, gi: usize, g: &Group) -> Across {
 /// extends (see the module docs), until the trees meet, `params.max_nodes` is spent or
 /// `deadline` passes. `groups` are the DOF groups each stair moves in turn. With
 /// `params.restart` the attempts are seeded `seed`, then streams derived from it, so the first
-/// attempt is the run without restarts cut at its node budget.
+/// attempt is the run without restarts cut at its node budget. With `params.streams` above 1,
+/// that many such runs race on the rayon pool ([`TreeParams::streams`]).
 #[allow(clippy::too_many_arguments)]
 pub fn rrt_connect(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    start: &[f64],
+    goal: &[f64],
+    params: &TreeParams,
+    seed: u64,
+    deadline: &Deadline,
+) -> Result<TreeOutcome, OracleError> {
+    if params.streams <= 1 {
+        return one_stream(space, oracle, groups, start, goal, params, seed, deadline);
+    }
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    // with a time limit the first stream to connect stops the others; without one each runs
+    // to its node budget, so that the answer does not depend on which finished first
+    let won = std::sync::Arc::new(AtomicBool::new(false));
+    let racing = deadline.remaining().is_some();
+    let outcomes: Vec<Result<TreeOutcome, OracleError>> = (0..params.streams)
+        .into_par_iter()
+        .map(|k| {
+            let d = if racing {
+                deadline.or_cancelled_by(won.clone())
+            } else {
+                deadline.clone()
+            };
+            let out = one_stream(
+                space,
+                oracle,
+                groups,
+                start,
+                goal,
+                params,
+                stream_seed(seed, k),
+                &d,
+            );
+            if matches!(&out, Ok(o) if o.path.is_some()) {
+                won.store(true, Ordering::Relaxed);
+            }
+            out
+        })
+        .collect();
+    let outcomes = outcomes.into_iter().collect::<Result<Vec<_>, _>>()?;
+    let (mut counts, mut extends) = (CallCounts::default(), 0);
+    for o in &outcomes {
+        counts += o.counts;
+        extends += o.extends;
+    }
+    let pick = outcomes.iter().position(|o| o.path.is_some()).unwrap_or(0);
+    let mut out = outcomes.into_iter().nth(pick).expect("at least one stream");
+    // a stream stopped by another's win reports what stopped the race
+    if out.path.is_none() && deadline.expired() {
+        out.stop = TreeStop::TimedOut;
+    }
+    out.counts = counts;
+    out.extends = extends;
+    Ok(out)
+}
+
+/// The random stream of portfolio stream `k` (stream 0: `seed` itself, so one stream is the
+/// run without streams).
+fn stream_seed(seed: u64, k: usize) -> u64 {
+    if k == 0 {
+        return seed;
+    }
+    // splitmix64 of (seed, k): far from the restarts' streams `seed ^ k · φ`
+    let mut z = seed.wrapping_add((k as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// [`rrt_connect`] for one stream: with `params.restart`, its attempts one after another.
+#[allow(clippy::too_many_arguments)]
+fn one_stream(
     space: &Space,
     oracle: &dyn CollisionOracle,
     groups: &[Group],

@@ -21,3 +21,5 @@ VR_BAL=third $V bench mbm $P $R --limit 30 --out /tmp/l30-third &
 wait
 # twelve.md: a directory of symlinks to the twelve problems named there, each policy and seed
 # (--seed 2, --seed 3), --tree-coarse true, --tree-restart 1000 / 2000
+# two streams on two threads (the code of this commit)
+$V bench mbm $P $R --tree-streams 2 --out /tmp/a700-streams2
