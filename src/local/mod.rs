@@ -237,6 +237,7 @@ pub fn direct_pieces(
 
 /// Length of the direct path from `a` to `z` (sum over the groups it changes; Manhattan-like
 /// when the groups are single axes).
+///
 /// The same sum as measuring [`direct_pieces`], without building a motion and a corner per
 /// piece: shortening measures every pair of corners (`m²` of them), and those allocations
 /// were 7 % of a workcell query (table_pick, 2026-12-03).

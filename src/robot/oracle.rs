@@ -286,25 +286,30 @@ impl ArmOracle {
         let link_meshes: Vec<Option<(TriMesh, Ball)>> = link_meshes;
         // each link's body and the environment's built once (a link is the moving body of its
         // environment oracle and of some self pairs, the still one of others: the same body)
-        let bodies: Vec<Option<(Arc<TriMesh>, Arc<Body>)>> = link_meshes
+        // (the mesh once as a moving body, once as the still one of a pair: one copy per link)
+        type Built = (Arc<TriMesh>, Arc<Vec<TriMesh>>, Arc<Body>);
+        let bodies: Vec<Option<Built>> = link_meshes
             .iter()
             .map(|m| {
                 m.as_ref().map(|(m, _)| {
                     let body = Body::new(std::slice::from_ref(m));
-                    (Arc::new(m.clone()), Arc::new(body))
+                    (
+                        Arc::new(m.clone()),
+                        Arc::new(vec![m.clone()]),
+                        Arc::new(body),
+                    )
                 })
             })
             .collect();
         let mut pair_oracles = FastMap::default();
         for &(a, b) in &arm.self_pairs {
-            if let (Some((ma, ba)), Some((mb, bb))) = (&bodies[a], &bodies[b]) {
-                let still = Arc::new(vec![TriMesh::clone(mb)]);
+            if let (Some((ma, _, ba)), Some((_, still, bb))) = (&bodies[a], &bodies[b]) {
                 pair_oracles.insert(
                     (a, b),
                     Arc::new(Polyhedra::of_bodies(
                         Arc::clone(ma),
                         Body::clone(ba),
-                        still,
+                        Arc::clone(still),
                         Arc::clone(bb),
                     )),
                 );
@@ -318,7 +323,7 @@ impl ArmOracle {
             .map(|b| {
                 b.as_ref()
                     .filter(|_| !env_meshes.is_empty())
-                    .map(|(m, body)| {
+                    .map(|(m, _, body)| {
                         Arc::new(Polyhedra::of_bodies(
                             Arc::clone(m),
                             Body::clone(body),
