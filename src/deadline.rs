@@ -29,8 +29,10 @@ use std::time::{Duration, Instant};
 pub struct Deadline {
     at: Option<Instant>,
     cancel: Option<Arc<AtomicBool>>,
-    /// A second flag ([`Deadline::or_cancelled_by`]): another stream of a portfolio has won.
-    also: Option<Arc<AtomicBool>>,
+    /// Flags of the races this operation is part of ([`Deadline::or_cancelled_by`]): another
+    /// stream of a portfolio has won. Races nest (trees racing the via-point planner race
+    /// their own streams), so all of them are kept; shared, so that a clone stays cheap.
+    also: Option<Arc<[Arc<AtomicBool>]>>,
 }
 
 impl Deadline {
@@ -61,12 +63,19 @@ impl Deadline {
     }
 
     /// The same deadline (time and cancel flag), also stopped when `flag` becomes true: one of
-    /// several streams racing for the same answer stops when another has it.
+    /// several streams racing for the same answer stops when another has it. The flags of the
+    /// races this deadline is already in still stop it too.
     pub fn or_cancelled_by(&self, flag: Arc<AtomicBool>) -> Self {
         Deadline {
             at: self.at,
             cancel: self.cancel.clone(),
-            also: Some(flag),
+            also: Some(
+                self.also
+                    .iter()
+                    .flat_map(|flags| flags.iter().cloned())
+                    .chain([flag])
+                    .collect(),
+            ),
         }
     }
 
@@ -93,9 +102,9 @@ impl Deadline {
 
     /// Whether a cancel flag was raised.
     pub fn cancelled(&self) -> bool {
-        [&self.cancel, &self.also]
-            .into_iter()
-            .flatten()
+        self.cancel
+            .iter()
+            .chain(self.also.iter().flat_map(|flags| flags.iter()))
             .any(|c| c.load(Ordering::Relaxed))
     }
 
@@ -108,6 +117,71 @@ impl Deadline {
     /// Whether anything can end it: a time limit or a cancel flag.
     pub fn is_limited(&self) -> bool {
         self.at.is_some() || self.cancel.is_some() || self.also.is_some()
+    }
+}
+
+/// What [`race`] ran.
+#[derive(Debug)]
+pub struct Raced<A, B> {
+    /// The first side's deciding run: the one in the race, or the head start when that
+    /// answered (or the deadline ended with it).
+    pub first: A,
+    /// The head start that did not answer, when a race followed it (its work counts too).
+    pub head_start: Option<A>,
+    /// The second side's run; `None` when there was no race.
+    pub second: Option<B>,
+}
+
+/// Two planners for the same answer, a portfolio: `first` alone for `head_start` (none when
+/// zero); unless that answered (`first_won`) or `deadline` ended, `first` again beside
+/// `second` on the rayon pool, the first of them to answer (`first_won`, `second_won`)
+/// stopping the other through their shared deadline. Both sides run to the end of their own
+/// work; the caller picks the answer.
+///
+/// The head start keeps quick answers off the pool: handing a query to a worker thread and
+/// waiting for both sides costs more than a sub-millisecond answer takes.
+pub fn race<A: Send, B: Send>(
+    deadline: &Deadline,
+    head_start: Duration,
+    first: impl Fn(&Deadline) -> A + Sync,
+    first_won: impl Fn(&A) -> bool + Sync,
+    second: impl FnOnce(&Deadline) -> B + Send,
+    second_won: impl FnOnce(&B) -> bool + Send,
+) -> Raced<A, B> {
+    let mut alone = None;
+    if !head_start.is_zero() {
+        let a = first(&deadline.within(Some(head_start)));
+        if first_won(&a) || deadline.expired() {
+            return Raced {
+                first: a,
+                head_start: None,
+                second: None,
+            };
+        }
+        alone = Some(a);
+    }
+    let won = Arc::new(AtomicBool::new(false));
+    let racing = deadline.or_cancelled_by(won.clone());
+    let (a, b) = rayon::join(
+        || {
+            let a = first(&racing);
+            if first_won(&a) {
+                won.store(true, Ordering::Relaxed);
+            }
+            a
+        },
+        || {
+            let b = second(&racing);
+            if second_won(&b) {
+                won.store(true, Ordering::Relaxed);
+            }
+            b
+        },
+    );
+    Raced {
+        first: a,
+        head_start: alone,
+        second: Some(b),
     }
 }
 
@@ -148,5 +222,70 @@ mod tests {
         won.store(false, Ordering::Relaxed);
         ctrl_c.store(true, Ordering::Relaxed);
         assert!(racing.expired() && outer.expired());
+    }
+
+    #[test]
+    fn races_nest_and_either_flag_stops_the_inner_one() {
+        let outer_won = Arc::new(AtomicBool::new(false));
+        let inner_won = Arc::new(AtomicBool::new(false));
+        let outer = Deadline::none().or_cancelled_by(outer_won.clone());
+        let inner = outer.or_cancelled_by(inner_won.clone());
+        assert!(!inner.expired());
+        inner_won.store(true, Ordering::Relaxed);
+        assert!(inner.expired() && !outer.expired());
+        inner_won.store(false, Ordering::Relaxed);
+        outer_won.store(true, Ordering::Relaxed);
+        assert!(inner.expired() && outer.expired());
+    }
+
+    /// Counts to `n` unless the deadline ends first; answers when it got there.
+    fn count(n: u64, d: &Deadline) -> (u64, bool) {
+        let mut i = 0;
+        while i < n && !d.expired() {
+            i += 1;
+            std::thread::yield_now();
+        }
+        (i, i == n)
+    }
+
+    #[test]
+    fn a_quick_first_side_answers_in_its_head_start_alone() {
+        let raced = race(
+            &Deadline::none(),
+            Duration::from_secs(3600),
+            |d| count(10, d),
+            |a| a.1,
+            |d| count(10, d),
+            |b| b.1,
+        );
+        assert_eq!(raced.first, (10, true));
+        assert!(raced.head_start.is_none() && raced.second.is_none());
+    }
+
+    #[test]
+    fn the_side_that_answers_stops_the_other() {
+        // the first side would count for ever; the second answers and stops it
+        let raced = race(
+            &Deadline::none(),
+            Duration::ZERO,
+            |d| count(u64::MAX, d),
+            |a| a.1,
+            |d| count(1000, d),
+            |b| b.1,
+        );
+        assert_eq!(raced.second, Some((1000, true)));
+        assert!(raced.head_start.is_none());
+        assert!(!raced.first.1, "the first side was stopped: {raced:?}");
+        // a head start that runs out is followed by the race
+        let raced = race(
+            &Deadline::none(),
+            Duration::from_millis(1),
+            |d| count(u64::MAX, d),
+            |a| a.1,
+            |d| count(1000, d),
+            |b| b.1,
+        );
+        assert!(raced.head_start.is_some_and(|(_, done)| !done));
+        assert_eq!(raced.second, Some((1000, true)));
     }
 }

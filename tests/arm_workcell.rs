@@ -1,13 +1,15 @@
 //! The workcell mode of `bench mbm` (issue 10 part 6): one roadmap of a family's first scene,
 //! saved and loaded back, answering every request valid in that scene; where the roadmap does
-//! not answer in half the query time, two trees do. Every answer is re-checked by the
-//! independent [`viaroad::robot::ArmChecker`] inside `run_workcell`; this test holds it to that.
-//! With answers kept, every edge they add to the roadmap is re-checked here by the same checker.
+//! not answer in half the query time, two trees do, or they race it from the start. Every
+//! answer is re-checked by the independent [`viaroad::robot::ArmChecker`] inside
+//! `run_workcell`; this test holds it to that. With answers kept, every edge they add to the
+//! roadmap is re-checked here by the same checker.
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 use viaroad::bench::mbm::{
     check_step, checker, find_problems, load_robot, problem_scene, run_workcell, Problem,
+    WorkcellOptions,
 };
 use viaroad::roadmap::tree::{Prefix, TreeParams};
 use viaroad::roadmap::{Budget, Roadmap};
@@ -27,7 +29,7 @@ fn family(family: &str) -> (Arm, Vec<Problem>, PathBuf) {
 }
 
 #[test]
-fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
+fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadmap() {
     // the box: its requests need the trees (the 40-node roadmap grown for half the query time
     // did not reach in, 2026-12-03), which answer each in ≈ 1.4 s of their 4 s on the 2-core VM;
     // the cage needed ≈ 5 s of trees, more than a test should spend
@@ -38,47 +40,45 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_the_roadmap() {
         max_nodes: Some(3000),
         ..TreeParams::default()
     };
-    let r = run_workcell(
-        &robot,
-        &problems,
-        &Budget::nodes(40),
-        1,
-        Duration::from_secs(8),
-        Some(&trees),
-        false,
-        &dir.join("box.roadmap"),
-    )
-    .unwrap();
-    assert_eq!(r.requests, 3);
-    assert!(r.valid >= 1, "the first request is valid in its own scene");
-    assert!(r.solved <= r.valid && r.by_trees <= r.solved);
-    assert!(r.solved >= 1, "the box is answered: {r:?}");
-    assert_eq!(r.certified, r.solved, "{r:?}");
-    assert_eq!(r.query_ms.n, r.valid);
-    assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
-    assert_eq!(
-        (r.kept, r.nodes_after),
-        (0, r.nodes),
-        "nothing kept unless asked"
-    );
-    assert!(dir.join("box.roadmap").exists());
+    for race in [None, Some(Duration::ZERO)] {
+        let options = WorkcellOptions {
+            budget: Budget::nodes(40),
+            seed: 1,
+            query_time: Duration::from_secs(8),
+            trees: Some(trees.clone()),
+            race,
+            keep_answers: false,
+        };
+        let r = run_workcell(&robot, &problems, &options, &dir.join("box.roadmap")).unwrap();
+        assert_eq!(r.requests, 3);
+        assert!(r.valid >= 1, "the first request is valid in its own scene");
+        assert!(r.solved <= r.valid && r.by_trees <= r.solved);
+        assert!(r.solved >= 1, "the box is answered (race {race:?}): {r:?}");
+        assert_eq!(r.certified, r.solved, "race {race:?}: {r:?}");
+        assert_eq!(r.query_ms.n, r.valid);
+        assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
+        assert_eq!(
+            (r.kept, r.nodes_after),
+            (0, r.nodes),
+            "nothing kept unless asked"
+        );
+        assert!(dir.join("box.roadmap").exists());
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn every_edge_a_kept_answer_adds_is_certified() {
     let (robot, problems, dir) = family("table_pick");
-    let r = run_workcell(
-        &robot,
-        &problems,
-        &Budget::nodes(40),
-        1,
-        Duration::from_secs(4),
-        None,
-        true,
-        &dir.join("table_pick.roadmap"),
-    )
-    .unwrap();
+    let options = WorkcellOptions {
+        budget: Budget::nodes(40),
+        seed: 1,
+        query_time: Duration::from_secs(4),
+        trees: None,
+        race: None,
+        keep_answers: true,
+    };
+    let r = run_workcell(&robot, &problems, &options, &dir.join("table_pick.roadmap")).unwrap();
     assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
     assert!(
         r.solved >= 2,

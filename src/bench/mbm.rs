@@ -7,19 +7,23 @@
 //! (a MotionPlanRequest) pairs, as in MBM's `problems.tar.bz2`; a directory of family
 //! directories runs them all, in name order.
 //!
-//! Each problem is planned the way `viaroad solve --roadmap` plans: first the via-point
-//! planner alone (a bounded search, [`MbmOptions::direct_calls`] oracle calls), then, if it
-//! did not connect, a roadmap grown from start and goal until they meet or the time is up
-//! (OMPL PRM's `solve`). The returned path is shortened and then re-checked by the independent
+//! Each problem is planned first by the via-point planner alone (a bounded search,
+//! [`MbmOptions::direct_calls`] oracle calls), then, if it did not connect, by two trees from
+//! start and goal ([`Planner::Tree`], as `viaroad solve --tree`) or a roadmap grown from both
+//! until they meet ([`Planner::Roadmap`], as `solve --roadmap`, OMPL PRM's `solve`), until the
+//! time is up; with [`MbmOptions::race`] the via-point planner and the trees run at once. The
+//! returned path is shortened and then re-checked by the independent
 //! [`ArmChecker`] at 1/10 of OMPL's default resolution. "Valid" is the checker's verdict on the
 //! start and goal (exact shapes); the exact oracle uses circumscribed shapes, so it may refuse
 //! an end the checker accepts ("valid, refused by the oracle").
 
-use crate::deadline::Deadline;
-use crate::local::{path_length, shorten, LocalSpec};
+use crate::deadline::{race, Deadline};
+use crate::local::{path_length, shorten, Connection, LocalSpec};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::tree::{rrt_connect, shortcut, TreeParams};
-use crate::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
+use crate::roadmap::{
+    Budget, LearnParams, Learner, QueryOptions, QueryPlanner, QueryResult, Roadmap,
+};
 use crate::robot::{Arm, ArmChecker, ArmOptions};
 use crate::scene::arm::{arm_scene, ArmRobot};
 use crate::scene::moveit::{load_motion_plan_request, load_planning_scene};
@@ -73,6 +77,13 @@ pub struct MbmOptions {
     pub planner: Planner,
     /// The trees' parameters ([`Planner::Tree`]).
     pub tree: TreeParams,
+    /// With [`Planner::Tree`]: run the via-point planner and the trees at once on the rayon
+    /// pool, the first to connect answering, rather than one after the other. They solve
+    /// different problems (a deep via-point search dodges through a narrow gap the trees miss;
+    /// the trees climb staircases the search does not), and the via-point search, whose calls
+    /// sweep whole joint ranges, then no longer delays the trees by its failures. The value
+    /// is the via-point planner's head start alone ([`race`]; zero: none).
+    pub race: Option<Duration>,
 }
 
 /// The stage after the via-point planner alone.
@@ -122,8 +133,14 @@ pub struct ProblemResult {
     pub time_s: f64,
     /// Loading the problem and building the oracle, seconds.
     pub setup_s: f64,
+    /// Of `time_s`: the via-point planner alone (its shortening not included), seconds.
+    pub direct_s: f64,
+    /// Of `time_s`: growing the trees or the roadmap, seconds.
+    pub grow_s: f64,
+    /// Of `time_s`: shortening the path found, seconds.
+    pub shorten_s: f64,
     /// Nodes of the grown roadmap, or of both trees (0 when the via-point planner alone
-    /// solved it).
+    /// solved it in turn; racing, the trees' nodes when it won).
     pub nodes: usize,
     /// Intersect calls (segment + line) of the whole attempt.
     pub calls: u64,
@@ -308,11 +325,49 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
     let method = direct.build();
     let groups = method.groups(&scene.space);
     let mut path: Option<(Vec<Config>, Vec<Config>)> = None;
-    match method.connect_within(&scene.space, oracle.as_ref(), &start, &goal, &deadline) {
+    // the via-point planner's answer and when it came (its stage time, racing or not)
+    let via_points = |d: &Deadline| {
+        let c = method.connect_within(&scene.space, oracle.as_ref(), &start, &goal, d);
+        (c, began.elapsed().as_secs_f64())
+    };
+    let connects = |(c, _): &(Result<Connection, OracleError>, f64)| {
+        c.as_ref().is_ok_and(|c| c.is_connected())
+    };
+    let trees = |d: &Deadline| {
+        tree_stage(
+            &scene,
+            oracle.as_ref(),
+            &groups,
+            &start,
+            &goal,
+            &o.tree,
+            o.seed,
+            d,
+        )
+    };
+    let (connected, raced) = match o.race.filter(|_| o.planner == Planner::Tree) {
+        Some(head_start) => {
+            let raced = race(&deadline, head_start, via_points, connects, trees, |t| {
+                t.as_ref().is_ok_and(|t| t.path.is_some())
+            });
+            // the head start's calls count too
+            if let Some((Ok(c), _)) = &raced.head_start {
+                counts += c.counts;
+            }
+            (raced.first, raced.second)
+        }
+        None => (via_points(&deadline), None),
+    };
+    let (connected, direct_s) = connected;
+    r.direct_s = direct_s;
+    match connected {
         Ok(c) => {
             counts += c.counts;
             if c.is_connected() {
-                match shorten(&scene.space, oracle.as_ref(), &groups, &c.path, &mut counts) {
+                let shortening = Instant::now();
+                let short = shorten(&scene.space, oracle.as_ref(), &groups, &c.path, &mut counts);
+                r.shorten_s = shortening.elapsed().as_secs_f64();
+                match short {
                     Ok(s) => path = Some((c.path, s)),
                     Err(e) => r.error = format!("shortening: {e}"),
                 }
@@ -321,32 +376,32 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         }
         Err(e) => r.error = format!("local method: {e}"),
     }
-    if path.is_none() && !deadline.expired() && o.planner == Planner::Tree {
-        match tree_stage(
-            &scene,
-            oracle.as_ref(),
-            &groups,
-            &start,
-            &goal,
-            &o.tree,
-            o.seed,
-            &deadline,
-        ) {
+    let raced = raced.or_else(|| {
+        (path.is_none() && !deadline.expired() && o.planner == Planner::Tree)
+            .then(|| trees(&deadline))
+    });
+    if let Some(found) = raced {
+        match found {
             Ok(found) => {
                 r.nodes = found.nodes;
                 counts += found.counts;
-                if let Some(e) = found.shortening_error {
-                    r.error = e;
-                }
-                if found.path.is_some() {
-                    path = found.path;
-                    r.stage = "tree".into();
+                r.grow_s = found.grow_s;
+                if path.is_none() {
+                    r.shorten_s = found.shorten_s;
+                    if let Some(e) = found.shortening_error {
+                        r.error = e;
+                    }
+                    if found.path.is_some() {
+                        path = found.path;
+                        r.stage = "tree".into();
+                    }
                 }
             }
             Err(e) => r.error = format!("trees: {e}"),
         }
     }
     if path.is_none() && !deadline.expired() && o.planner == Planner::Roadmap {
+        let growing = Instant::now();
         let spec = LocalSpec::roadmap_default();
         let method = spec.build();
         let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref());
@@ -363,6 +418,7 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
             &mut |_| {},
         ) {
             Ok(grown) => {
+                r.grow_s = growing.elapsed().as_secs_f64();
                 let roadmap = &grown.learnt.roadmap;
                 r.nodes = roadmap.node_count();
                 counts += roadmap.header().counts;
@@ -412,6 +468,10 @@ pub struct TreeStage {
     pub path: Option<(Vec<Config>, Vec<Config>)>,
     /// Why shortcutting stopped early (the path shortened so far is kept).
     pub shortening_error: Option<String>,
+    /// Growing the trees, seconds.
+    pub grow_s: f64,
+    /// Shortcutting their path, seconds.
+    pub shorten_s: f64,
 }
 
 /// Two trees from `start` and `goal` ([`rrt_connect`]) within `deadline`, their path shortened
@@ -429,6 +489,7 @@ pub fn tree_stage(
     seed: u64,
     deadline: &Deadline,
 ) -> Result<TreeStage, OracleError> {
+    let growing = Instant::now();
     let found = rrt_connect(
         &scene.space,
         oracle,
@@ -444,8 +505,11 @@ pub fn tree_stage(
         counts: found.counts,
         path: None,
         shortening_error: None,
+        grow_s: growing.elapsed().as_secs_f64(),
+        shorten_s: 0.0,
     };
     if let Some(raw) = found.path {
+        let shortening = Instant::now();
         let mut short = raw.clone();
         loop {
             match shortcut(
@@ -471,6 +535,7 @@ pub fn tree_stage(
                 }
             }
         }
+        stage.shorten_s = shortening.elapsed().as_secs_f64();
         stage.path = Some((raw, short));
     }
     Ok(stage)
@@ -578,11 +643,11 @@ pub fn summary_markdown(results: &[ProblemResult]) -> String {
 /// The per-problem CSV (one header line, one line per problem).
 pub fn csv(results: &[ProblemResult]) -> String {
     let mut out = String::from(
-        "family,id,valid,oracle_valid,solved,stage,time_s,setup_s,nodes,calls,state_checks,raw_length,length,corners,certified,check_samples,error\n",
+        "family,id,valid,oracle_valid,solved,stage,time_s,setup_s,direct_s,grow_s,shorten_s,nodes,calls,state_checks,raw_length,length,corners,certified,check_samples,error\n",
     );
     for r in results {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{:.6},{:.6},{},{},{},{:.6},{:.6},{},{},{},\"{}\"\n",
+            "{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{},{},{},{:.6},{:.6},{},{},{},\"{}\"\n",
             r.family,
             r.id,
             r.valid,
@@ -591,6 +656,9 @@ pub fn csv(results: &[ProblemResult]) -> String {
             r.stage,
             r.time_s,
             r.setup_s,
+            r.direct_s,
+            r.grow_s,
+            r.shorten_s,
             r.nodes,
             r.calls,
             r.state_checks,
@@ -643,28 +711,41 @@ pub struct WorkcellResult {
     pub nodes_after: usize,
 }
 
-/// Learns a roadmap of the family's first scene within `budget`, saves it to `save_to`, loads
-/// it back, and answers the start/goal pairs of every request of the family that are valid in
-/// that scene (each within `query_time`), re-checking each path.
-///
-/// With `trees`, a query asks the roadmap for half of `query_time` and, where it gets no
-/// answer, two trees from start to goal ([`tree_stage`]) for the rest: growing a copy of the
-/// roadmap does not build the fine single-joint staircases into a box or a cage
-/// (2026-12-02 evening: box 2 of 5, cage 0 of 4 on a 200-node roadmap), the trees do.
-///
-/// With `keep_answers`, every answer the independent checker passes is fed back into the
-/// roadmap before the next request ([`Roadmap::with_path`], the time it takes not counted as
-/// query time): the next query from the same home pose, or into the same pocket, attaches to
-/// it. The roadmap as it ends is saved beside `save_to` (`.kept` added to its name).
-#[allow(clippy::too_many_arguments)]
+/// How [`run_workcell`] learns its roadmap and asks it.
+#[derive(Clone, Debug)]
+pub struct WorkcellOptions {
+    /// What ends learning.
+    pub budget: Budget,
+    /// Seed of learning and of the trees.
+    pub seed: u64,
+    /// Time one request may take.
+    pub query_time: Duration,
+    /// Two trees from start to goal where the roadmap gives no answer in half of
+    /// `query_time` (or beside it, [`Self::race`]): growing a copy of the roadmap does not
+    /// build the fine single-joint staircases into a box or a cage (2026-12-02 evening: box 2
+    /// of 5, cage 0 of 4 on a 200-node roadmap), the trees do.
+    pub trees: Option<TreeParams>,
+    /// With `trees`: ask the roadmap (for all of `query_time`) and grow the trees at once on
+    /// the rayon pool, the first to answer stopping the other, rather than the trees only
+    /// after the roadmap's half: the box's and the cage's requests wait for the trees. The
+    /// value is the roadmap's head start alone ([`race`]; zero: none): a query handed to the
+    /// pool costs more than a quick answer takes, and a tree's answer is a staircase which,
+    /// kept, slows the requests after it, so the roadmap keeps the quick answers to itself.
+    pub race: Option<Duration>,
+    /// Feed every answer the independent checker passes back into the roadmap before the
+    /// next request ([`Roadmap::with_path`], the time it takes not counted as query time): the
+    /// next query from the same home pose, or into the same pocket, attaches to it.
+    pub keep_answers: bool,
+}
+
+/// Learns a roadmap of the family's first scene ([`WorkcellOptions`]), saves it to `save_to`,
+/// loads it back, and answers the start/goal pairs of every request of the family that are
+/// valid in that scene, re-checking each path. With answers kept, the roadmap as it ends is
+/// saved beside `save_to` (`.kept` added to its name).
 pub fn run_workcell(
     robot: &Arm,
     problems: &[Problem],
-    budget: &Budget,
-    seed: u64,
-    query_time: Duration,
-    trees: Option<&TreeParams>,
-    keep_answers: bool,
+    o: &WorkcellOptions,
     save_to: &Path,
 ) -> Result<WorkcellResult, Box<dyn std::error::Error + Send + Sync>> {
     let first = problems.first().ok_or("no problems")?;
@@ -675,8 +756,8 @@ pub fn run_workcell(
     let groups = method.groups(&scene.space);
     let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref()).learn(
         &LearnParams::default(),
-        budget,
-        seed,
+        &o.budget,
+        o.seed,
         &mut |_| {},
     )?;
     learnt.roadmap.save(save_to)?;
@@ -697,10 +778,10 @@ pub fn run_workcell(
         requests: problems.len(),
         ..WorkcellResult::default()
     };
-    let roadmap_time = if trees.is_some() {
-        query_time / 2
+    let roadmap_time = if o.trees.is_some() && o.race.is_none() {
+        o.query_time / 2
     } else {
-        query_time
+        o.query_time
     };
     let options = QueryOptions {
         time: Some(roadmap_time),
@@ -726,22 +807,39 @@ pub fn run_workcell(
             };
             r.valid += 1;
             let t = Instant::now();
-            let deadline = Deadline::none().within(Some(query_time));
-            let answer = planner.query(&s, &g).ok();
-            let mut calls = answer.as_ref().map_or(0, |a| a.counts.intersect_calls());
+            let deadline = Deadline::none().within(Some(o.query_time));
+            let ask_roadmap = |d: &Deadline| planner.query_within(&s, &g, d).ok();
+            let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
+            let grow_trees = |tree: &TreeParams, d: &Deadline| {
+                tree_stage(&scene, oracle.as_ref(), &groups, &s, &g, tree, o.seed, d)
+            };
+            let (answer, head_start, raced) = match (&o.trees, o.race) {
+                (Some(tree), Some(head_start)) => {
+                    let raced = race(
+                        &deadline,
+                        head_start,
+                        ask_roadmap,
+                        answers,
+                        |d| grow_trees(tree, d),
+                        |t| t.as_ref().is_ok_and(|t| t.path.is_some()),
+                    );
+                    (raced.first, raced.head_start.flatten(), raced.second)
+                }
+                _ => (ask_roadmap(&deadline), None, None),
+            };
+            let mut calls: u64 = [&head_start, &answer]
+                .into_iter()
+                .flatten()
+                .map(|a| a.counts.intersect_calls())
+                .sum();
             let mut path = answer.filter(|a| a.is_solved()).map(|a| a.path);
-            if let (None, Some(tree)) = (&path, trees) {
-                if let Ok(found) = tree_stage(
-                    &scene,
-                    oracle.as_ref(),
-                    &groups,
-                    &s,
-                    &g,
-                    tree,
-                    seed,
-                    &deadline,
-                ) {
-                    calls += found.counts.intersect_calls();
+            let trees = raced.or_else(|| match (&path, &o.trees) {
+                (None, Some(tree)) => Some(grow_trees(tree, &deadline)),
+                _ => None,
+            });
+            if let Some(Ok(found)) = trees {
+                calls += found.counts.intersect_calls();
+                if path.is_none() {
                     path = found.path.map(|(_, short)| short);
                     r.by_trees += usize::from(path.is_some());
                 }
@@ -755,7 +853,7 @@ pub fn run_workcell(
                     .is_ok_and(|rep| rep.valid);
                 r.certified += usize::from(certified);
                 // only what the independent checker passed is kept (all of it, so far)
-                keep = (keep_answers && certified).then_some(path);
+                keep = (o.keep_answers && certified).then_some(path);
             }
         }
         drop(planner);
@@ -765,7 +863,7 @@ pub fn run_workcell(
         }
     }
     r.nodes_after = roadmap.node_count();
-    if keep_answers {
+    if o.keep_answers {
         let mut kept_name = save_to.as_os_str().to_owned();
         kept_name.push(".kept");
         roadmap.save(Path::new(&kept_name))?;

@@ -191,8 +191,13 @@ pub struct MbmArgs {
     /// Planning seconds per problem.
     #[arg(long, default_value_t = 10.0)]
     pub time: f64,
-    /// Oracle calls the via-point planner alone may spend before a roadmap grows.
-    #[arg(long, default_value_t = 2000)]
+    /// Oracle calls the via-point planner alone may spend before the trees (or a roadmap)
+    /// take over (racing, beside them). Its calls sweep whole joint ranges (≈ 3 ms each on the
+    /// Panda problems against ≈ 50 µs for a tree's stair), so a smaller budget answers sooner
+    /// but loses what only the via-point search solves: over the 700 Panda problems 60 calls
+    /// solve 668 at p50 236 ms, 300 calls 676 at p50 373 ms, and `--race` with 300 calls 677 at
+    /// p50 117 ms (2026-12-04, `benches/results/2026-12-04-direct-budget/`). 0: the direct path only.
+    #[arg(long, default_value_t = 300)]
     pub direct_calls: u64,
     /// At most this many problems per family.
     #[arg(long)]
@@ -241,6 +246,13 @@ pub struct MbmArgs {
     /// streams, on the rayon pool (`RAYON_NUM_THREADS`); the first to connect answers. 1: one.
     #[arg(long, value_name = "N", default_value_t = 1)]
     pub tree_streams: usize,
+    /// `--planner tree`: run the via-point planner (`--direct-calls`) and the trees at once on
+    /// the rayon pool, the first to connect answering, instead of one after the other; in
+    /// workcell mode, the roadmap's query and the trees. With a value, the other side first
+    /// runs alone for MS milliseconds and the race starts only if it has not answered
+    /// (`--race 50`).
+    #[arg(long, value_name = "MS", num_args = 0..=1, default_missing_value = "0")]
+    pub race: Option<f64>,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
@@ -272,6 +284,12 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
     let robot = mbm::load_robot(&a.robot)?;
     let problems = mbm::find_problems(&a.dir, a.limit)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
+    let race = match a.race {
+        Some(ms) if !(0.0..=1e9).contains(&ms) => {
+            anyhow::bail!("--race takes milliseconds from 0 to 1e9, got {ms}")
+        }
+        ms => ms.map(|ms| std::time::Duration::from_secs_f64(ms / 1000.0)),
+    };
     let options = mbm::MbmOptions {
         time,
         direct_calls: a.direct_calls,
@@ -290,9 +308,18 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             streams: a.tree_streams,
             ..viaroad::roadmap::tree::TreeParams::default()
         },
+        race,
     };
     options.tree.validate().map_err(anyhow::Error::msg)?;
     if a.workcell {
+        let workcell = mbm::WorkcellOptions {
+            budget: viaroad::roadmap::Budget::nodes(a.nodes),
+            seed: a.seed,
+            query_time: super::limits::parse_seconds("--query-time", a.query_time)?,
+            trees: (a.planner == mbm::Planner::Tree).then(|| options.tree.clone()),
+            race,
+            keep_answers: a.keep_answers,
+        };
         let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
         families.dedup();
         let mut md = String::from(
@@ -307,17 +334,8 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
                 .cloned()
                 .collect();
             let save = a.out.join(format!("{f}.roadmap"));
-            let r = mbm::run_workcell(
-                &robot,
-                &ps,
-                &viaroad::roadmap::Budget::nodes(a.nodes),
-                a.seed,
-                super::limits::parse_seconds("--query-time", a.query_time)?,
-                (a.planner == mbm::Planner::Tree).then_some(&options.tree),
-                a.keep_answers,
-                &save,
-            )
-            .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
+            let r = mbm::run_workcell(&robot, &ps, &workcell, &save)
+                .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
             let line = format!(
                 "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} |\n",
                 r.family,
