@@ -135,8 +135,11 @@ pub struct Raced<A, B> {
 /// Two planners for the same answer, a portfolio: `first` alone for `head_start` (none when
 /// zero); unless that answered (`first_won`) or `deadline` ended, `first` again beside
 /// `second` on the rayon pool, the first of them to answer (`first_won`, `second_won`)
-/// stopping the other through their shared deadline. Both sides run to the end of their own
-/// work; the caller picks the answer.
+/// stopping the other through their shared deadline. The caller picks the answer.
+///
+/// Without a time limit nothing is stopped: both sides run to their own budgets, so that a
+/// caller who prefers the first side's answer gets the same answer on any thread count (as
+/// racing tree streams do, [`crate::roadmap::tree::rrt_connect`]).
 ///
 /// The head start keeps quick answers off the pool: handing a query to a worker thread and
 /// waiting for both sides costs more than a sub-millisecond answer takes.
@@ -161,7 +164,11 @@ pub fn race<A: Send, B: Send>(
         alone = Some(a);
     }
     let won = Arc::new(AtomicBool::new(false));
-    let racing = deadline.or_cancelled_by(won.clone());
+    let racing = if deadline.remaining().is_some() {
+        deadline.or_cancelled_by(won.clone())
+    } else {
+        deadline.clone()
+    };
     let (a, b) = rayon::join(
         || {
             let a = first(&racing);
@@ -265,8 +272,9 @@ mod tests {
     #[test]
     fn the_side_that_answers_stops_the_other() {
         // the first side would count for ever; the second answers and stops it
+        let hour = Deadline::after(Duration::from_secs(3600));
         let raced = race(
-            &Deadline::none(),
+            &hour,
             Duration::ZERO,
             |d| count(u64::MAX, d),
             |a| a.1,
@@ -278,7 +286,7 @@ mod tests {
         assert!(!raced.first.1, "the first side was stopped: {raced:?}");
         // a head start that runs out is followed by the race
         let raced = race(
-            &Deadline::none(),
+            &hour,
             Duration::from_millis(1),
             |d| count(u64::MAX, d),
             |a| a.1,
@@ -287,5 +295,21 @@ mod tests {
         );
         assert!(raced.head_start.is_some_and(|(_, done)| !done));
         assert_eq!(raced.second, Some((1000, true)));
+    }
+
+    #[test]
+    fn without_a_time_limit_both_sides_run_to_their_budgets() {
+        let raced = race(
+            &Deadline::none(),
+            Duration::ZERO,
+            |d| count(2000, d),
+            |a| a.1,
+            |d| count(10, d),
+            |b| b.1,
+        );
+        assert_eq!(
+            (raced.first, raced.second),
+            ((2000, true), Some((10, true)))
+        );
     }
 }
