@@ -5,7 +5,8 @@
 //! one round on a big mesh (dozens of deep via-point searches, seconds each) overrun a 30-s
 //! budget by minutes; checking it before every intersect call bounds the overrun by the cost
 //! of one call. A deadline also carries an optional cancel flag, so that Ctrl-C or a caller
-//! on another thread stops the same checks.
+//! on another thread stops the same checks, and the flags of the races it is in: [`race`]
+//! runs two planners for one answer, the first to answer stopping the other.
 //!
 //! ```
 //! use std::time::Duration;
