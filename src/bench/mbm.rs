@@ -347,9 +347,14 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
     };
     let (connected, raced) = match o.race.filter(|_| o.planner == Planner::Tree) {
         Some(head_start) => {
-            let raced = race(&deadline, head_start, via_points, connects, trees, |t| {
-                t.as_ref().is_ok_and(|t| t.path.is_some())
-            });
+            let raced = race(
+                &deadline,
+                head_start,
+                via_points,
+                connects,
+                trees,
+                trees_found,
+            );
             // the head start's calls count too
             if let Some((Ok(c), _)) = &raced.head_start {
                 counts += c.counts;
@@ -472,6 +477,11 @@ pub struct TreeStage {
     pub grow_s: f64,
     /// Shortcutting their path, seconds.
     pub shorten_s: f64,
+}
+
+/// Whether the trees of a [`tree_stage`] found a path (a side of a [`race`] that answered).
+fn trees_found(stage: &Result<TreeStage, OracleError>) -> bool {
+    stage.as_ref().is_ok_and(|t| t.path.is_some())
 }
 
 /// Two trees from `start` and `goal` ([`rrt_connect`]) within `deadline`, their path shortened
@@ -821,7 +831,7 @@ pub fn run_workcell(
                         ask_roadmap,
                         answers,
                         |d| grow_trees(tree, d),
-                        |t| t.as_ref().is_ok_and(|t| t.path.is_some()),
+                        trees_found,
                     );
                     (raced.first, raced.head_start.flatten(), raced.second)
                 }

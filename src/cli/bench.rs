@@ -248,9 +248,9 @@ pub struct MbmArgs {
     pub tree_streams: usize,
     /// `--planner tree`: run the via-point planner (`--direct-calls`) and the trees at once on
     /// the rayon pool, the first to connect answering, instead of one after the other; in
-    /// workcell mode, the roadmap's query and the trees. With a value, the other side first
-    /// runs alone for MS milliseconds and the race starts only if it has not answered
-    /// (`--race 50`).
+    /// workcell mode, the roadmap's query and the trees. With a value, the via-point planner
+    /// (the roadmap's query) first runs alone for MS milliseconds and the race starts only if
+    /// it has not answered (`--race 50`).
     #[arg(long, value_name = "MS", num_args = 0..=1, default_missing_value = "0")]
     pub race: Option<f64>,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
