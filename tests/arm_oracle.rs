@@ -601,3 +601,29 @@ fn slides_and_turns_of_a_toy_arm_agree_with_the_reference_and_the_checker() {
         "slides and turns colliding in part {partial:?}, free {free:?}"
     );
 }
+
+/// Static link tests are remembered per thread (`StaticMemo`, keyed by the oracle): two oracles
+/// of the same arm in different scenes, asked in turns about the same configurations, each
+/// answer as a fresh oracle of its own scene answers (and as the independent checker).
+#[test]
+fn remembered_static_tests_never_cross_scenes() {
+    let (arm, table_checker, table) = setup("mbm/table_pick/scene0001.yaml");
+    let (_, shelf_checker, shelf) = setup("mbm/bookshelf_small/scene0001.yaml");
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let g = &arm.group;
+    let (mut differ, mut counts) = (0, CallCounts::default());
+    for _ in 0..300 {
+        let q: Vec<f64> = (0..g.dof())
+            .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+            .collect();
+        // twice each, in both orders: the second asks are answered from the memo
+        for _ in 0..2 {
+            let a = table.collides(&q, &mut counts).unwrap();
+            let b = shelf.collides(&q, &mut counts).unwrap();
+            assert_eq!(a, !table_checker.is_valid(&q), "table at {q:?}");
+            assert_eq!(b, !shelf_checker.is_valid(&q), "shelf at {q:?}");
+            differ += usize::from(a != b);
+        }
+    }
+    assert!(differ >= 20, "the scenes disagree at {differ} asks");
+}

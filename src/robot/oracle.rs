@@ -12,7 +12,8 @@
 //!   `disable_collisions`, the scene's allowed-collision matrix), placed at `q`;
 //! - link pairs that keep their relative pose during the move (distal–distal,
 //!   proximal–proximal, proximal–environment) collide for the whole move or not at all: they
-//!   are tested once, statically;
+//!   are tested once, statically (a link against the environment at a pose is remembered per
+//!   thread, `StaticMemo`: the pieces of a direct path leave most links where they were);
 //! - the answer is the union, in `t ∈ [0, 1]`.
 //!
 //! Enveloping: every link polytope and environment polytope has a bounding ball; a pair is
@@ -124,9 +125,8 @@ fn may_meet(mv: &Move, m: &Ball, o: &Ball) -> bool {
             let (rad_m, rad_o) = (pm - axis * hm, po - axis * ho);
             let (rm, ro) = (rad_m.norm(), rad_o.norm());
             let reach = reach * (1.0 + 1e-9) + 1e-12;
-            let full = (hm - ho).hypot(rm - ro);
             // the closest the two circles about the axis come: no angle brings them nearer
-            if full > reach {
+            if (hm - ho).powi(2) + (rm - ro).powi(2) > reach * reach {
                 return false;
             }
             if angle.abs() >= TAU || rm <= 1e-12 || ro <= 1e-12 {
@@ -201,7 +201,31 @@ pub struct ArmOracle {
     env_clouds: Vec<Option<Cloud>>,
     /// Whether the link oracles of a move share what they find ([`ArmOracle::with_culling`]).
     culling: bool,
+    /// This oracle's key in the thread's memo of static link tests ([`StaticMemo`]): unique
+    /// per construction, so that no other oracle's answers are ever read.
+    id: u64,
 }
+
+/// Links tested against the environment at a pose, remembered per thread: a move asks every
+/// link it does not move, and the pieces of a direct path share most of them (a move of joint
+/// `k` leaves links `0..k` where the move of joint `k − 1` before it left them), as do the
+/// moves from one configuration. Keyed by the oracle's id, the link and the pose's bits, so
+/// an answer read is the answer the test would give; only the work changes.
+struct StaticMemo {
+    answers: FastMap<(u64, u32, [u64; 7]), bool>,
+}
+
+/// Entries after which the memo starts afresh (a few hundred kilobytes).
+const STATIC_MEMO_LIMIT: usize = 8192;
+
+thread_local! {
+    static STATIC_MEMO: std::cell::RefCell<StaticMemo> = std::cell::RefCell::new(StaticMemo {
+        answers: FastMap::default(),
+    });
+}
+
+/// The ids of [`ArmOracle`]s.
+static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 impl std::fmt::Debug for ArmOracle {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -350,6 +374,7 @@ impl ArmOracle {
             link_clouds,
             env_clouds,
             culling: true,
+            id: NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         })
     }
 
@@ -381,6 +406,35 @@ impl ArmOracle {
     /// Whether link `l` at `pose` meets the environment (when its ball meets an obstacle's
     /// and no separating plane shows it apart from every such obstacle).
     fn in_environment(
+        &self,
+        l: usize,
+        pose: &Isometry3<f64>,
+        ball: &Ball,
+        counts: &mut CallCounts,
+    ) -> bool {
+        let t = pose.translation.vector;
+        let r = pose.rotation.coords;
+        let key = (
+            self.id,
+            l as u32,
+            [t.x, t.y, t.z, r[0], r[1], r[2], r[3]].map(f64::to_bits),
+        );
+        if let Some(hit) = STATIC_MEMO.with(|m| m.borrow().answers.get(&key).copied()) {
+            return hit;
+        }
+        let hit = self.link_in_environment(l, pose, ball, counts);
+        STATIC_MEMO.with(|m| {
+            let mut m = m.borrow_mut();
+            if m.answers.len() >= STATIC_MEMO_LIMIT {
+                m.answers.clear();
+            }
+            m.answers.insert(key, hit);
+        });
+        hit
+    }
+
+    /// [`Self::in_environment`], asked.
+    fn link_in_environment(
         &self,
         l: usize,
         pose: &Isometry3<f64>,
