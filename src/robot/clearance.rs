@@ -160,8 +160,9 @@ fn leaves_of(mut points: Vec<Point3<f64>>) -> (Vec<Point3<f64>>, Vec<Leaf>) {
     (points, leaves)
 }
 
-/// The exact support: a vertex of greatest `dir · v` as the dot products round, found by scanning the leaf of the highest bound and then only
-/// the leaves whose bound exceeds the best so far.
+/// The exact support: a vertex of greatest `dir · v` as the dot products round, found by
+/// scanning the leaf of the highest bound, then only the leaves whose bound reaches the best so
+/// far (the bounds' margin covers the rounding, so a leaf left out holds no higher vertex).
 impl SupportMap for Cloud {
     fn local_support_point(&self, dir: &Vector3<f64>) -> Point3<f64> {
         let scale = dir.norm();
