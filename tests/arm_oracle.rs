@@ -602,7 +602,7 @@ fn slides_and_turns_of_a_toy_arm_agree_with_the_reference_and_the_checker() {
     );
 }
 
-/// Static link tests are remembered per thread (`StaticMemo`, keyed by the oracle): two oracles
+/// Static link tests are remembered per thread (`STATIC_MEMO`, keyed by the oracle): two oracles
 /// of the same arm in different scenes, asked in turns about the same configurations, answer
 /// each as the independent checker of its own scene does. A memo keyed by link and pose alone
 /// would hand one scene's answers to the other: the scenes disagree at 20 asks at least.

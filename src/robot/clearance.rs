@@ -181,8 +181,9 @@ impl SupportMap for Cloud {
         let first = self
             .leaves
             .iter()
+            .map(bound)
             .enumerate()
-            .max_by(|a, b| bound(a.1).total_cmp(&bound(b.1)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(i, _)| i);
         if let Some(f) = first {
             scan(&self.leaves[f], &mut best, &mut top);

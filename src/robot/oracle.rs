@@ -13,7 +13,7 @@
 //! - link pairs that keep their relative pose during the move (distal–distal,
 //!   proximal–proximal, proximal–environment) collide for the whole move or not at all: they
 //!   are tested once, statically (a link against the environment at a pose is remembered per
-//!   thread, `StaticMemo`: the pieces of a direct path leave most links where they were);
+//!   thread, `STATIC_MEMO`: the pieces of a direct path leave most links where they were);
 //! - the answer is the union, in `t ∈ [0, 1]`.
 //!
 //! Enveloping: every link polytope and environment polytope has a bounding ball; a pair is
@@ -201,27 +201,25 @@ pub struct ArmOracle {
     env_clouds: Vec<Option<Cloud>>,
     /// Whether the link oracles of a move share what they find ([`ArmOracle::with_culling`]).
     culling: bool,
-    /// This oracle's key in the thread's memo of static link tests ([`StaticMemo`]): unique
+    /// This oracle's key in the thread's memo of static link tests ([`STATIC_MEMO`]): unique
     /// per construction, so that no other oracle's answers are ever read.
     id: u64,
 }
 
-/// Links tested against the environment at a pose, remembered per thread: a move asks every
-/// link it does not move, and the pieces of a direct path share most of them (a move of joint
-/// `k` leaves links `0..k` where the move of joint `k − 1` before it left them), as do the
-/// moves from one configuration. Keyed by the oracle's id, the link and the pose's bits, so
-/// an answer read is the answer the test would give; only the work changes.
-struct StaticMemo {
-    answers: FastMap<(u64, u32, [u64; 7]), bool>,
-}
-
-/// Entries after which the memo starts afresh (a few hundred kilobytes).
+/// Entries after which [`STATIC_MEMO`] starts afresh (a few hundred kilobytes).
 const STATIC_MEMO_LIMIT: usize = 8192;
 
+/// A static link test's key: the oracle's id, the link, the bits of the link's pose.
+type StaticKey = (u64, u32, [u64; 7]);
+
 thread_local! {
-    static STATIC_MEMO: std::cell::RefCell<StaticMemo> = std::cell::RefCell::new(StaticMemo {
-        answers: FastMap::default(),
-    });
+    /// Links tested against the environment at a pose, remembered per thread: a move asks
+    /// every link it does not move, and the pieces of a direct path share most of them (a move
+    /// of joint `k` leaves links `0..k` where the move of joint `k − 1` before it left them), as
+    /// do the moves from one configuration. Keyed by the oracle's id, the link and the pose's
+    /// bits, so an answer read is the answer the test would give; only the work changes.
+    static STATIC_MEMO: std::cell::RefCell<FastMap<StaticKey, bool>> =
+        std::cell::RefCell::new(FastMap::default());
 }
 
 /// The ids of [`ArmOracle`]s.
@@ -419,16 +417,16 @@ impl ArmOracle {
             l as u32,
             [t.x, t.y, t.z, r[0], r[1], r[2], r[3]].map(f64::to_bits),
         );
-        if let Some(hit) = STATIC_MEMO.with(|m| m.borrow().answers.get(&key).copied()) {
+        if let Some(hit) = STATIC_MEMO.with(|m| m.borrow().get(&key).copied()) {
             return hit;
         }
         let hit = self.link_in_environment(l, pose, ball, counts);
         STATIC_MEMO.with(|m| {
             let mut m = m.borrow_mut();
-            if m.answers.len() >= STATIC_MEMO_LIMIT {
-                m.answers.clear();
+            if m.len() >= STATIC_MEMO_LIMIT {
+                m.clear();
             }
-            m.answers.insert(key, hit);
+            m.insert(key, hit);
         });
         hit
     }
