@@ -1,6 +1,7 @@
 //! The workcell mode of `bench mbm` (issue 10 part 6): one roadmap of a family's first scene,
 //! saved and loaded back, answering every request valid in that scene; where the roadmap does
-//! not answer in half the query time, two trees do, or they race it from the start. Every
+//! not answer in half the query time, two trees do (out of the roadmap, or from the bare
+//! ends), or they race it from the start. Every
 //! answer is re-checked by the independent [`viaroad::robot::ArmChecker`] inside
 //! `run_workcell`; this test holds it to that. With answers kept, every edge they add to the
 //! roadmap is re-checked here by the same checker.
@@ -40,7 +41,8 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
         max_nodes: Some(3000),
         ..TreeParams::default()
     };
-    for race in [None, Some(Duration::ZERO)] {
+    let modes = [(None, true), (Some(Duration::ZERO), true), (None, false)];
+    for (race, trees_from_roadmap) in modes {
         let options = WorkcellOptions {
             budget: Budget::nodes(40),
             seed: 1,
@@ -48,6 +50,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
             trees: Some(trees.clone()),
             race,
             keep_answers: false,
+            trees_from_roadmap,
         };
         let r = run_workcell(&robot, &problems, &options, &dir.join("box.roadmap")).unwrap();
         assert_eq!(r.requests, 3);
@@ -55,6 +58,12 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
         assert!(r.solved <= r.valid && r.by_trees <= r.solved);
         assert!(r.solved >= 1, "the box is answered (race {race:?}): {r:?}");
         assert_eq!(r.certified, r.solved, "race {race:?}: {r:?}");
+        // the 40-node roadmap does not reach into the box: the trees answer (in turn out of
+        // the roadmap inside the query, `QueryOptions::trees`; racing; from the bare ends)
+        assert!(
+            r.by_trees >= 1,
+            "race {race:?}, from roadmap {trees_from_roadmap}: {r:?}"
+        );
         assert_eq!(r.query_ms.n, r.valid);
         assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
         assert_eq!(
@@ -77,6 +86,7 @@ fn every_edge_a_kept_answer_adds_is_certified() {
         trees: None,
         race: None,
         keep_answers: true,
+        trees_from_roadmap: true,
     };
     let r = run_workcell(&robot, &problems, &options, &dir.join("table_pick.roadmap")).unwrap();
     assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));

@@ -423,6 +423,58 @@ fn path_out_writes_ompl_state_files_the_independent_check_certifies() {
     );
 }
 
+/// `query --trees on`: where a sparse roadmap cannot join a query's ends, trees grow out of it;
+/// every answer (by the roadmap or the trees) is re-checked by the independent segment–disc
+/// test, and a mode that is not one is a usage error.
+#[test]
+fn query_grows_trees_out_of_the_roadmap() {
+    let d = temp_dir("trees");
+    let rm = d.join("r.bin").to_string_lossy().into_owned();
+    let o = viaroad(&["build", CLUTTERED, "-o", &rm, "--nodes", "5", "--seed", "2"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (centres, radii) = discs_of(CLUTTERED);
+    let o = viaroad(&[
+        "query",
+        &rm,
+        "--scene",
+        CLUTTERED,
+        "--json",
+        "--trees",
+        "on",
+        "--no-grow",
+        "--time",
+        "30",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let answers: Vec<serde_json::Value> = stdout(&o)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(answers.len(), 5);
+    for v in &answers {
+        assert!(v["solved"].as_bool().unwrap(), "{v}");
+        for key in ["path", "shortened"] {
+            common::check_disc_path(
+                &json_path(&v[key]),
+                &centres,
+                &radii,
+                &[0.0, 0.0],
+                &[1.0, 1.0],
+                1e-9,
+            )
+            .unwrap_or_else(|e| panic!("{key} of {v}: {e}"));
+        }
+    }
+    assert!(
+        answers.iter().any(|v| v["outcome"] == "trees"),
+        "a 5-node roadmap leaves some query to the trees: {answers:?}"
+    );
+    let o = viaroad(&["query", &rm, "--scene", CLUTTERED, "--trees", "maybe"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--trees"), "{}", stderr(&o));
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
 /// `query --keep-answers FILE`: the queries are answered in their order, every path found is
 /// fed back into the roadmap before the next one, and the grown roadmap is saved: every corner
 /// of every answer is one of its nodes, it loads for the scene, and it answers the same

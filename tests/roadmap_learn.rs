@@ -281,6 +281,7 @@ fn extreme_parameters_are_harmless() {
             escalation_candidates: usize::MAX,
             time: None,
             grow: false,
+            trees: None,
             max_calls: Some(u64::MAX),
         });
     let (s, g) = random_queries(&scene, 1, 4).remove(0);

@@ -20,9 +20,10 @@
 use crate::deadline::{race, Deadline};
 use crate::local::{path_length, shorten, Connection, LocalSpec};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
-use crate::roadmap::tree::{rrt_connect, shortcut, TreeParams};
+use crate::roadmap::rooted::RoadmapTrees;
+use crate::roadmap::tree::{rrt_connect, shortcut_passes, TreeOutcome, TreeParams};
 use crate::roadmap::{
-    Budget, LearnParams, Learner, QueryOptions, QueryPlanner, QueryResult, Roadmap,
+    Budget, LearnParams, Learner, QueryOptions, QueryOutcome, QueryPlanner, QueryResult, Roadmap,
 };
 use crate::robot::{Arm, ArmChecker, ArmOptions};
 use crate::scene::arm::{arm_scene, ArmRobot};
@@ -109,9 +110,7 @@ impl std::str::FromStr for Planner {
     }
 }
 
-/// Corners ahead that a greedy shortcut pass of a tree path tries from each corner (as
-/// `solve --tree`).
-pub const SHORTCUT_WINDOW: usize = 32;
+pub use crate::roadmap::tree::SHORTCUT_WINDOW;
 
 /// The outcome of one problem.
 #[derive(Clone, Debug, Default, Serialize)]
@@ -510,6 +509,19 @@ pub fn tree_stage(
         seed,
         deadline,
     )?;
+    Ok(shortened(scene, oracle, groups, found, growing, deadline))
+}
+
+/// The trees' outcome `found` (grown since `growing`) as a [`TreeStage`], its path shortened
+/// by greedy shortcut passes within `deadline` ([`tree_stage`]).
+fn shortened(
+    scene: &Scene,
+    oracle: &dyn CollisionOracle,
+    groups: &[crate::space::Group],
+    found: TreeOutcome,
+    growing: Instant,
+    deadline: &Deadline,
+) -> TreeStage {
     let mut stage = TreeStage {
         nodes: found.nodes[0] + found.nodes[1],
         counts: found.counts,
@@ -520,35 +532,21 @@ pub fn tree_stage(
     };
     if let Some(raw) = found.path {
         let shortening = Instant::now();
-        let mut short = raw.clone();
-        loop {
-            match shortcut(
-                &scene.space,
-                oracle,
-                groups,
-                &short,
-                SHORTCUT_WINDOW,
-                &mut stage.counts,
-                deadline,
-            ) {
-                Ok(p) => {
-                    let better = p.len() < short.len();
-                    short = p;
-                    if !better || deadline.expired() {
-                        break;
-                    }
-                }
-                // what was shortened so far is certified free corner to corner
-                Err(e) => {
-                    stage.shortening_error = Some(format!("shortening: {e}"));
-                    break;
-                }
-            }
-        }
+        let (short, error) = shortcut_passes(
+            &scene.space,
+            oracle,
+            groups,
+            &raw,
+            SHORTCUT_WINDOW,
+            &mut stage.counts,
+            deadline,
+        );
+        // what was shortened before an error is certified free corner to corner
+        stage.shortening_error = error.map(|e| format!("shortening: {e}"));
         stage.shorten_s = shortening.elapsed().as_secs_f64();
         stage.path = Some((raw, short));
     }
-    Ok(stage)
+    stage
 }
 
 /// Mean, standard deviation and percentiles of a sample (VAMP's `evaluate_mbm` columns).
@@ -730,8 +728,8 @@ pub struct WorkcellOptions {
     pub seed: u64,
     /// Time one request may take.
     pub query_time: Duration,
-    /// Two trees from start to goal where the roadmap gives no answer in half of
-    /// `query_time` (or beside it, [`Self::race`]): growing a copy of the roadmap does not
+    /// Two trees where the roadmap gives no answer (after attaching, in half of `query_time`
+    /// or beside it: [`Self::trees_from_roadmap`], [`Self::race`]): growing a copy of the roadmap does not
     /// build the fine single-joint staircases into a box or a cage (2026-12-02 evening: box 2
     /// of 5, cage 0 of 4 on a 200-node roadmap), the trees do.
     pub trees: Option<TreeParams>,
@@ -746,6 +744,13 @@ pub struct WorkcellOptions {
     /// next request ([`Roadmap::with_path`], the time it takes not counted as query time): the
     /// next query from the same home pose, or into the same pocket, attaches to it.
     pub keep_answers: bool,
+    /// With `trees`: each end that a free direct path attaches to one of its nearest roadmap
+    /// nodes grows its tree out of that node's whole component ([`RoadmapTrees`]), so that
+    /// the other end's tree need only reach the roadmap; in turn (no `race`) the query grows
+    /// them itself after attaching ([`QueryOptions::trees`], as `viaroad query` does).
+    /// `false`: both trees grow from the bare ends, as a single query's would, after the
+    /// roadmap's half of the time or beside it.
+    pub trees_from_roadmap: bool,
 }
 
 /// Learns a roadmap of the family's first scene ([`WorkcellOptions`]), saves it to `save_to`,
@@ -788,13 +793,18 @@ pub fn run_workcell(
         requests: problems.len(),
         ..WorkcellResult::default()
     };
-    let roadmap_time = if o.trees.is_some() && o.race.is_none() {
+    // in turn with trees out of the roadmap, the query grows them itself after attaching
+    // (`QueryOptions::trees`, as `viaroad query` does); in turn from the bare ends, the
+    // roadmap's query gets half the time and the trees the rest
+    let in_query = o.race.is_none() && o.trees_from_roadmap;
+    let roadmap_time = if o.trees.is_some() && o.race.is_none() && !in_query {
         o.query_time / 2
     } else {
         o.query_time
     };
     let options = QueryOptions {
         time: Some(roadmap_time),
+        trees: o.trees.clone().filter(|_| in_query),
         ..QueryOptions::default()
     };
     let arm = &check.arm().clone();
@@ -821,7 +831,20 @@ pub fn run_workcell(
             let ask_roadmap = |d: &Deadline| planner.query_within(&s, &g, d).ok();
             let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
             let grow_trees = |tree: &TreeParams, d: &Deadline| {
-                tree_stage(&scene, oracle.as_ref(), &groups, &s, &g, tree, o.seed, d)
+                if !o.trees_from_roadmap {
+                    return tree_stage(&scene, oracle.as_ref(), &groups, &s, &g, tree, o.seed, d);
+                }
+                let growing = Instant::now();
+                let found = RoadmapTrees::new(&roadmap, oracle.as_ref(), &groups)
+                    .connect(&s, &g, tree, o.seed, d)?;
+                Ok(shortened(
+                    &scene,
+                    oracle.as_ref(),
+                    &groups,
+                    found,
+                    growing,
+                    d,
+                ))
             };
             let (answer, head_start, raced) = match (&o.trees, o.race) {
                 (Some(tree), Some(head_start)) => {
@@ -842,9 +865,15 @@ pub fn run_workcell(
                 .flatten()
                 .map(|a| a.counts.intersect_calls())
                 .sum();
+            // the query's own trees (`QueryOptions::trees`, in turn) count as the trees'
+            r.by_trees += usize::from(
+                answer
+                    .as_ref()
+                    .is_some_and(|a| a.outcome == QueryOutcome::Trees),
+            );
             let mut path = answer.filter(|a| a.is_solved()).map(|a| a.path);
             let trees = raced.or_else(|| match (&path, &o.trees) {
-                (None, Some(tree)) => Some(grow_trees(tree, &deadline)),
+                (None, Some(tree)) if !in_query => Some(grow_trees(tree, &deadline)),
                 _ => None,
             });
             if let Some(Ok(found)) = trees {

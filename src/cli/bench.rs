@@ -272,9 +272,24 @@ pub struct MbmArgs {
     /// roadmap as learnt.
     #[arg(long)]
     pub keep_answers: bool,
+    /// Workcell mode, `--planner tree`: where the trees grow from. `roadmap` (default): each
+    /// end that a free direct path attaches to one of its 5 nearest roadmap nodes brings that
+    /// node's component along as its tree, so the other end's tree need only reach the roadmap;
+    /// `ends`: both trees grow from the bare start and goal, as a single problem's do.
+    #[arg(long, value_enum, default_value_t = TreesFrom::Roadmap)]
+    pub trees_from: TreesFrom,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
     #[arg(long)]
     pub out: PathBuf,
+}
+
+/// Where a workcell's trees grow from (`bench mbm --trees-from`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum TreesFrom {
+    /// The roadmap components the ends attach to.
+    Roadmap,
+    /// The bare ends.
+    Ends,
 }
 
 /// Runs `bench mbm`.
@@ -319,6 +334,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             trees: (a.planner == mbm::Planner::Tree).then(|| options.tree.clone()),
             race,
             keep_answers: a.keep_answers,
+            trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
         };
         let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
         families.dedup();

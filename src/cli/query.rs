@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
 use viaroad::deadline::Deadline;
+use viaroad::roadmap::tree::{Prefix, Slide, TreeParams};
 use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::{ompl_cfg, Scene};
 use viaroad::space::Config;
@@ -62,14 +63,22 @@ pub struct QueryArgs {
     #[arg(long, value_name = "N")]
     pub landmarks: Option<usize>,
     /// Seconds each query may take (checked before every oracle call). Where the roadmap
-    /// cannot join start and goal, the query grows a copy of it around them for the rest of
-    /// this time.
+    /// cannot join start and goal, the query grows a copy of it around them (or trees out of
+    /// it, `--trees`) for the rest of this time.
     #[arg(long, value_name = "SECONDS", default_value_t = QueryOptions::DEFAULT_TIME.as_secs_f64())]
     pub time: f64,
     /// Do not grow the roadmap for a query it cannot answer: try a deeper local search
     /// instead (and give up sooner).
     #[arg(long)]
     pub no_grow: bool,
+    /// Where the roadmap cannot join start and goal, grow two trees out of it for the rest of
+    /// the time instead of a copy of it: each end that a free direct path attaches to one of
+    /// its nearest nodes brings that node's component along as its tree, and the other end's
+    /// tree need only reach the roadmap (sliding single-joint stairs, first-hit calls, as
+    /// `bench mbm --planner tree`). `auto` (default): on for arms, whose goals in a box or a
+    /// cage a grown copy does not reach; `on`; `off`.
+    #[arg(long, value_name = "MODE", value_enum, default_value_t = Trees::Auto)]
+    pub trees: Trees,
     /// Feed every path found back into the roadmap before the next query (its corners become
     /// nodes, its single-group pieces edges: `Roadmap::with_path`), answering the queries one
     /// after another in their order, and save the grown roadmap to FILE (it may be the roadmap
@@ -231,6 +240,40 @@ fn answer_line(i: usize, a: &BatchAnswer, t: f64, json_lines: bool) -> String {
     }
 }
 
+/// Whether a query grows trees out of the roadmap (`query --trees`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Trees {
+    /// On for arms (joint spaces), off for every other space.
+    Auto,
+    /// Always.
+    On,
+    /// Never: the roadmap grows a copy of itself (unless `--no-grow`).
+    Off,
+}
+
+impl Trees {
+    /// The trees a query grows out of the roadmap in `space` (`QueryOptions::trees`), if
+    /// any: sliding single-joint stairs with first-hit calls for arms (as `bench mbm
+    /// --planner tree`), the trees' defaults elsewhere.
+    pub fn params(self, space: &viaroad::space::Space) -> Option<TreeParams> {
+        let joints = matches!(space.kind(), viaroad::space::SpaceKind::Joints { .. });
+        let on = match self {
+            Trees::Auto => joints,
+            Trees::On => true,
+            Trees::Off => false,
+        };
+        on.then(|| TreeParams {
+            prefix: if joints {
+                Prefix::FirstHit
+            } else {
+                Prefix::Intervals
+            },
+            slide: Slide::Auto.for_space(space),
+            ..TreeParams::default()
+        })
+    }
+}
+
 /// Runs `query`.
 pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     let t = Instant::now();
@@ -267,6 +310,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     let mut defaults = planner.options().clone();
     defaults.time = time;
     defaults.grow = !a.no_grow;
+    defaults.trees = a.trees.params(&scene.space);
     if let Some(n) = a.direct_calls {
         defaults.direct_calls = n;
     }

@@ -45,12 +45,17 @@ pub struct ServeArgs {
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
     /// Seconds each query may take at most (a request's `time` can only shorten it); where the
-    /// roadmap cannot join start and goal, the query grows a copy of it for the rest of it.
+    /// roadmap cannot join start and goal, the query grows a copy of it (or trees out of it,
+    /// `--trees`) for the rest of it.
     #[arg(long, value_name = "SECONDS", default_value_t = QueryOptions::DEFAULT_TIME.as_secs_f64())]
     pub time: f64,
     /// Do not grow the roadmap for a query it cannot answer (a deeper local search instead).
     #[arg(long)]
     pub no_grow: bool,
+    /// Where the roadmap cannot join start and goal, grow two trees out of it instead of a
+    /// copy of it (as `query --trees`): `auto` (default: on for arms), `on`, `off`.
+    #[arg(long, value_name = "MODE", value_enum, default_value_t = super::query::Trees::Auto)]
+    pub trees: super::query::Trees,
 }
 
 /// The longest request line read (bytes): a start and a goal of any shipped robot fit many
@@ -399,6 +404,7 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         let mut options = planner.options().clone();
         options.time = Some(time);
         options.grow = !a.no_grow;
+        options.trees = a.trees.params(&scene.space);
         match s {
             Shortening::Fast => {}
             Shortening::Exact => options.exact_shortening_limit = usize::MAX,

@@ -13,6 +13,7 @@
 //! | [`query`] | attach, A*, shorten; batches in parallel |
 //! | [`landmarks`] | landmark lower bounds that guide A* around obstacles |
 //! | [`tree`] | RRT-Connect for one query, with exact single-group extends |
+//! | [`rooted`] | trees grown out of a roadmap's components, for ends it cannot join |
 //! | [`info`] | the summary `viaroad info` prints |
 //!
 //! ```no_run
@@ -49,6 +50,7 @@ pub mod nn;
 pub mod params;
 pub mod persist;
 pub mod query;
+pub mod rooted;
 pub mod sampler;
 pub mod tree;
 
@@ -61,6 +63,6 @@ pub use params::{Budget, LearnParams};
 pub use persist::{Header, RoadmapError, FORMAT_VERSION, MAGIC};
 pub use query::{
     BatchAnswer, Endpoint, QueryError, QueryOptions, QueryOutcome, QueryPlanner, QueryResult,
-    ATTACH_SHARE,
+    ATTACH_SHARE, TREES_ATTACH_SHARE,
 };
 pub use sampler::Sampler;

@@ -27,6 +27,8 @@ use super::learn::{LearnError, Learner};
 use super::params::Budget;
 use super::persist::check_local_spec;
 use super::persist::RoadmapError;
+use super::rooted::RoadmapTrees;
+use super::tree::{TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::{
     direct_connection, direct_pieces, drop_corners_known, path_length, shorten_known, Connection,
@@ -43,6 +45,21 @@ use std::time::{Duration, Instant};
 /// A query that may grow the roadmap spends at most 1/`ATTACH_SHARE` of its time attaching
 /// start and goal with the roadmap's local method; the rest is the growing's.
 pub const ATTACH_SHARE: u32 = 2;
+
+/// A tree answer still longer than this many times [`QueryOptions::exact_shortening_limit`]
+/// corners after its greedy passes is not shortened further.
+pub const TREE_SHORTENING_FACTOR: usize = 4;
+
+/// A query that may grow trees out of the roadmap ([`QueryOptions::trees`]) spends at most
+/// 1/`TREES_ATTACH_SHARE` of its time attaching with the roadmap's local method: the trees
+/// attach what a direct path reaches themselves, and where the local method's search fails
+/// (a goal inside MotionBenchMaker's box or cage) the trees answer in a fraction of the time
+/// it spends failing. The MotionBenchMaker workcell with 5 s queries, in turn, two runs each
+/// (README § Robot arms): a tenth solved 107–110 of 110 with a sum of latencies of 28–34 s,
+/// a 25th 110 in 24–25 s, a 50th 110 in 20 s (box p50 15–20 ms instead of 80–100, cage
+/// 0.4 s instead of 1.2–1.4; bookshelf_thin 12–15 ms instead of 4.5–5.6, where searches
+/// that would have attached in a few hundred milliseconds are cut short).
+pub const TREES_ATTACH_SHARE: u32 = 50;
 
 /// Knobs of the query phase.
 #[derive(Clone, Debug, PartialEq)]
@@ -102,6 +119,15 @@ pub struct QueryOptions {
     /// [`Self::time`]. Off: the deeper local search of
     /// [`Self::escalation_candidates`] instead.
     pub grow: bool,
+    /// Where the roadmap cannot join start and goal, grow two trees *out of it* for the rest
+    /// of the query's time instead of a copy of it ([`super::rooted::RoadmapTrees`]: each end
+    /// the direct path attaches to a nearby node brings that node's component as its tree, so
+    /// the other end's tree need only reach the roadmap), answering
+    /// [`QueryOutcome::Trees`]. Needs [`Self::time`] or the trees' own node budget. A grown
+    /// copy does not build the fine single-joint staircases into a box or a cage; trees do
+    /// (README, § Robot arms: MotionBenchMaker's cage 9 of 9 workcell requests). `None`
+    /// (the default): [`Self::grow`] decides.
+    pub trees: Option<TreeParams>,
     /// The intersect calls one query may spend on its local-method attempts (the quick try,
     /// attaching, the direct and the deeper search); `None`: no limit. Each attempt runs the
     /// method limited to what is left ([`crate::local::LocalSpec::budgeted`]; the via-point
@@ -133,6 +159,7 @@ impl Default for QueryOptions {
             escalation_candidates: 3,
             time: None,
             grow: true,
+            trees: None,
             max_calls: None,
         }
     }
@@ -208,6 +235,9 @@ pub enum QueryOutcome {
     /// Through a roadmap grown around start and goal within the query's time
     /// ([`QueryOptions::grow`]); [`QueryResult::grown_nodes`] says by how much.
     Grown,
+    /// Through trees grown out of the roadmap within the query's time
+    /// ([`QueryOptions::trees`]); [`QueryResult::grown_nodes`] says how many nodes they grew.
+    Trees,
     /// The query's time ran out before an answer ([`QueryOptions::time`]).
     TimedOut,
     /// The query's call budget ran out before an answer ([`QueryOptions::max_calls`]).
@@ -244,7 +274,8 @@ pub struct QueryResult {
     pub goal_node: Option<u32>,
     /// Roadmap nodes on the A* path.
     pub roadmap_nodes: usize,
-    /// Nodes the query added to a copy of the roadmap while growing it (0: it did not grow).
+    /// Nodes the query added to a copy of the roadmap while growing it, or grew as trees (0:
+    /// it did neither).
     pub grown_nodes: usize,
 }
 
@@ -285,7 +316,10 @@ impl QueryResult {
     pub fn is_solved(&self) -> bool {
         matches!(
             self.outcome,
-            QueryOutcome::Direct | QueryOutcome::Roadmap | QueryOutcome::Grown
+            QueryOutcome::Direct
+                | QueryOutcome::Roadmap
+                | QueryOutcome::Grown
+                | QueryOutcome::Trees
         )
     }
 }
@@ -356,6 +390,18 @@ type Connect<'c> =
     dyn FnMut(&[f64], &[f64], &mut QueryResult) -> Result<Connection, QueryError> + 'c;
 
 /// An attachment of one end to a node.
+/// A seed of the query's own (from the roadmap's seed and the query's ends), so that a query
+/// asked twice grows the same way as far as its time allows.
+fn query_seed(roadmap_seed: u64, result: &QueryResult) -> u64 {
+    result
+        .start
+        .iter()
+        .chain(&result.goal)
+        .fold(roadmap_seed ^ 0x6772_6f77, |h, v| {
+            (h ^ v.to_bits()).wrapping_mul(0x0000_0100_0000_01b3)
+        })
+}
+
 struct Attached {
     component: u32,
     node: u32,
@@ -468,8 +514,13 @@ impl<'a> QueryPlanner<'a> {
         // searches from ends the roadmap cannot reach would otherwise spend what the growing
         // needs (alpha-1.5: 30 attaching attempts took all of a 10 s query)
         let timed = deadline.remaining().is_some();
-        let attaching = match (self.options.grow, deadline.remaining()) {
-            (true, Some(left)) => deadline.within(Some(left / ATTACH_SHARE)),
+        let share = match (&self.options.trees, self.options.grow) {
+            (Some(_), _) => Some(TREES_ATTACH_SHARE),
+            (None, true) => Some(ATTACH_SHARE),
+            (None, false) => None,
+        };
+        let attaching = match (share, deadline.remaining()) {
+            (Some(share), Some(left)) => deadline.within(Some(left / share)),
             _ => deadline.clone(),
         };
         let direct = self.options.attach_direct_candidates;
@@ -493,6 +544,12 @@ impl<'a> QueryPlanner<'a> {
         // where the roadmap cannot join them, grow it around them for the rest of the time
         // (only with a time limit: a cancel flag alone would let it grow until cancelled)
         let spent = self.calls_left(&result) == Some(0);
+        if let (None, Some(tree)) = (meeting, &self.options.trees) {
+            let bounded = timed || tree.max_nodes.is_some();
+            if bounded && !deadline.expired() && !spent {
+                return self.trees(result, tree, &deadline);
+            }
+        }
         if meeting.is_none() && self.options.grow && timed && !deadline.expired() && !spent {
             return self.grow(result, &deadline);
         }
@@ -593,15 +650,7 @@ impl<'a> QueryPlanner<'a> {
             header.fingerprint,
         )
         .with_attempt_cap(deadline.remaining().map(Learner::attempt_cap_for));
-        // a seed of the query's own, so that a query asked twice grows the same way as far as
-        // its time allows
-        let seed = result
-            .start
-            .iter()
-            .chain(&result.goal)
-            .fold(header.seed ^ 0x6772_6f77, |h, v| {
-                (h ^ v.to_bits()).wrapping_mul(0x0000_0100_0000_01b3)
-            });
+        let seed = query_seed(header.seed, &result);
         let grown = learner
             .connect_pair(
                 &header.params,
@@ -645,6 +694,61 @@ impl<'a> QueryPlanner<'a> {
         let mut raw = vec![result.start.clone()];
         raw.extend(inner.node_path(&nodes));
         self.finish(result, raw, deadline)
+    }
+
+    /// Grows two trees out of the roadmap from the query's ends until they meet or
+    /// `deadline` passes ([`QueryOptions::trees`]), and answers along them.
+    fn trees(
+        &self,
+        mut result: QueryResult,
+        params: &TreeParams,
+        deadline: &Deadline,
+    ) -> Result<QueryResult, QueryError> {
+        let seed = query_seed(self.roadmap.header().seed, &result);
+        let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups).connect(
+            &result.start,
+            &result.goal,
+            params,
+            seed,
+            deadline,
+        )?;
+        result.counts += found.counts;
+        result.grown_nodes = found.nodes[0] + found.nodes[1];
+        let Some(raw) = found.path else {
+            result.outcome = match found.stop {
+                TreeStop::NodeBudget => QueryOutcome::Disconnected,
+                _ => QueryOutcome::TimedOut,
+            };
+            return Ok(result);
+        };
+        result.outcome = QueryOutcome::Trees;
+        // a tree path has hundreds of corners: greedy passes first (at most a check per
+        // corner and pass), so that `finish`'s visibility graph runs over tens, not hundreds
+        let mut known = KnownPieces::new();
+        known.certify_path(self.space(), &self.groups, &raw);
+        let mut fewer = raw.clone();
+        loop {
+            let next = drop_corners_known(
+                self.space(),
+                self.oracle,
+                &self.groups,
+                &fewer,
+                &mut known,
+                &mut result.counts,
+                deadline,
+            )?;
+            let better = next.len() < fewer.len();
+            fewer = next;
+            if !better || deadline.expired() {
+                break;
+            }
+        }
+        // the visibility graph costs up to m²/2 checks: not over what is still hundreds
+        let exact = fewer.len() <= TREE_SHORTENING_FACTOR * self.options.exact_shortening_limit;
+        let mut answer = self.finish_with(result, fewer, deadline, exact)?;
+        answer.raw_length = path_length(self.space(), &self.groups, &raw);
+        answer.raw_path = raw;
+        Ok(answer)
     }
 
     /// The quick try from start to goal before the roadmap: for a via-point roadmap the direct
@@ -888,13 +992,24 @@ impl<'a> QueryPlanner<'a> {
     /// had shortened, or the raw path, is a valid answer.
     fn finish(
         &self,
+        result: QueryResult,
+        raw: Vec<Config>,
+        deadline: &Deadline,
+    ) -> Result<QueryResult, QueryError> {
+        self.finish_with(result, raw, deadline, true)
+    }
+
+    /// [`Self::finish`], shortening only if `shorten` too.
+    fn finish_with(
+        &self,
         mut result: QueryResult,
         mut raw: Vec<Config>,
         deadline: &Deadline,
+        shorten: bool,
     ) -> Result<QueryResult, QueryError> {
         let space = self.roadmap.space();
         raw.dedup();
-        let path = if self.options.shorten && !deadline.expired() {
+        let path = if self.options.shorten && shorten && !deadline.expired() {
             // the pieces of the raw path are free (roadmap edges and attachments), and the
             // greedy pass's answers are shared with the visibility graph
             let mut known = KnownPieces::new();

@@ -45,6 +45,10 @@ pub const CENTRE_REACH: f64 = 0.05;
 /// sweeps much of the scene in a full turn, and only narrow arcs are centred anyway.
 pub const CENTRE_TURN: f64 = 0.05;
 
+/// Corners ahead that a greedy shortcut pass of a tree path tries from each corner
+/// ([`shortcut_passes`]; as `solve --tree`).
+pub const SHORTCUT_WINDOW: usize = 32;
+
 /// Most streams of [`TreeParams::streams`].
 pub const MAX_STREAMS: usize = 64;
 
@@ -111,7 +115,7 @@ impl std::str::FromStr for Slide {
 }
 
 /// Parameters of [`rrt_connect`].
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct TreeParams {
     /// Longest extend, as a share of the space's extent (OMPL's `RRTConnect` default: 0.2 of
     /// its maximum extent).
@@ -240,40 +244,59 @@ pub struct TreeOutcome {
     pub attempts: u32,
 }
 
-struct Tree {
+/// Where one tree of [`rrt_connect_rooted`] begins: its end alone ([`Rooted::at`]), or its end
+/// with certified free corners around it already (a roadmap's component,
+/// [`super::rooted::RoadmapTrees`]), each joined to its parent by free single-group motions in
+/// the groups' order. The end is node 0.
+#[derive(Clone, Debug)]
+pub struct Rooted {
     nodes: Vec<Config>,
     parent: Vec<u32>,
-    nn: NearestNeighbours,
 }
 
-impl Tree {
-    fn new(space: &Space, root: &[f64]) -> Tree {
-        let mut t = Tree {
-            nodes: Vec::new(),
-            parent: Vec::new(),
-            nn: NearestNeighbours::new(space),
-        };
-        t.add(root.to_vec(), u32::MAX);
-        t
+impl Rooted {
+    /// A tree of the end `end` alone.
+    pub fn at(end: &[f64]) -> Rooted {
+        Rooted {
+            nodes: vec![end.to_vec()],
+            parent: vec![u32::MAX],
+        }
     }
 
-    fn add(&mut self, q: Config, parent: u32) -> u32 {
-        let id = self.nodes.len() as u32;
-        self.nn.insert(id, &q);
+    /// The end (node 0).
+    pub fn end(&self) -> &[f64] {
+        &self.nodes[0]
+    }
+
+    /// Nodes, the end included.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the tree is its end alone.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.len() <= 1
+    }
+
+    /// Configuration of node `i`.
+    ///
+    /// # Panics
+    /// If `i` is not a node index.
+    pub fn node(&self, i: u32) -> &[f64] {
+        &self.nodes[i as usize]
+    }
+
+    /// Adds `q`, joined to node `parent` by free single-group motions (the caller's
+    /// certificate), and returns its index.
+    pub(crate) fn add(&mut self, q: Config, parent: u32) -> u32 {
+        debug_assert!((parent as usize) < self.nodes.len());
         self.nodes.push(q);
         self.parent.push(parent);
-        id
+        self.nodes.len() as u32 - 1
     }
 
-    fn nearest(&self, q: &[f64]) -> u32 {
-        self.nn
-            .nearest(q, 1, None, |id| &self.nodes[id as usize])
-            .first()
-            .map_or(0, |&(id, _)| id)
-    }
-
-    /// Root first, `id` last.
-    fn branch(&self, id: u32) -> Vec<Config> {
+    /// The corners from the end to node `id`: the end first, `id` last.
+    pub fn branch(&self, id: u32) -> Vec<Config> {
         let mut out = Vec::new();
         let mut i = id;
         while i != u32::MAX {
@@ -282,6 +305,50 @@ impl Tree {
         }
         out.reverse();
         out
+    }
+}
+
+/// A growing tree: its nodes (a [`Rooted`]) with a nearest-neighbour index.
+struct Tree {
+    base: Rooted,
+    nn: NearestNeighbours,
+    /// Nodes given by the [`Rooted`] beyond its end: not grown, so not counted as grown.
+    given: usize,
+}
+
+impl Tree {
+    fn new(space: &Space, root: &Rooted) -> Tree {
+        let mut nn = NearestNeighbours::new(space);
+        for (id, q) in root.nodes.iter().enumerate() {
+            nn.insert(id as u32, q);
+        }
+        Tree {
+            base: root.clone(),
+            nn,
+            given: root.len() - 1,
+        }
+    }
+
+    /// Nodes grown (the end counts as one, given nodes do not).
+    fn grown(&self) -> usize {
+        self.base.len() - self.given
+    }
+
+    fn node(&self, id: u32) -> &Config {
+        &self.base.nodes[id as usize]
+    }
+
+    fn add(&mut self, q: Config, parent: u32) -> u32 {
+        let id = self.base.len() as u32;
+        self.nn.insert(id, &q);
+        self.base.add(q, parent)
+    }
+
+    fn nearest(&self, q: &[f64]) -> u32 {
+        self.nn
+            .nearest(q, 1, None, |id| self.node(id))
+            .first()
+            .map_or(0, |&(id, _)| id)
     }
 }
 
@@ -358,7 +425,7 @@ impl Grower<'_> {
         self.extends += 1;
         self.centred = 0;
         let near = tree.nearest(target);
-        let from = tree.nodes[near as usize].clone();
+        let from = tree.node(near).clone();
         let d = self.space.distance(&from, target);
         if d == 0.0 {
             return Ok(Extend::Reached(near));
@@ -549,8 +616,26 @@ pub fn rrt_connect(
     seed: u64,
     deadline: &Deadline,
 ) -> Result<TreeOutcome, OracleError> {
+    let roots = [&Rooted::at(start), &Rooted::at(goal)];
+    rrt_connect_rooted(space, oracle, groups, roots, params, seed, deadline)
+}
+
+/// [`rrt_connect`] from two [`Rooted`] trees: the start tree and the goal tree begin with their
+/// given nodes (a restart begins with them again), and only grown nodes count towards
+/// `params.max_nodes` and [`TreeOutcome::nodes`]. Where only one tree was given nodes, the
+/// other does all the extending towards samples and the given one only connects. The path
+/// runs from the start tree's end to the goal tree's.
+pub fn rrt_connect_rooted(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    roots: [&Rooted; 2],
+    params: &TreeParams,
+    seed: u64,
+    deadline: &Deadline,
+) -> Result<TreeOutcome, OracleError> {
     if params.streams <= 1 {
-        return one_stream(space, oracle, groups, start, goal, params, seed, deadline);
+        return one_stream(space, oracle, groups, roots, params, seed, deadline);
     }
     use rayon::prelude::*;
     use std::sync::atomic::{AtomicBool, Ordering};
@@ -570,8 +655,7 @@ pub fn rrt_connect(
                 space,
                 oracle,
                 groups,
-                start,
-                goal,
+                roots,
                 params,
                 stream_seed(seed, k),
                 &d,
@@ -612,14 +696,12 @@ fn stream_seed(seed: u64, k: usize) -> u64 {
     z ^ (z >> 31)
 }
 
-/// [`rrt_connect`] for one stream: with `params.restart`, its attempts one after another.
-#[allow(clippy::too_many_arguments)]
+/// [`rrt_connect_rooted`] for one stream: with `params.restart`, its attempts one after another.
 fn one_stream(
     space: &Space,
     oracle: &dyn CollisionOracle,
     groups: &[Group],
-    start: &[f64],
-    goal: &[f64],
+    roots: [&Rooted; 2],
     params: &TreeParams,
     seed: u64,
     deadline: &Deadline,
@@ -629,8 +711,7 @@ fn one_stream(
             space,
             oracle,
             groups,
-            start,
-            goal,
+            roots,
             params,
             seed,
             params.max_nodes,
@@ -651,8 +732,7 @@ fn one_stream(
             space,
             oracle,
             groups,
-            start,
-            goal,
+            roots,
             params,
             seed_k,
             Some(cap),
@@ -672,21 +752,28 @@ fn one_stream(
     }
 }
 
-/// One attempt of [`rrt_connect`]: `max_nodes` instead of the parameters' budget.
+/// One attempt of [`rrt_connect_rooted`]: `max_nodes` instead of the parameters' budget.
 #[allow(clippy::too_many_arguments)]
 fn grow_once(
     space: &Space,
     oracle: &dyn CollisionOracle,
     groups: &[Group],
-    start: &[f64],
-    goal: &[f64],
+    roots: [&Rooted; 2],
     params: &TreeParams,
     seed: u64,
     max_nodes: Option<usize>,
     deadline: &Deadline,
 ) -> Result<TreeOutcome, OracleError> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut trees = [Tree::new(space, start), Tree::new(space, goal)];
+    let mut trees = [Tree::new(space, roots[0]), Tree::new(space, roots[1])];
+    // a tree given a roadmap's component covers the space already, and extending it towards
+    // samples sweeps long free turns there: where one tree was given nodes and the other was
+    // not, the bare one does all the extending and the given one only connects
+    let only = match (roots[0].is_empty(), roots[1].is_empty()) {
+        (false, true) => Some(1),
+        (true, false) => Some(0),
+        _ => None,
+    };
     let mut g = Grower {
         space,
         oracle,
@@ -699,20 +786,20 @@ fn grow_once(
     };
     let finish = |trees: &[Tree; 2], g: &Grower, path, stop| TreeOutcome {
         path,
-        nodes: [trees[0].nodes.len(), trees[1].nodes.len()],
+        nodes: [trees[0].grown(), trees[1].grown()],
         extends: g.extends,
         counts: g.counts,
         stop,
         attempts: 1,
     };
     // the ends themselves first: often the straight staircase is free
-    let mut a = 0;
-    let mut target = Some(goal.to_vec());
+    let mut a = only.unwrap_or(0);
+    let mut target = Some(roots[1 - a].end().to_vec());
     loop {
         if deadline.expired() {
             return Ok(finish(&trees, &g, None, TreeStop::TimedOut));
         }
-        if max_nodes.is_some_and(|m| trees[0].nodes.len() + trees[1].nodes.len() >= m) {
+        if max_nodes.is_some_and(|m| trees[0].grown() + trees[1].grown() >= m) {
             return Ok(finish(&trees, &g, None, TreeStop::NodeBudget));
         }
         let q_rand = target
@@ -729,27 +816,27 @@ fn grow_once(
             Extend::Advanced(n) | Extend::Reached(n) => Some(n),
         };
         if let Some(n) = new {
-            let q_new = ta.nodes[n as usize].clone();
+            let q_new = ta.node(n).clone();
             // with centring an extend may move without getting closer: the connect stops then
             let mut closest = f64::INFINITY;
             let min_gain = MIN_PROGRESS * params.stair * space.extent();
             loop {
-                let full = max_nodes.is_some_and(|m| ta.nodes.len() + tb.nodes.len() >= m);
+                let full = max_nodes.is_some_and(|m| ta.grown() + tb.grown() >= m);
                 if deadline.expired() || full {
                     break;
                 }
                 match g.extend(tb, &q_new)? {
                     Extend::Reached(m) => {
                         let (s, t) = if a == 0 { (n, m) } else { (m, n) };
-                        let mut path = trees[0].branch(s);
-                        let back = trees[1].branch(t);
+                        let mut path = trees[0].base.branch(s);
+                        let back = trees[1].base.branch(t);
                         // the meeting node is in both branches (as the same pose)
                         path.extend(back.into_iter().rev().skip(1));
                         return Ok(finish(&trees, &g, Some(path), TreeStop::Connected));
                     }
                     Extend::Advanced(m) => {
                         if params.centre > 0 {
-                            let d = space.distance(&tb.nodes[m as usize], &q_new);
+                            let d = space.distance(tb.node(m), &q_new);
                             if d > closest - min_gain {
                                 break;
                             }
@@ -760,8 +847,10 @@ fn grow_once(
                 }
             }
         }
-        a = if params.balance {
-            usize::from(trees[1].nodes.len() < trees[0].nodes.len())
+        a = if let Some(only) = only {
+            only
+        } else if params.balance {
+            usize::from(trees[1].grown() < trees[0].grown())
         } else {
             1 - a
         };
@@ -812,4 +901,31 @@ pub fn shortcut(
         }
     }
     Ok(out)
+}
+
+/// [`shortcut`] passes of `window` corners until one drops no corner or `deadline` passes.
+/// On an oracle error the path shortened so far (certified free corner to corner, as the
+/// input) comes back with the error.
+pub fn shortcut_passes(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    window: usize,
+    counts: &mut CallCounts,
+    deadline: &Deadline,
+) -> (Vec<Config>, Option<OracleError>) {
+    let mut short = path.to_vec();
+    loop {
+        match shortcut(space, oracle, groups, &short, window, counts, deadline) {
+            Ok(p) => {
+                let better = p.len() < short.len();
+                short = p;
+                if !better || deadline.expired() {
+                    return (short, None);
+                }
+            }
+            Err(e) => return (short, Some(e)),
+        }
+    }
 }
