@@ -152,6 +152,12 @@ fn queries_the_roadmap_cannot_join_answer_along_trees() {
         trees: Some(params(4000)),
         ..QueryOptions::default()
     };
+    let unshortened = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            shorten: false,
+            ..options.clone()
+        });
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
         .unwrap()
         .with_options(options);
@@ -171,6 +177,14 @@ fn queries_the_roadmap_cannot_join_answer_along_trees() {
         if r.outcome == QueryOutcome::Trees {
             by_trees += 1;
             assert!(r.grown_nodes >= 2, "pair {i}: {r:?}");
+            // without shortening the answer is the trees' path itself, and the same one
+            let plain = unshortened.query(&s, &g).unwrap();
+            assert_eq!(plain.outcome, QueryOutcome::Trees, "pair {i}");
+            assert_eq!(plain.path, plain.raw_path, "pair {i}");
+            assert_eq!(
+                plain.raw_path, r.raw_path,
+                "pair {i}: same seed, same trees"
+            );
         }
     }
     assert!(

@@ -125,7 +125,8 @@ pub struct QueryOptions {
     /// the other end's tree need only reach the roadmap), answering
     /// [`QueryOutcome::Trees`]. Needs [`Self::time`] or the trees' own node budget. A grown
     /// copy does not build the fine single-joint staircases into a box or a cage; trees do
-    /// (README, § Robot arms: MotionBenchMaker's cage 9 of 9 workcell requests). `None`
+    /// (README, § Robot arms: MotionBenchMaker's cage 9 of 9 workcell requests). Trees that
+    /// spend their node budget without meeting answer [`QueryOutcome::Disconnected`]. `None`
     /// (the default): [`Self::grow`] decides.
     pub trees: Option<TreeParams>,
     /// The intersect calls one query may spend on its local-method attempts (the quick try,
@@ -389,7 +390,6 @@ type Near = Vec<(u32, f64)>;
 type Connect<'c> =
     dyn FnMut(&[f64], &[f64], &mut QueryResult) -> Result<Connection, QueryError> + 'c;
 
-/// An attachment of one end to a node.
 /// A seed of the query's own (from the roadmap's seed and the query's ends), so that a query
 /// asked twice grows the same way as far as its time allows.
 fn query_seed(roadmap_seed: u64, result: &QueryResult) -> u64 {
@@ -402,6 +402,7 @@ fn query_seed(roadmap_seed: u64, result: &QueryResult) -> u64 {
         })
 }
 
+/// An attachment of one end to a node.
 struct Attached {
     component: u32,
     node: u32,
@@ -714,7 +715,7 @@ impl<'a> QueryPlanner<'a> {
         )?;
         result.counts += found.counts;
         result.grown_nodes = found.nodes[0] + found.nodes[1];
-        let Some(raw) = found.path else {
+        let Some(mut raw) = found.path else {
             result.outcome = match found.stop {
                 TreeStop::NodeBudget => QueryOutcome::Disconnected,
                 _ => QueryOutcome::TimedOut,
@@ -722,25 +723,28 @@ impl<'a> QueryPlanner<'a> {
             return Ok(result);
         };
         result.outcome = QueryOutcome::Trees;
+        raw.dedup();
         // a tree path has hundreds of corners: greedy passes first (at most a check per
         // corner and pass), so that `finish`'s visibility graph runs over tens, not hundreds
         let mut known = KnownPieces::new();
         known.certify_path(self.space(), &self.groups, &raw);
         let mut fewer = raw.clone();
-        loop {
-            let next = drop_corners_known(
-                self.space(),
-                self.oracle,
-                &self.groups,
-                &fewer,
-                &mut known,
-                &mut result.counts,
-                deadline,
-            )?;
-            let better = next.len() < fewer.len();
-            fewer = next;
-            if !better || deadline.expired() {
-                break;
+        if self.options.shorten {
+            loop {
+                let next = drop_corners_known(
+                    self.space(),
+                    self.oracle,
+                    &self.groups,
+                    &fewer,
+                    &mut known,
+                    &mut result.counts,
+                    deadline,
+                )?;
+                let better = next.len() < fewer.len();
+                fewer = next;
+                if !better || deadline.expired() {
+                    break;
+                }
             }
         }
         // the visibility graph costs up to m²/2 checks: not over what is still hundreds
