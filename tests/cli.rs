@@ -425,7 +425,7 @@ fn path_out_writes_ompl_state_files_the_independent_check_certifies() {
 
 /// `query --trees on`: where a sparse roadmap cannot join a query's ends, trees grow out of it;
 /// every answer (by the roadmap or the trees) is re-checked by the independent segment–disc
-/// test, and a mode that is not one is a usage error.
+/// test, and `--check` says each is certified; a mode that is not one is a usage error.
 #[test]
 fn query_grows_trees_out_of_the_roadmap() {
     let d = temp_dir("trees");
@@ -444,6 +444,7 @@ fn query_grows_trees_out_of_the_roadmap() {
         "--no-grow",
         "--time",
         "30",
+        "--check",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let answers: Vec<serde_json::Value> = stdout(&o)
@@ -453,6 +454,8 @@ fn query_grows_trees_out_of_the_roadmap() {
     assert_eq!(answers.len(), 5);
     for v in &answers {
         assert!(v["solved"].as_bool().unwrap(), "{v}");
+        // `--check`: the command's own independent check agrees with the test's
+        assert_eq!(v["certified"], true, "{v}");
         for key in ["path", "shortened"] {
             common::check_disc_path(
                 &json_path(&v[key]),

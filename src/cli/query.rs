@@ -8,6 +8,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::Instant;
+use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
 use viaroad::roadmap::tree::{Prefix, Slide, TreeParams};
 use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
@@ -87,6 +88,14 @@ pub struct QueryArgs {
     /// Ctrl-C stops the batch and saves what was kept so far.
     #[arg(long, value_name = "FILE")]
     pub keep_answers: Option<PathBuf>,
+    /// Re-check every answer's path (the shortened one it returns) with the scene's
+    /// independent checker, outside the query's
+    /// time (the one `bench validity` uses: segment–disc distances, exact polygon sweeps,
+    /// parry by conservative advancement, the arm checker at 1/10 of OMPL's resolution): each
+    /// answer says `certified` (JSON: `"certified": true|false`, and `"check_error"`), and
+    /// the command fails if any path is not.
+    #[arg(long)]
+    pub check: bool,
 }
 
 /// How `query` shortens paths.
@@ -113,6 +122,8 @@ pub fn percentile(sorted: &[f64], p: f64) -> f64 {
 struct Printer {
     json: bool,
     total: usize,
+    /// The independent checker every solved path is re-checked by (`--check`).
+    checker: Option<Checker>,
     state: Mutex<Printed>,
 }
 
@@ -124,10 +135,17 @@ struct Printed {
     path_out: Option<super::path_out::PathOut>,
     /// The first failure to print or write, reported when the batch ends.
     failure: Option<anyhow::Error>,
+    /// Solved paths the checker did not certify.
+    uncertified: usize,
 }
 
 impl Printer {
     fn answer(&self, i: usize, a: &BatchAnswer) {
+        // checked before the lock: checks of a batch's answers run in parallel
+        let check = match (&self.checker, &a.result) {
+            (Some(c), Ok(r)) if r.is_solved() => Some(c.check_path(&r.path)),
+            _ => None,
+        };
         let mut st = self.state.lock().unwrap_or_else(|p| p.into_inner());
         if st.failure.is_some() {
             return;
@@ -142,7 +160,8 @@ impl Printer {
         if let Ok(r) = &a.result {
             st.solved += usize::from(r.is_solved());
         }
-        let line = answer_line(i, a, t, self.json);
+        st.uncertified += usize::from(matches!(check, Some(Err(_))));
+        let line = answer_line(i, a, t, self.json, check.as_ref());
         let mut out = std::io::stdout().lock();
         // a closed pipe ends the batch quietly, like any Unix tool
         if writeln!(out, "{line}").and_then(|_| out.flush()).is_err() {
@@ -190,24 +209,38 @@ fn answer_keeping(
 }
 
 /// One answer as printed: a JSON object or a line of text; `t` its time in ms.
-fn answer_line(i: usize, a: &BatchAnswer, t: f64, json_lines: bool) -> String {
+fn answer_line(
+    i: usize,
+    a: &BatchAnswer,
+    t: f64,
+    json_lines: bool,
+    check: Option<&Result<(), String>>,
+) -> String {
     match &a.result {
-        Ok(r) if json_lines => json!({
-            "query": i + 1,
-            "solved": r.is_solved(),
-            "path": r.raw_path,
-            "shortened": r.path,
-            "calls": r.counts.intersect_calls(),
-            "depth": r.depth,
-            "query_ms": t,
-            "outcome": r.outcome,
-            "length": r.length,
-            "raw_length": r.raw_length,
-            "grown_nodes": r.grown_nodes,
-        })
-        .to_string(),
+        Ok(r) if json_lines => {
+            let mut v = json!({
+                "query": i + 1,
+                "solved": r.is_solved(),
+                "path": r.raw_path,
+                "shortened": r.path,
+                "calls": r.counts.intersect_calls(),
+                "depth": r.depth,
+                "query_ms": t,
+                "outcome": r.outcome,
+                "length": r.length,
+                "raw_length": r.raw_length,
+                "grown_nodes": r.grown_nodes,
+            });
+            if let Some(c) = check {
+                v["certified"] = json!(c.is_ok());
+                if let Err(e) = c {
+                    v["check_error"] = json!(e);
+                }
+            }
+            v.to_string()
+        }
         Ok(r) if r.is_solved() => format!(
-            "query {}: solved ({:?}{}), length {:.4} (raw {:.4}), {} corners, {} intersect calls, {:.3} ms",
+            "query {}: solved ({:?}{}), length {:.4} (raw {:.4}), {} corners, {} intersect calls, {:.3} ms{}",
             i + 1,
             r.outcome,
             if r.grown_nodes > 0 {
@@ -219,7 +252,12 @@ fn answer_line(i: usize, a: &BatchAnswer, t: f64, json_lines: bool) -> String {
             r.raw_length,
             r.path.len(),
             r.counts.intersect_calls(),
-            t
+            t,
+            match check {
+                None => String::new(),
+                Some(Ok(())) => ", certified".into(),
+                Some(Err(e)) => format!(", NOT CERTIFIED: {e}"),
+            }
         ),
         Ok(r) => format!(
             "query {}: not solved ({:?}{}), {:.3} ms",
@@ -353,9 +391,17 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     if !a.json && queries.len() > 1 {
         loaded();
     }
+    let checker =
+        match a.check {
+            true => Some(Checker::for_scene(&scene).map_err(|e| {
+                anyhow::anyhow!("--check: no independent checker for this scene: {e}")
+            })?),
+            false => None,
+        };
     let printer = Printer {
         json: a.json,
         total: queries.len(),
+        checker,
         state: Mutex::new(Printed {
             path_out,
             ..Printed::default()
@@ -399,6 +445,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     if let Some(e) = st.failure.take() {
         return Err(e);
     }
+
     st.ms.sort_by(f64::total_cmp);
     if !a.json {
         if queries.len() == 1 {
@@ -414,6 +461,13 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     }
     if let Some(out) = st.path_out {
         out.finish();
+    }
+    if st.uncertified > 0 {
+        anyhow::bail!(
+            "{} of {} solved paths not certified by the independent checker",
+            st.uncertified,
+            st.solved
+        );
     }
     Ok(())
 }

@@ -1,7 +1,8 @@
 #!/bin/sh
 # `viaroad query` on MotionBenchMaker's box: a 200-node roadmap of scene 1, then each of the
 # family's first 30 requests alone (a fresh process each), with a grown copy (`--trees off`,
-# as before) and with trees out of the roadmap (`--trees on`, the default for arms).
+# as before) and with trees out of the roadmap (`--trees on`, the default for arms); every path
+# found re-checked by the independent arm checker (`--check`, outside the query's time).
 #   PROBLEMS=/path/to/vamp/problems V=target/release/viaroad sh query.sh
 set -e
 P=${PROBLEMS:-/tmp/vamp/mbm/problems}
@@ -30,7 +31,7 @@ $V build q01.toml --nodes 200 -o box.roadmap > build.log
 for m in off on; do
   for i in $(seq -w 1 30); do
     # requests whose ends collide in scene 1 are refused with one error line: kept as data
-    echo "$m $i $($V query --scene q$i.toml box.roadmap --time 5 --trees $m --json 2>&1 || true)"
+    echo "$m $i $($V query --scene q$i.toml box.roadmap --time 5 --trees $m --json --check 2>&1 || true)"
   done
 done > query-full.txt
 # the record keeps each answer's figures, not its path (the paths are in query-full.txt)
