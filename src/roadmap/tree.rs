@@ -269,12 +269,12 @@ impl Rooted {
     }
 
     /// Nodes, the end included.
-    pub fn len(&self) -> usize {
+    pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
 
-    /// Whether the tree is its end alone.
-    pub fn is_empty(&self) -> bool {
+    /// Whether the tree is its end alone (no nodes given).
+    pub fn is_bare(&self) -> bool {
         self.nodes.len() <= 1
     }
 
@@ -325,13 +325,13 @@ impl Tree {
         Tree {
             base: root.clone(),
             nn,
-            given: root.len() - 1,
+            given: root.node_count() - 1,
         }
     }
 
     /// Nodes grown (the end counts as one, given nodes do not).
     fn grown(&self) -> usize {
-        self.base.len() - self.given
+        self.base.node_count() - self.given
     }
 
     fn node(&self, id: u32) -> &Config {
@@ -339,7 +339,7 @@ impl Tree {
     }
 
     fn add(&mut self, q: Config, parent: u32) -> u32 {
-        let id = self.base.len() as u32;
+        let id = self.base.node_count() as u32;
         self.nn.insert(id, &q);
         self.base.add(q, parent)
     }
@@ -769,7 +769,7 @@ fn grow_once(
     // a tree given a roadmap's component covers the space already, and extending it towards
     // samples sweeps long free turns there: where one tree was given nodes and the other was
     // not, the bare one does all the extending and the given one only connects
-    let only = match (roots[0].is_empty(), roots[1].is_empty()) {
+    let only = match (roots[0].is_bare(), roots[1].is_bare()) {
         (false, true) => Some(1),
         (true, false) => Some(0),
         _ => None,
