@@ -726,10 +726,11 @@ impl<'a> QueryPlanner<'a> {
         raw.dedup();
         // a tree path has hundreds of corners: greedy passes first (at most a check per
         // corner and pass), so that `finish`'s visibility graph runs over tens, not hundreds
+        // (their answers go on to `finish`'s visibility graph)
         let mut known = KnownPieces::new();
-        known.certify_path(self.space(), &self.groups, &raw);
         let mut fewer = raw.clone();
         if self.options.shorten {
+            known.certify_path(self.space(), &self.groups, &raw);
             loop {
                 let next = drop_corners_known(
                     self.space(),
@@ -749,7 +750,7 @@ impl<'a> QueryPlanner<'a> {
         }
         // the visibility graph costs up to m²/2 checks: not over what is still hundreds
         let exact = fewer.len() <= TREE_SHORTENING_FACTOR * self.options.exact_shortening_limit;
-        let mut answer = self.finish_with(result, fewer, deadline, exact)?;
+        let mut answer = self.finish_with(result, fewer, deadline, exact, known)?;
         answer.raw_length = path_length(self.space(), &self.groups, &raw);
         answer.raw_path = raw;
         Ok(answer)
@@ -1000,23 +1001,23 @@ impl<'a> QueryPlanner<'a> {
         raw: Vec<Config>,
         deadline: &Deadline,
     ) -> Result<QueryResult, QueryError> {
-        self.finish_with(result, raw, deadline, true)
+        self.finish_with(result, raw, deadline, true, KnownPieces::new())
     }
 
-    /// [`Self::finish`], shortening only if `shorten` too.
+    /// [`Self::finish`], shortening only if `shorten` too, with the pieces `known` so far.
     fn finish_with(
         &self,
         mut result: QueryResult,
         mut raw: Vec<Config>,
         deadline: &Deadline,
         shorten: bool,
+        mut known: KnownPieces,
     ) -> Result<QueryResult, QueryError> {
         let space = self.roadmap.space();
         raw.dedup();
         let path = if self.options.shorten && shorten && !deadline.expired() {
             // the pieces of the raw path are free (roadmap edges and attachments), and the
             // greedy pass's answers are shared with the visibility graph
-            let mut known = KnownPieces::new();
             known.certify_path(space, &self.groups, &raw);
             let fewer;
             let corners = if raw.len() > self.options.exact_shortening_limit {
