@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::time::Duration;
 use viaroad::bench::mbm::{find_problems, load_robot, run_problem, MbmOptions, Planner};
-use viaroad::roadmap::tree::{Prefix, TreeParams};
+use viaroad::roadmap::tree::{Prefix, Stairs, TreeParams};
 
 #[test]
 fn raced_or_in_turn_every_answer_is_certified() {
@@ -26,7 +26,8 @@ fn raced_or_in_turn_every_answer_is_certified() {
             planner: Planner::Tree,
             tree: TreeParams {
                 prefix: Prefix::FirstHit,
-                slide: true,
+                stairs: Stairs::Whole,
+                balance: true,
                 max_nodes: Some(4000),
                 ..TreeParams::default()
             },

@@ -1,4 +1,4 @@
-//! Two trees for an arm (issue 10, `roadmap::tree` with sliding stairs): on shipped Panda
+//! Two trees for an arm (issue 10, `roadmap::tree` with whole stairs, and sliding ones): on shipped Panda
 //! problems the tree path and its shortcut are chains of single-joint motions that the
 //! independent [`ArmChecker`] (parry, exact primitives, no code shared with the exact oracle)
 //! certifies at 1/10 of OMPL's default resolution, and the same seed and node budget give the
@@ -10,7 +10,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::oracle::CallCounts;
-use viaroad::roadmap::tree::{shortcut, Prefix, Slide, TreeOutcome, TreeParams};
+use viaroad::roadmap::tree::{shortcut, Prefix, Stairs, StairsMode, TreeOutcome, TreeParams};
 use viaroad::robot::ArmChecker;
 use viaroad::scene::{Robot, Scene};
 use viaroad::space::Config;
@@ -21,13 +21,14 @@ fn arms(p: &str) -> PathBuf {
         .join(p)
 }
 
-/// The parameters `bench mbm --planner tree` uses by default: sliding stairs, first-hit
-/// prefixes, the trees extended in turn; a node budget instead of a deadline (the same answer
-/// on every machine).
+/// The parameters `bench mbm --planner tree` uses by default: whole stairs, the smaller tree
+/// extending (first-hit prefixes where a mode asks for them); a node budget instead of a
+/// deadline (the same answer on every machine).
 fn params(scene: &Scene, max_nodes: usize) -> TreeParams {
     TreeParams {
         prefix: Prefix::FirstHit,
-        slide: Slide::Auto.for_space(&scene.space),
+        stairs: StairsMode::Auto.for_space(&scene.space),
+        balance: true,
         max_nodes: Some(max_nodes),
         ..TreeParams::default()
     }
@@ -78,22 +79,39 @@ fn shortcut_of(scene: &Scene, path: &[Config]) -> Vec<Config> {
 }
 
 #[test]
-fn sliding_is_on_for_arms_only() {
+fn whole_stairs_for_arms_prefixes_for_rigid_bodies() {
     let arm = Scene::load(&arms("panda-box-1.toml")).unwrap();
-    assert!(Slide::Auto.for_space(&arm.space));
+    assert_eq!(StairsMode::Auto.for_space(&arm.space), Stairs::Whole);
     let rigid = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/ompl/3D/Easy.cfg"))
         .unwrap();
-    assert!(!Slide::Auto.for_space(&rigid.space));
-    assert!(Slide::On.for_space(&rigid.space));
-    assert!(!Slide::Off.for_space(&arm.space));
-    assert!(!TreeParams::default().slide);
+    assert_eq!(StairsMode::Auto.for_space(&rigid.space), Stairs::Prefix);
+    let slide: StairsMode = "slide".parse().unwrap();
+    assert_eq!(slide.for_space(&rigid.space), Stairs::Slide);
+    assert!("sideways".parse::<StairsMode>().is_err());
+    assert_eq!(TreeParams::default().stairs, Stairs::Prefix);
+}
+
+/// Sliding stairs (the arms' default before whole stairs) still find certified paths.
+#[test]
+fn sliding_tree_path_is_certified() {
+    let scene = Scene::load(&arms("panda-box-1.toml")).unwrap();
+    let p = TreeParams {
+        stairs: Stairs::Slide,
+        ..params(&scene, 4000)
+    };
+    let out = common::tree::grow(&scene, &p, 1);
+    certify(
+        &scene,
+        &out.path.expect("box 1 not solved within 4000 nodes"),
+    );
 }
 
 #[test]
 fn cage_tree_path_is_certified() {
     let scene = Scene::load(&arms("panda-cage-1.toml")).unwrap();
-    let out = grow(&scene, 1);
-    let path = out.path.expect("cage 1 not solved within 4000 nodes");
+    // whole stairs count every corner as a node: about 17 000 of them on the way into the cage
+    let out = common::tree::grow(&scene, &params(&scene, 20_000), 1);
+    let path = out.path.expect("cage 1 not solved within 20 000 nodes");
     certify(&scene, &path);
     let short = shortcut_of(&scene, &path);
     assert!(short.len() <= path.len());

@@ -12,7 +12,7 @@ use viaroad::bench::mbm::{
     check_step, checker, find_problems, load_robot, problem_scene, run_workcell, Problem,
     WorkcellOptions,
 };
-use viaroad::roadmap::tree::{Prefix, TreeParams};
+use viaroad::roadmap::tree::{Prefix, Stairs, TreeParams};
 use viaroad::roadmap::{Budget, Roadmap};
 use viaroad::robot::Arm;
 
@@ -37,7 +37,8 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
     let (robot, problems, dir) = family("box");
     let trees = TreeParams {
         prefix: Prefix::FirstHit,
-        slide: true,
+        stairs: Stairs::Whole,
+        balance: true,
         max_nodes: Some(3000),
         ..TreeParams::default()
     };

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
 use viaroad::oracle::CallCounts;
-use viaroad::roadmap::tree::{shortcut, Prefix, TreeOutcome, TreeParams, TreeStop};
+use viaroad::roadmap::tree::{shortcut, Prefix, Stairs, TreeOutcome, TreeParams, TreeStop};
 use viaroad::scene::Scene;
 use viaroad::space::Config;
 
@@ -650,4 +650,42 @@ fn streams_answer_the_same_on_any_thread_count() {
         alone_solved > 0 && rescued > 0,
         "{alone_solved} answered by stream 0, {rescued} by a later stream: both cases needed"
     );
+}
+
+/// Whole stairs (`Stairs::Whole`, the arms' default): paths re-checked by the independent
+/// checkers, the same seed gives the same answer, and in free space the first extend reaches
+/// the goal in one staircase.
+#[test]
+fn whole_stairs_find_checked_paths_deterministically() {
+    let whole = |nodes| TreeParams {
+        stairs: Stairs::Whole,
+        ..params(nodes)
+    };
+    for (rel, nodes) in [
+        ("scenes/discs-cluttered.toml", 6000),
+        ("scenes/se2-corridor.toml", 6000),
+    ] {
+        let s = scene(rel);
+        let mut solved = 0;
+        for seed in 1..=3 {
+            let a = grow(&s, &whole(nodes), seed);
+            let b = grow(&s, &whole(nodes), seed);
+            assert_eq!(a.path, b.path, "{rel} seed {seed}");
+            assert_eq!(a.counts, b.counts, "{rel} seed {seed}");
+            if let Some(path) = &a.path {
+                check(&s, path);
+                solved += 1;
+            }
+        }
+        assert!(solved > 0, "{rel}: no seed solved with whole stairs");
+    }
+    let mut s = scene("scenes/discs-cluttered.toml");
+    s.obstacles.clear();
+    let p = TreeParams {
+        range: 2.0,
+        ..whole(1000)
+    };
+    let out = grow(&s, &p, 1);
+    check(&s, &out.path.expect("free space not solved"));
+    assert_eq!(out.nodes[1], 1, "the goal tree grew: {:?}", out.nodes);
 }

@@ -222,16 +222,18 @@ pub struct MbmArgs {
     /// first hit (`joint_move_first_hit`) answers those without the collisions beyond it.
     #[arg(long, value_name = "MODE", default_value = "first")]
     pub tree_prefix: viaroad::roadmap::tree::Prefix,
-    /// `--planner tree`: whether a blocked joint lets the stair's other joints go on (`auto`:
-    /// on, the space is a joint space).
+    /// `--planner tree`: how an extend walks its stairs (as `solve --tree-stairs`): `whole`
+    /// (`auto`, the default for arms: each stair all of it or not at all, only the extend's end
+    /// a candidate nearest node), `slide` (each joint as far as it is free, a blocked joint
+    /// letting the others go on; the default before 2026-12-04 night) or `prefix`.
     #[arg(long, value_name = "MODE", default_value = "auto")]
-    pub tree_slide: viaroad::roadmap::tree::Slide,
-    /// `--planner tree`: extend the smaller tree each time (`true`) instead of alternating
-    /// (`false`, default). With sliding stairs one tree can run into open space, where calls
-    /// are cheap, and grow 10⁵ nodes while the other stays in its pocket: balanced, bookshelf_thin
-    /// 8 and table_under_pick 4 and 8 are solved, but bookshelf_tall 2 and cage 1 and 10 are
-    /// lost (67 / 70 either way, 2026-12-02), so alternating stays the default.
-    #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set)]
+    pub tree_stairs: viaroad::roadmap::tree::StairsMode,
+    /// `--planner tree`: extend the smaller tree each time (`true`, default) instead of
+    /// alternating (`false`). With whole stairs a trapped extend adds nothing, and the tree of
+    /// a goal in a pocket gets the effort until it is out: over the 700 Panda problems, trees
+    /// alone (`--direct-calls 0`), 698 solved balanced against 689 alternating (2026-12-04;
+    /// with sliding stairs neither won: 67 / 70 either way, 2026-12-02).
+    #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
     pub tree_balance: bool,
     /// `--planner tree`: try each extend as one stair first (a yes/no call per joint), the
     /// staircase only when that is blocked (as `solve --tree-coarse`).
@@ -315,8 +317,11 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             range: a.tree_range,
             stair: a.tree_stair,
             prefix: a.tree_prefix,
-            // every problem is a joint space: `auto` is on
-            slide: !matches!(a.tree_slide, viaroad::roadmap::tree::Slide::Off),
+            // every problem is a joint space
+            stairs: match a.tree_stairs {
+                viaroad::roadmap::tree::StairsMode::Auto => viaroad::roadmap::tree::Stairs::Whole,
+                viaroad::roadmap::tree::StairsMode::Fixed(s) => s,
+            },
             balance: a.tree_balance,
             coarse: a.tree_coarse,
             restart: a.tree_restart,

@@ -10,7 +10,7 @@ use std::sync::Mutex;
 use std::time::Instant;
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
-use viaroad::roadmap::tree::{Prefix, Slide, TreeParams};
+use viaroad::roadmap::tree::{Prefix, StairsMode, TreeParams};
 use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::{ompl_cfg, Scene};
 use viaroad::space::Config;
@@ -291,7 +291,7 @@ pub enum Trees {
 
 impl Trees {
     /// The trees a query grows out of the roadmap in `space` (`QueryOptions::trees`), if
-    /// any: sliding single-joint stairs with first-hit calls for arms (as `bench mbm
+    /// any: whole single-joint stairs, the smaller tree extending, for arms (as `bench mbm
     /// --planner tree`), the trees' defaults elsewhere.
     pub fn params(self, space: &viaroad::space::Space) -> Option<TreeParams> {
         let joints = matches!(space.kind(), viaroad::space::SpaceKind::Joints { .. });
@@ -306,7 +306,8 @@ impl Trees {
             } else {
                 Prefix::Intervals
             },
-            slide: Slide::Auto.for_space(space),
+            stairs: StairsMode::Auto.for_space(space),
+            balance: joints,
             ..TreeParams::default()
         })
     }

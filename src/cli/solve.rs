@@ -65,9 +65,10 @@ pub struct SolveArgs {
     /// `--tree`: try each extend as one stair first (yes/no), the staircase only when blocked.
     #[arg(long, requires = "tree")]
     pub tree_coarse: bool,
-    /// `--tree`: extend the smaller tree each time instead of alternating.
-    #[arg(long, requires = "tree")]
-    pub tree_balance: bool,
+    /// `--tree`: extend the smaller tree each time (`true`) instead of alternating (`false`).
+    /// Default: balanced with whole stairs (arms), alternating otherwise.
+    #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", requires = "tree")]
+    pub tree_balance: Option<bool>,
     /// `--tree`: centring rounds per blocked stair (0: off). A blocked stair moves the node to
     /// the middle of its free chords across the stair (a first-collision call each way per
     /// direction) and is tried again, up to N times: lines a robot up with a funnel (bugtrap).
@@ -87,12 +88,13 @@ pub struct SolveArgs {
     /// order, the same on any thread count). Default 1.
     #[arg(long, value_name = "N", default_value_t = 1, requires = "tree")]
     pub tree_streams: usize,
-    /// `--tree`: whether a blocked stair of one DOF group lets the stair's other groups go on
-    /// (`on`), or ends the extend (`off`); `auto` (default): on for arms, whose one group per
-    /// joint stops almost every extend at its first blocked joint, off for rigid bodies (their
-    /// trees stay as they were).
+    /// `--tree`: how an extend walks its stairs: `prefix` (each DOF group's piece as far as it is
+    /// free, the first blocked group ends the extend), `slide` (a blocked group lets the
+    /// stair's other groups go on), `whole` (each stair all of it or not at all, only the
+    /// extend's end a candidate nearest node: OMPL's extend in steps of one stair); `auto`
+    /// (default): `whole` for arms, `prefix` for rigid bodies.
     #[arg(long, value_name = "MODE", default_value = "auto", requires = "tree")]
-    pub tree_slide: viaroad::roadmap::tree::Slide,
+    pub tree_stairs: viaroad::roadmap::tree::StairsMode,
     /// Seed of the grown roadmap (`--roadmap`) or of the two trees (`--tree`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -365,18 +367,21 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
             "trees that large do not fit in memory",
         )?;
     }
+    let stairs = a.tree_stairs.for_space(&scene.space);
     let params = TreeParams {
         range: a.tree_range,
         stair: a.tree_stair,
         prefix: a.tree_prefix,
-        balance: a.tree_balance,
+        balance: a
+            .tree_balance
+            .unwrap_or(stairs == viaroad::roadmap::tree::Stairs::Whole),
         centre: a.tree_centre,
         centre_turn: a.tree_centre_turn,
         coarse: a.tree_coarse,
         max_nodes: a.nodes,
         restart: a.tree_restart,
         streams: a.tree_streams,
-        slide: a.tree_slide.for_space(&scene.space),
+        stairs,
     };
     params.validate().map_err(anyhow::Error::msg)?;
     let queries = scene.checked_queries()?;
