@@ -401,6 +401,19 @@ enum Reach {
     Full,
 }
 
+/// An extend's plan ([`Grower::step`]).
+struct Step {
+    /// The tree's node nearest to the target, where the extend starts.
+    near: u32,
+    from: Config,
+    /// The target, or the point `range` towards it.
+    aim: Config,
+    /// Whether `aim` is the target itself.
+    full: bool,
+    /// Stairs from `from` to `aim` (0: the target is `near`).
+    stairs: usize,
+}
+
 struct Grower<'a> {
     space: &'a Space,
     oracle: &'a dyn CollisionOracle,
@@ -456,19 +469,12 @@ impl Grower<'_> {
         })
     }
 
-    /// Extends `tree` from its node nearest to `target` towards it, at most `range` far.
-    fn extend(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
-        if self.params.stairs == Stairs::Whole {
-            return self.extend_whole(tree, target);
-        }
-        self.extends += 1;
-        self.centred = 0;
+    /// Where an extend of `tree` towards `target` goes: from the nearest node towards
+    /// `target`, at most `range` far, in `stairs` stairs (0: `target` is that node).
+    fn step(&self, tree: &Tree, target: &[f64]) -> Step {
         let near = tree.nearest(target);
         let from = tree.node(near).clone();
         let d = self.space.distance(&from, target);
-        if d == 0.0 {
-            return Ok(Extend::Reached(near));
-        }
         let range = self.params.range * self.space.extent();
         let full = d <= range;
         let aim = if full {
@@ -477,7 +483,37 @@ impl Grower<'_> {
             self.space.interpolate(&from, target, range / d)
         };
         let stair = self.params.stair * self.space.extent();
-        let stairs = (d.min(range) / stair).ceil().clamp(1.0, 1e6) as usize;
+        let stairs = if d == 0.0 {
+            0
+        } else {
+            (d.min(range) / stair).ceil().clamp(1.0, 1e6) as usize
+        };
+        Step {
+            near,
+            from,
+            aim,
+            full,
+            stairs,
+        }
+    }
+
+    /// Extends `tree` from its node nearest to `target` towards it, at most `range` far.
+    fn extend(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
+        if self.params.stairs == Stairs::Whole {
+            return self.extend_whole(tree, target);
+        }
+        self.extends += 1;
+        self.centred = 0;
+        let Step {
+            near,
+            from,
+            aim,
+            full,
+            stairs,
+        } = self.step(tree, target);
+        if stairs == 0 {
+            return Ok(Extend::Reached(near));
+        }
         if self.params.coarse && stairs > 1 {
             // one stair all the way, yes/no: in open space the staircase buys nothing
             if let Some(corners) = crate::local::check_direct(
@@ -543,6 +579,7 @@ impl Grower<'_> {
                         Reach::Blocked => (current.clone(), true),
                     };
                     // a partial stair that barely moves only piles nodes against the obstacle
+                    let stair = self.params.stair * self.space.extent();
                     let worth =
                         !blocked || self.space.distance(&current, &next) >= MIN_PROGRESS * stair;
                     if worth && next != current {
@@ -615,21 +652,16 @@ impl Grower<'_> {
     /// nearest-node queries.
     fn extend_whole(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
         self.extends += 1;
-        let near = tree.nearest(target);
-        let from = tree.node(near).clone();
-        let d = self.space.distance(&from, target);
-        if d == 0.0 {
+        let Step {
+            near,
+            from,
+            aim,
+            full,
+            stairs,
+        } = self.step(tree, target);
+        if stairs == 0 {
             return Ok(Extend::Reached(near));
         }
-        let range = self.params.range * self.space.extent();
-        let full = d <= range;
-        let aim = if full {
-            target.to_vec()
-        } else {
-            self.space.interpolate(&from, target, range / d)
-        };
-        let stair = self.params.stair * self.space.extent();
-        let stairs = (d.min(range) / stair).ceil().clamp(1.0, 1e6) as usize;
         let mut corners: Vec<Config> = Vec::new();
         // corners of the complete stairs
         let mut whole = 0;
