@@ -10,7 +10,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::oracle::CallCounts;
-use viaroad::roadmap::tree::{shortcut, Prefix, Stairs, StairsMode, TreeOutcome, TreeParams};
+use viaroad::roadmap::tree::{shortcut, Prefix, Stairs, TreeOutcome, TreeParams};
 use viaroad::robot::ArmChecker;
 use viaroad::scene::{Robot, Scene};
 use viaroad::space::Config;
@@ -27,8 +27,6 @@ fn arms(p: &str) -> PathBuf {
 fn params(scene: &Scene, max_nodes: usize) -> TreeParams {
     TreeParams {
         prefix: Prefix::FirstHit,
-        stairs: StairsMode::Auto.for_space(&scene.space),
-        balance: true,
         max_nodes: Some(max_nodes),
         ..TreeParams::default()
     }
@@ -79,16 +77,22 @@ fn shortcut_of(scene: &Scene, path: &[Config]) -> Vec<Config> {
 }
 
 #[test]
-fn whole_stairs_for_arms_prefixes_for_rigid_bodies() {
-    let arm = Scene::load(&arms("panda-box-1.toml")).unwrap();
-    assert_eq!(StairsMode::Auto.for_space(&arm.space), Stairs::Whole);
-    let rigid = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/ompl/3D/Easy.cfg"))
-        .unwrap();
-    assert_eq!(StairsMode::Auto.for_space(&rigid.space), Stairs::Prefix);
-    let slide: StairsMode = "slide".parse().unwrap();
-    assert_eq!(slide.for_space(&rigid.space), Stairs::Slide);
-    assert!("sideways".parse::<StairsMode>().is_err());
-    assert_eq!(TreeParams::default().stairs, Stairs::Prefix);
+fn whole_balanced_stairs_are_the_default_and_centring_needs_partial_ones() {
+    let d = TreeParams::default();
+    assert_eq!((d.stairs, d.balance), (Stairs::Whole, true));
+    assert_eq!("slide".parse::<Stairs>(), Ok(Stairs::Slide));
+    assert!("sideways".parse::<Stairs>().is_err());
+    let centring = TreeParams {
+        centre: 2,
+        ..TreeParams::default()
+    };
+    assert!(centring.validate().unwrap_err().contains("whole"));
+    assert!(TreeParams {
+        stairs: Stairs::Prefix,
+        ..centring
+    }
+    .validate()
+    .is_ok());
 }
 
 /// Sliding stairs (the arms' default before whole stairs) still find certified paths.

@@ -87,8 +87,15 @@ fn paths_are_free_single_group_and_shortcuts_too() {
         let oracle = s.oracle();
         let groups = s.space.groups(false);
         let mut solved = 0;
-        for seed in seeds.clone() {
-            let out = grow(&s, &params(nodes), seed);
+        for (seed, stairs) in seeds
+            .clone()
+            .flat_map(|seed| [(seed, Stairs::Whole), (seed, Stairs::Prefix)])
+        {
+            let p = TreeParams {
+                stairs,
+                ..params(nodes)
+            };
+            let out = grow(&s, &p, seed);
             let Some(path) = &out.path else { continue };
             assert_eq!(out.stop, TreeStop::Connected);
             solved += 1;
@@ -119,6 +126,7 @@ fn yes_no_first_finds_paths_as_free() {
     let s = scene("scenes/se2-corridor.toml");
     let p = TreeParams {
         prefix: Prefix::YesNoFirst,
+        stairs: Stairs::Prefix,
         ..params(4000)
     };
     let out = grow(&s, &p, 1);
@@ -243,6 +251,18 @@ fn cli_tree_with_a_node_budget_is_reproducible_and_its_paths_are_checked() {
         ],
         "restarts",
     );
+    // centring and the coarse first try walk partial stairs: whole ones are refused
+    for flag in [&["--tree-centre", "2"][..], &["--tree-coarse"][..]] {
+        let mut args = vec![
+            "solve",
+            "scenes/discs-cluttered.toml",
+            "--tree",
+            "--tree-stairs",
+            "whole",
+        ];
+        args.extend_from_slice(flag);
+        fails_with(&args, "not whole ones");
+    }
     // one single-query planner at a time (a usage error: clap's exit status 2)
     let o = viaroad(&[
         "solve",
@@ -313,6 +333,7 @@ fn first_hit_prefixes_grow_the_same_trees_as_intervals() {
     let grow_with = |prefix| {
         let p = TreeParams {
             prefix,
+            stairs: Stairs::Prefix,
             ..params(1500)
         };
         let o = grow(&s, &p, 3);
@@ -505,6 +526,7 @@ fn centring_chords_from_first_collisions_are_the_chords_of_all_intervals() {
 fn centring_trees_find_checked_paths_deterministically_within_the_budget() {
     let centring = |nodes| TreeParams {
         centre: 2,
+        stairs: Stairs::Prefix,
         ..params(nodes)
     };
     for (rel, nodes, seeds) in [
@@ -652,7 +674,7 @@ fn streams_answer_the_same_on_any_thread_count() {
     );
 }
 
-/// Whole stairs (`Stairs::Whole`, the arms' default): paths re-checked by the independent
+/// Whole stairs (`Stairs::Whole`, the default): paths re-checked by the independent
 /// checkers, the same seed gives the same answer, and in free space the first extend reaches
 /// the goal in one staircase.
 #[test]

@@ -223,11 +223,11 @@ pub struct MbmArgs {
     #[arg(long, value_name = "MODE", default_value = "first")]
     pub tree_prefix: viaroad::roadmap::tree::Prefix,
     /// `--planner tree`: how an extend walks its stairs (as `solve --tree-stairs`): `whole`
-    /// (`auto`, the default for arms: each stair all of it or not at all, only the extend's end
-    /// a candidate nearest node), `slide` (each joint as far as it is free, a blocked joint
-    /// letting the others go on; the default before 2026-12-04 night) or `prefix`.
-    #[arg(long, value_name = "MODE", default_value = "auto")]
-    pub tree_stairs: viaroad::roadmap::tree::StairsMode,
+    /// (the default: each stair all of it or not at all, only the extend's end a candidate
+    /// nearest node), `slide` (each joint as far as it is free, a blocked joint letting the
+    /// others go on; the default before 2026-12-04 night) or `prefix`.
+    #[arg(long, value_name = "MODE", default_value = "whole")]
+    pub tree_stairs: viaroad::roadmap::tree::Stairs,
     /// `--planner tree`: extend the smaller tree each time (`true`, default) instead of
     /// alternating (`false`). With whole stairs a trapped extend adds nothing, and the tree of
     /// a goal in a pocket gets the effort until it is out: over the 700 Panda problems, trees
@@ -317,11 +317,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             range: a.tree_range,
             stair: a.tree_stair,
             prefix: a.tree_prefix,
-            // every problem is a joint space
-            stairs: match a.tree_stairs {
-                viaroad::roadmap::tree::StairsMode::Auto => viaroad::roadmap::tree::Stairs::Whole,
-                viaroad::roadmap::tree::StairsMode::Fixed(s) => s,
-            },
+            stairs: a.tree_stairs,
             balance: a.tree_balance,
             coarse: a.tree_coarse,
             restart: a.tree_restart,

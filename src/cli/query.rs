@@ -10,7 +10,7 @@ use std::sync::Mutex;
 use std::time::Instant;
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
-use viaroad::roadmap::tree::{Prefix, StairsMode, TreeParams};
+use viaroad::roadmap::tree::{Prefix, TreeParams};
 use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::{ompl_cfg, Scene};
 use viaroad::space::Config;
@@ -291,8 +291,8 @@ pub enum Trees {
 
 impl Trees {
     /// The trees a query grows out of the roadmap in `space` (`QueryOptions::trees`), if
-    /// any: whole single-joint stairs, the smaller tree extending, for arms (as `bench mbm
-    /// --planner tree`), the trees' defaults elsewhere.
+    /// any: the trees' defaults (whole stairs, the smaller tree extending; as `bench mbm
+    /// --planner tree`), first-hit prefixes for arms.
     pub fn params(self, space: &viaroad::space::Space) -> Option<TreeParams> {
         let joints = matches!(space.kind(), viaroad::space::SpaceKind::Joints { .. });
         let on = match self {
@@ -306,8 +306,6 @@ impl Trees {
             } else {
                 Prefix::Intervals
             },
-            stairs: StairsMode::Auto.for_space(space),
-            balance: joints,
             ..TreeParams::default()
         })
     }

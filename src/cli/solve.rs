@@ -66,7 +66,7 @@ pub struct SolveArgs {
     #[arg(long, requires = "tree")]
     pub tree_coarse: bool,
     /// `--tree`: extend the smaller tree each time (`true`) instead of alternating (`false`).
-    /// Default: balanced with whole stairs (arms), alternating otherwise.
+    /// Default: balanced with whole stairs, alternating otherwise.
     #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", requires = "tree")]
     pub tree_balance: Option<bool>,
     /// `--tree`: centring rounds per blocked stair (0: off). A blocked stair moves the node to
@@ -88,13 +88,13 @@ pub struct SolveArgs {
     /// order, the same on any thread count). Default 1.
     #[arg(long, value_name = "N", default_value_t = 1, requires = "tree")]
     pub tree_streams: usize,
-    /// `--tree`: how an extend walks its stairs: `prefix` (each DOF group's piece as far as it is
-    /// free, the first blocked group ends the extend), `slide` (a blocked group lets the
-    /// stair's other groups go on), `whole` (each stair all of it or not at all, only the
-    /// extend's end a candidate nearest node: OMPL's extend in steps of one stair); `auto`
-    /// (default): `whole` for arms, `prefix` for rigid bodies.
-    #[arg(long, value_name = "MODE", default_value = "auto", requires = "tree")]
-    pub tree_stairs: viaroad::roadmap::tree::StairsMode,
+    /// `--tree`: how an extend walks its stairs: `whole` (each stair all of it or not at all,
+    /// only the extend's end a candidate nearest node: OMPL's extend in steps of one stair),
+    /// `prefix` (each DOF group's piece as far as it is free, the first blocked group ends the
+    /// extend) or `slide` (a blocked group lets the stair's other groups go on). Default:
+    /// `whole`, `prefix` with `--tree-centre` or `--tree-coarse` (which need it).
+    #[arg(long, value_name = "MODE", requires = "tree")]
+    pub tree_stairs: Option<viaroad::roadmap::tree::Stairs>,
     /// Seed of the grown roadmap (`--roadmap`) or of the two trees (`--tree`).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -367,7 +367,14 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
             "trees that large do not fit in memory",
         )?;
     }
-    let stairs = a.tree_stairs.for_space(&scene.space);
+    use viaroad::roadmap::tree::Stairs;
+    let stairs = a
+        .tree_stairs
+        .unwrap_or(if a.tree_centre > 0 || a.tree_coarse {
+            Stairs::Prefix
+        } else {
+            Stairs::Whole
+        });
     let params = TreeParams {
         range: a.tree_range,
         stair: a.tree_stair,

@@ -14,12 +14,12 @@
 //! Two trees grow from start and goal; after each extend of one tree towards a uniform sample,
 //! the other tree *connects* (extends repeatedly) towards the new node, as in OMPL's
 //! `RRTConnect`. How an extend walks its stairs is [`TreeParams::stairs`]: each group's piece as
-//! far as it is free, stopping at the first blocked one ([`Stairs::Prefix`], rigid bodies);
-//! sliding past a blocked group ([`Stairs::Slide`]); or each stair whole or not at all, only
-//! the extend's end indexed for nearest-node queries ([`Stairs::Whole`], arms: OMPL's extend in
-//! steps of one stair). With [`TreeParams::centre`] a blocked stair first moves its node to
-//! the middle of its free chords across the stair ([`crate::roadmap::centre`]) and is tried
-//! again: in a funnel (bugtrap) that lines the robot up with the funnel's axis. The stream of
+//! far as it is free, stopping at the first blocked one ([`Stairs::Prefix`]); sliding past a
+//! blocked group ([`Stairs::Slide`]); or each stair whole or not at all, only the extend's end
+//! indexed for nearest-node queries ([`Stairs::Whole`], the default: OMPL's extend in steps of
+//! one stair). With [`TreeParams::centre`] a blocked stair of the first two first moves its
+//! node to the middle of its free chords across the stair ([`crate::roadmap::centre`]) and is
+//! tried again: in a funnel (bugtrap) that lines the robot up with the funnel's axis. The stream of
 //! samples comes from one seeded generator, so with a node budget and no deadline the answer
 //! is the same on every machine.
 
@@ -98,45 +98,21 @@ pub enum Stairs {
     /// the corners on the way stay on the path. The trees do not pile corners against
     /// obstacles and their nearest-node queries see one node per extend, as OMPL's do: over the
     /// first 15 Panda problems of each family, 104 / 105 solved at p50 90 ms where sliding
-    /// solves 97 at 183 ms (2026-12-04, trees alone).
+    /// solves 97 at 183 ms; alpha-1.5 seeds 1–4 all solved in 2.9–6.4 s where prefixes solve 3
+    /// in 6.3–8.6 s, Twistycool seeds 1–2 in 6.3–6.8 s where prefixes solve none in 30 s
+    /// (2026-12-04, with the smaller tree extending). The default.
     Whole,
 }
 
-/// [`Stairs`] as asked on the command line: `auto` picks per space.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StairsMode {
-    /// [`Stairs::Whole`] for joint spaces (arms), [`Stairs::Prefix`] for every other space.
-    Auto,
-    /// Always this one.
-    Fixed(Stairs),
-}
-
-impl StairsMode {
-    /// The [`TreeParams::stairs`] value for `space`.
-    pub fn for_space(self, space: &Space) -> Stairs {
-        match self {
-            StairsMode::Auto => {
-                if matches!(space.kind(), crate::space::SpaceKind::Joints { .. }) {
-                    Stairs::Whole
-                } else {
-                    Stairs::Prefix
-                }
-            }
-            StairsMode::Fixed(s) => s,
-        }
-    }
-}
-
-impl std::str::FromStr for StairsMode {
+impl std::str::FromStr for Stairs {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
-            "auto" => Ok(StairsMode::Auto),
-            "prefix" => Ok(StairsMode::Fixed(Stairs::Prefix)),
-            "slide" => Ok(StairsMode::Fixed(Stairs::Slide)),
-            "whole" => Ok(StairsMode::Fixed(Stairs::Whole)),
+            "prefix" => Ok(Stairs::Prefix),
+            "slide" => Ok(Stairs::Slide),
+            "whole" => Ok(Stairs::Whole),
             _ => Err(format!(
-                "unknown stairs mode {s:?} (auto | prefix | slide | whole)"
+                "unknown stairs mode {s:?} (prefix | slide | whole)"
             )),
         }
     }
@@ -157,8 +133,8 @@ pub struct TreeParams {
     /// Try each extend as one stair first (a yes/no call per group), the staircase only when
     /// that is blocked ([`Stairs::Prefix`] and [`Stairs::Slide`]).
     pub coarse: bool,
-    /// Extend the smaller tree each time (Kuffner–LaValle's balanced variant) instead of
-    /// alternating: an entangled end whose extends are mostly trapped gets the effort. With
+    /// Extend the smaller tree each time (Kuffner–LaValle's balanced variant; the default)
+    /// instead of alternating: an entangled end whose extends are mostly trapped gets the effort. With
     /// [`Stairs::Whole`] a trapped extend costs a call or two and adds nothing, so the tree of
     /// an end in a pocket (a goal in a shelf) gets almost every extend until it is out, while
     /// alternating lets the other tree's connects grow it by 10⁵ corners: over the 700 Panda
@@ -178,8 +154,8 @@ pub struct TreeParams {
     /// every corner counts, indexed for nearest-node queries or not); with restarts, of all
     /// attempts together.
     pub max_nodes: Option<usize>,
-    /// How an extend walks its staircase (default [`Stairs::Prefix`]; arms: [`Stairs::Whole`],
-    /// see [`StairsMode::Auto`]).
+    /// How an extend walks its staircase (default [`Stairs::Whole`]; centring needs
+    /// [`Stairs::Prefix`] or [`Stairs::Slide`]).
     pub stairs: Stairs,
     /// Restarts (`None`: one attempt, the default): the first attempt gets this many nodes,
     /// and each attempt that runs out starts afresh from the two ends with a new random stream
@@ -207,12 +183,12 @@ impl Default for TreeParams {
             stair: 0.01,
             prefix: Prefix::Intervals,
             coarse: false,
-            balance: false,
+            balance: true,
             centre: 0,
             centre_turn: CENTRE_TURN,
             max_nodes: None,
             restart: None,
-            stairs: Stairs::Prefix,
+            stairs: Stairs::Whole,
             streams: 1,
         }
     }
@@ -234,6 +210,12 @@ impl TreeParams {
         }
         if self.restart == Some(0) {
             return Err("tree restarts need a first attempt of at least one node".into());
+        }
+        if self.stairs == Stairs::Whole && self.centre > 0 {
+            return Err("tree centring needs prefix or slide stairs, not whole ones".into());
+        }
+        if self.stairs == Stairs::Whole && self.coarse {
+            return Err("a coarse first try needs prefix or slide stairs, not whole ones".into());
         }
         let t = self.centre_turn;
         if !(t.is_finite() && t > 0.0 && t <= crate::roadmap::bounce::MAX_TURN) {

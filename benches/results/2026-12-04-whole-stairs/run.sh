@@ -30,3 +30,4 @@ $V bench mbm $P $W --out /tmp/workcell-turn-new &
 wait
 RAYON_NUM_THREADS=2 $OLD bench mbm $P $W --race 50 --out /tmp/workcell-race-old
 RAYON_NUM_THREADS=2 $V bench mbm $P $W --race 50 --out /tmp/workcell-race-new
+# rigid bodies, side by side: sh rigid.sh prefix > rigid-prefix.txt & sh rigid.sh whole > rigid-whole.txt
