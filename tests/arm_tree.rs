@@ -24,7 +24,7 @@ fn arms(p: &str) -> PathBuf {
 /// The parameters `bench mbm --planner tree` uses by default: whole stairs, the smaller tree
 /// extending (first-hit prefixes where a mode asks for them); a node budget instead of a
 /// deadline (the same answer on every machine).
-fn params(scene: &Scene, max_nodes: usize) -> TreeParams {
+fn params(max_nodes: usize) -> TreeParams {
     TreeParams {
         prefix: Prefix::FirstHit,
         max_nodes: Some(max_nodes),
@@ -33,7 +33,7 @@ fn params(scene: &Scene, max_nodes: usize) -> TreeParams {
 }
 
 fn grow(scene: &Scene, seed: u64) -> TreeOutcome {
-    common::tree::grow(scene, &params(scene, 4000), seed)
+    common::tree::grow(scene, &params(4000), seed)
 }
 
 /// Start to goal, one joint per segment, free under the independent checker.
@@ -101,7 +101,7 @@ fn sliding_tree_path_is_certified() {
     let scene = Scene::load(&arms("panda-box-1.toml")).unwrap();
     let p = TreeParams {
         stairs: Stairs::Slide,
-        ..params(&scene, 4000)
+        ..params(4000)
     };
     let out = common::tree::grow(&scene, &p, 1);
     certify(
@@ -114,7 +114,7 @@ fn sliding_tree_path_is_certified() {
 fn cage_tree_path_is_certified() {
     let scene = Scene::load(&arms("panda-cage-1.toml")).unwrap();
     // whole stairs count every corner as a node: about 17 000 of them on the way into the cage
-    let out = common::tree::grow(&scene, &params(&scene, 20_000), 1);
+    let out = common::tree::grow(&scene, &params(20_000), 1);
     let path = out.path.expect("cage 1 not solved within 20 000 nodes");
     certify(&scene, &path);
     let short = shortcut_of(&scene, &path);
