@@ -379,9 +379,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         range: a.tree_range,
         stair: a.tree_stair,
         prefix: a.tree_prefix,
-        balance: a
-            .tree_balance
-            .unwrap_or(stairs == viaroad::roadmap::tree::Stairs::Whole),
+        balance: a.tree_balance.unwrap_or(stairs == Stairs::Whole),
         centre: a.tree_centre,
         centre_turn: a.tree_centre_turn,
         coarse: a.tree_coarse,

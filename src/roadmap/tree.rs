@@ -17,11 +17,11 @@
 //! far as it is free, stopping at the first blocked one ([`Stairs::Prefix`]); sliding past a
 //! blocked group ([`Stairs::Slide`]); or each stair whole or not at all, only the extend's end
 //! indexed for nearest-node queries ([`Stairs::Whole`], the default: OMPL's extend in steps of
-//! one stair). With [`TreeParams::centre`] a blocked stair of the first two first moves its
-//! node to the middle of its free chords across the stair ([`crate::roadmap::centre`]) and is
-//! tried again: in a funnel (bugtrap) that lines the robot up with the funnel's axis. The stream of
-//! samples comes from one seeded generator, so with a node budget and no deadline the answer
-//! is the same on every machine.
+//! one stair). With [`TreeParams::centre`] (prefix or sliding stairs) a blocked stair first
+//! moves its node to the middle of its free chords across the stair
+//! ([`crate::roadmap::centre`]) and is tried again: in a funnel (bugtrap) that lines the robot
+//! up with the funnel's axis. The stream of samples comes from one seeded generator, so with a
+//! node budget and no deadline the answer is the same on every machine.
 
 use crate::deadline::Deadline;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
@@ -134,12 +134,12 @@ pub struct TreeParams {
     /// that is blocked ([`Stairs::Prefix`] and [`Stairs::Slide`]).
     pub coarse: bool,
     /// Extend the smaller tree each time (Kuffner–LaValle's balanced variant; the default)
-    /// instead of alternating: an entangled end whose extends are mostly trapped gets the effort. With
-    /// [`Stairs::Whole`] a trapped extend costs a call or two and adds nothing, so the tree of
-    /// an end in a pocket (a goal in a shelf) gets almost every extend until it is out, while
-    /// alternating lets the other tree's connects grow it by 10⁵ corners: over the 700 Panda
-    /// problems, whole stairs solve 698 balanced against 689 alternating (trees alone,
-    /// 2026-12-04).
+    /// instead of alternating: an entangled end whose extends are mostly trapped gets the
+    /// effort. With [`Stairs::Whole`] a trapped extend costs a call or two and adds nothing, so
+    /// the tree of an end in a pocket (a goal in a shelf) gets almost every extend until it is
+    /// out, while alternating lets the other tree's connects grow it by 10⁵ corners: over the
+    /// 700 Panda problems, whole stairs solve 698 balanced against 689 alternating (trees
+    /// alone, 2026-12-04).
     pub balance: bool,
     /// Centring rounds per blocked stair (0: off, the default): a blocked stair moves the
     /// node to the middle of its free chords across the stair (`roadmap::centre`, a
