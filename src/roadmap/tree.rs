@@ -396,6 +396,18 @@ struct Step {
     stairs: usize,
 }
 
+impl Step {
+    /// Where stair `i` (from 1) ends: `i / stairs` of the way to `aim`, `aim` itself from the
+    /// last stair on (sliding rounds beyond it aim there too).
+    fn stair_end(&self, space: &Space, i: usize) -> Config {
+        if i >= self.stairs {
+            self.aim.clone()
+        } else {
+            space.interpolate(&self.from, &self.aim, i as f64 / self.stairs as f64)
+        }
+    }
+}
+
 struct Grower<'a> {
     space: &'a Space,
     oracle: &'a dyn CollisionOracle,
@@ -481,29 +493,30 @@ impl Grower<'_> {
 
     /// Extends `tree` from its node nearest to `target` towards it, at most `range` far.
     fn extend(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
-        if self.params.stairs == Stairs::Whole {
-            return self.extend_whole(tree, target);
-        }
         self.extends += 1;
+        let step = self.step(tree, target);
+        if step.stairs == 0 {
+            return Ok(Extend::Reached(step.near));
+        }
+        if self.params.stairs == Stairs::Whole {
+            return self.extend_whole(tree, &step);
+        }
         self.centred = 0;
         let Step {
             near,
-            from,
-            aim,
+            ref from,
+            ref aim,
             full,
             stairs,
-        } = self.step(tree, target);
-        if stairs == 0 {
-            return Ok(Extend::Reached(near));
-        }
+        } = step;
         if self.params.coarse && stairs > 1 {
             // one stair all the way, yes/no: in open space the staircase buys nothing
             if let Some(corners) = crate::local::check_direct(
                 self.space,
                 self.oracle,
                 self.groups,
-                &from,
-                &aim,
+                from,
+                aim,
                 &mut self.counts,
             )? {
                 let mut parent = near;
@@ -524,13 +537,8 @@ impl Grower<'_> {
         let slide = self.params.stairs == Stairs::Slide;
         let rounds = if slide { 2 * stairs } else { stairs };
         for i in 1..=rounds {
-            let w = if i >= stairs {
-                aim.clone()
-            } else {
-                self.space
-                    .interpolate(&from, &aim, i as f64 / stairs as f64)
-            };
-            if i > stairs && current == aim {
+            let w = step.stair_end(self.space, i);
+            if i > stairs && current == *aim {
                 break;
             }
             let mut stair_moved = false;
@@ -616,7 +624,7 @@ impl Grower<'_> {
             }
         }
         // without sliding every group reached `aim` here; sliding may have stopped short
-        let arrived = !slide || current == aim;
+        let arrived = !slide || current == *aim;
         Ok(if !moved {
             Extend::Trapped
         } else if full && arrived {
@@ -628,33 +636,16 @@ impl Grower<'_> {
 }
 
 impl Grower<'_> {
-    /// [`Stairs::Whole`]: towards `target`, at most `range` far, stair by stair, each stair
-    /// whole (a yes/no call per group piece) or not at all; the first blocked stair ends the
-    /// extend with the complete stairs before it. Only the extend's end is indexed for
-    /// nearest-node queries.
-    fn extend_whole(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
-        self.extends += 1;
-        let Step {
-            near,
-            from,
-            aim,
-            full,
-            stairs,
-        } = self.step(tree, target);
-        if stairs == 0 {
-            return Ok(Extend::Reached(near));
-        }
+    /// [`Stairs::Whole`]: `step` stair by stair, each stair whole (a yes/no call per group
+    /// piece) or not at all; the first blocked stair ends the extend with the complete stairs
+    /// before it. Only the extend's end is indexed for nearest-node queries.
+    fn extend_whole(&mut self, tree: &mut Tree, step: &Step) -> Result<Extend, OracleError> {
         let mut corners: Vec<Config> = Vec::new();
         // corners of the complete stairs
         let mut whole = 0;
-        let mut current = from.clone();
-        'stairs: for i in 1..=stairs {
-            let w = if i == stairs {
-                aim.clone()
-            } else {
-                self.space
-                    .interpolate(&from, &aim, i as f64 / stairs as f64)
-            };
+        let mut current = step.from.clone();
+        'stairs: for i in 1..=step.stairs {
+            let w = step.stair_end(self.space, i);
             for g in self.groups {
                 if self.deadline.expired() {
                     break 'stairs;
@@ -672,12 +663,12 @@ impl Grower<'_> {
             }
             whole = corners.len();
         }
-        let reached = full && whole == corners.len() && current == aim;
+        let reached = step.full && whole == corners.len() && current == step.aim;
         corners.truncate(whole);
         let Some(last) = corners.pop() else {
             return Ok(Extend::Trapped);
         };
-        let mut parent = near;
+        let mut parent = step.near;
         for c in corners {
             parent = tree.add_corner(c, parent);
         }
