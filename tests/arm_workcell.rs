@@ -16,13 +16,14 @@ use viaroad::roadmap::tree::{Prefix, Stairs, TreeParams};
 use viaroad::roadmap::{Budget, Roadmap};
 use viaroad::robot::Arm;
 
-/// The shipped Panda, the shipped problems of `family`, and a fresh directory for the files.
-fn family(family: &str) -> (Arm, Vec<Problem>, PathBuf) {
+/// The shipped Panda, the shipped problems of `family`, and a fresh directory for the files of
+/// the test `test` (tests run at once and remove their directories).
+fn family(family: &str, test: &str) -> (Arm, Vec<Problem>, PathBuf) {
     let arms = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
     let robot = load_robot(&arms.join("panda")).unwrap();
     let problems = find_problems(&arms.join("mbm").join(family), None).unwrap();
     let dir = std::env::temp_dir().join(format!(
-        "viaroad-arm-workcell-{family}-{}",
+        "viaroad-arm-workcell-{family}-{test}-{}",
         std::process::id()
     ));
     std::fs::create_dir_all(&dir).unwrap();
@@ -34,7 +35,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
     // the box: its requests need the trees (the 40-node roadmap grown for half the query time
     // did not reach in, 2026-12-03), which answer each in ≈ 1.4 s of their 4 s on the 2-core VM;
     // the cage needed ≈ 5 s of trees, more than a test should spend
-    let (robot, problems, dir) = family("box");
+    let (robot, problems, dir) = family("box", "modes");
     let trees = TreeParams {
         prefix: Prefix::FirstHit,
         stairs: Stairs::Whole,
@@ -51,6 +52,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
             trees: Some(trees.clone()),
             race,
             keep_answers: false,
+            keep_trees: false,
             trees_from_roadmap,
         };
         let r = run_workcell(&robot, &problems, &options, &dir.join("box.roadmap")).unwrap();
@@ -79,7 +81,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
 
 #[test]
 fn every_edge_a_kept_answer_adds_is_certified() {
-    let (robot, problems, dir) = family("table_pick");
+    let (robot, problems, dir) = family("table_pick", "kept");
     let options = WorkcellOptions {
         budget: Budget::nodes(40),
         seed: 1,
@@ -87,6 +89,7 @@ fn every_edge_a_kept_answer_adds_is_certified() {
         trees: None,
         race: None,
         keep_answers: true,
+        keep_trees: false,
         trees_from_roadmap: true,
     };
     let r = run_workcell(&robot, &problems, &options, &dir.join("table_pick.roadmap")).unwrap();
@@ -110,5 +113,58 @@ fn every_edge_a_kept_answer_adds_is_certified() {
             .unwrap();
         assert!(report.valid, "kept edge {e}: {report:?}");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn kept_trees_add_certified_edges_beyond_the_answer() {
+    // the box's requests are answered by trees out of the 40-node roadmap (above); kept with
+    // their trees, every extend's end becomes a node and every edge is certified
+    let (robot, problems, dir) = family("box", "kept-trees");
+    let trees = TreeParams {
+        max_nodes: Some(3000),
+        ..TreeParams::default()
+    };
+    let run = |keep_trees: bool| {
+        let options = WorkcellOptions {
+            budget: Budget::nodes(40),
+            seed: 1,
+            query_time: Duration::from_secs(8),
+            trees: Some(trees.clone()),
+            race: None,
+            keep_answers: true,
+            keep_trees,
+            trees_from_roadmap: true,
+        };
+        let name = format!("box-{keep_trees}.roadmap");
+        let r = run_workcell(&robot, &problems, &options, &dir.join(&name)).unwrap();
+        assert!(r.by_trees >= 1, "keep trees {keep_trees}: {r:?}");
+        assert_eq!(r.certified, r.solved, "keep trees {keep_trees}: {r:?}");
+        (r, dir.join(name + ".kept"))
+    };
+    let (paths_only, _) = run(false);
+    let (with_trees, kept_file) = run(true);
+    // the first request is asked of the same roadmap either way, so its trees are the same
+    assert!(
+        with_trees.nodes_after > paths_only.nodes_after,
+        "the trees' ends are kept beside the answers: {with_trees:?} against {paths_only:?}"
+    );
+    let scene = problem_scene(&robot, &problems[0]).unwrap();
+    let learnt = Roadmap::load(&dir.join("box-true.roadmap"), scene.fingerprint()).unwrap();
+    let kept = Roadmap::load(&kept_file, scene.fingerprint()).unwrap();
+    assert_eq!(kept.node_count(), with_trees.nodes_after);
+    assert_eq!(&kept.coords()[..learnt.coords().len()], learnt.coords());
+    let check = checker(&scene).unwrap();
+    let mut with_corners = 0;
+    for (e, edge) in kept.edges().iter().enumerate().skip(learnt.edge_count()) {
+        let path = kept.edge_path(e, edge.a);
+        with_corners += usize::from(path.len() > 2);
+        let report = check.check_path(&path, check_step(&check)).unwrap();
+        assert!(report.valid, "kept edge {e}: {report:?}");
+    }
+    assert!(
+        with_corners > 0,
+        "an extend's stairs are kept as one edge through their corners"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -578,6 +578,18 @@ fn query_keeps_its_answers_in_the_roadmap() {
     ];
     fails_with(&args, "/dev/null");
     assert!(stdout(&viaroad(&args)).is_empty());
+    // trees are kept only beside the answers they found
+    let o = viaroad(&[
+        "query",
+        &rm,
+        "--scene",
+        CLUTTERED,
+        "--queries",
+        &q,
+        "--keep-trees",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--keep-answers"), "{}", stderr(&o));
 }
 
 fn temp_dir(name: &str) -> PathBuf {

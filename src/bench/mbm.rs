@@ -21,7 +21,7 @@ use crate::deadline::{race, Deadline};
 use crate::local::{path_length, shorten, Connection, LocalSpec};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::rooted::RoadmapTrees;
-use crate::roadmap::tree::{rrt_connect, shortcut_passes, TreeOutcome, TreeParams};
+use crate::roadmap::tree::{rrt_connect, shortcut_passes, Rooted, TreeOutcome, TreeParams};
 use crate::roadmap::{
     Budget, LearnParams, Learner, QueryOptions, QueryOutcome, QueryPlanner, QueryResult, Roadmap,
 };
@@ -476,6 +476,8 @@ pub struct TreeStage {
     pub grow_s: f64,
     /// Shortcutting their path, seconds.
     pub shorten_s: f64,
+    /// The trees as they ended ([`TreeOutcome::trees`]).
+    pub trees: Option<Box<[Rooted; 2]>>,
 }
 
 /// Whether the trees of a [`tree_stage`] found a path (a side of a [`race`] that answered).
@@ -529,6 +531,7 @@ fn shortened(
         shortening_error: None,
         grow_s: growing.elapsed().as_secs_f64(),
         shorten_s: 0.0,
+        trees: found.trees,
     };
     if let Some(raw) = found.path {
         let shortening = Instant::now();
@@ -744,6 +747,10 @@ pub struct WorkcellOptions {
     /// next request ([`Roadmap::with_path`], the time it takes not counted as query time): the
     /// next query from the same home pose, or into the same pocket, attaches to it.
     pub keep_answers: bool,
+    /// With `keep_answers`: keep the trees that found an answer too, not only its path
+    /// ([`Roadmap::with_kept`]): the next goal in the same pocket attaches to one of their
+    /// ends rather than growing trees of its own.
+    pub keep_trees: bool,
     /// With `trees`: each end that a free direct path attaches to one of its nearest roadmap
     /// nodes grows its tree out of that node's whole component ([`RoadmapTrees`]), so that
     /// the other end's tree need only reach the roadmap; in turn (no `race`) the query grows
@@ -818,6 +825,8 @@ pub fn run_workcell(
     while next < problems.len() {
         // one planner until an answer is to be kept, then a new one over the grown roadmap
         let planner = QueryPlanner::new(&roadmap, oracle.as_ref())?.with_options(options.clone());
+        // the landmarks are the roadmap's, computed as it is loaded or grown, not per query
+        planner.prepare();
         let mut keep = None;
         while keep.is_none() && next < problems.len() {
             next += 1;
@@ -871,7 +880,10 @@ pub fn run_workcell(
                     .as_ref()
                     .is_some_and(|a| a.outcome == QueryOutcome::Trees),
             );
-            let mut path = answer.filter(|a| a.is_solved()).map(|a| a.path);
+            let (mut path, mut grown) = match answer.filter(|a| a.is_solved()) {
+                Some(a) => (Some(a.path), a.trees),
+                None => (None, None),
+            };
             let trees = raced.or_else(|| match (&path, &o.trees) {
                 (None, Some(tree)) if !in_query => Some(grow_trees(tree, &deadline)),
                 _ => None,
@@ -881,6 +893,7 @@ pub fn run_workcell(
                 if path.is_none() {
                     path = found.path.map(|(_, short)| short);
                     r.by_trees += usize::from(path.is_some());
+                    grown = found.trees;
                 }
             }
             times.push(t.elapsed().as_secs_f64() * 1e3);
@@ -892,12 +905,14 @@ pub fn run_workcell(
                     .is_ok_and(|rep| rep.valid);
                 r.certified += usize::from(certified);
                 // only what the independent checker passed is kept (all of it, so far)
-                keep = (o.keep_answers && certified).then_some(path);
+                let trees = grown.filter(|_| o.keep_trees);
+                keep = (o.keep_answers && certified).then_some((path, trees));
             }
         }
         drop(planner);
-        if let Some(path) = keep {
-            roadmap = roadmap.with_path(&path)?;
+        if let Some((path, trees)) = keep {
+            let trees: Vec<&Rooted> = trees.iter().flat_map(|t| t.iter()).collect();
+            roadmap = roadmap.with_kept(&path, &trees)?;
             r.kept += 1;
         }
     }

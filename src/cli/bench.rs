@@ -274,6 +274,11 @@ pub struct MbmArgs {
     /// roadmap as learnt.
     #[arg(long)]
     pub keep_answers: bool,
+    /// Workcell mode with `--keep-answers`: keep the trees that found an answer too
+    /// (`Roadmap::with_kept`: every extend's end a node, joined to the node it grew from), so
+    /// that the next goal in the same pocket attaches to them.
+    #[arg(long, requires = "keep_answers")]
+    pub keep_trees: bool,
     /// Workcell mode, `--planner tree`: where the trees grow from. `roadmap` (default): each
     /// end that a free direct path attaches to one of its 5 nearest roadmap nodes brings that
     /// node's component along as its tree, so the other end's tree need only reach the roadmap;
@@ -335,6 +340,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             trees: (a.planner == mbm::Planner::Tree).then(|| options.tree.clone()),
             race,
             keep_answers: a.keep_answers,
+            keep_trees: a.keep_trees,
             trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
         };
         let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();

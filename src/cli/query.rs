@@ -88,6 +88,11 @@ pub struct QueryArgs {
     /// Ctrl-C stops the batch and saves what was kept so far.
     #[arg(long, value_name = "FILE")]
     pub keep_answers: Option<PathBuf>,
+    /// With `--keep-answers`: keep the trees that found an answer too, not only its path
+    /// (`Roadmap::with_kept`: every extend's end a node, joined to the node it grew from), so
+    /// that the next goal in the same pocket (a cage, a box) attaches to them directly.
+    #[arg(long, requires = "keep_answers")]
+    pub keep_trees: bool,
     /// Re-check every answer's path (the shortened one it returns) with the scene's
     /// independent checker, outside the query's
     /// time (the one `bench validity` uses: segment–disc distances, exact polygon sweeps,
@@ -175,14 +180,16 @@ impl Printer {
     }
 }
 
-/// Answers `queries` in their order over `roadmap`, each path found fed back into it before
-/// the next query ([`Roadmap::with_path`]); every answer goes to `printer` as it comes. The
-/// grown roadmap and the number of answers kept.
+/// Answers `queries` in their order over `roadmap`, each path found (with `keep_trees`, and
+/// the trees that found it) fed back into it before the next query ([`Roadmap::with_kept`]);
+/// every answer goes to `printer` as it comes. The grown roadmap and the number of answers
+/// kept.
 fn answer_keeping(
     mut roadmap: Roadmap,
     oracle: &dyn viaroad::oracle::CollisionOracle,
     options: &QueryOptions,
     queries: &[(Config, Config)],
+    keep_trees: bool,
     deadline: &Deadline,
     printer: &Printer,
 ) -> anyhow::Result<(Roadmap, usize)> {
@@ -200,7 +207,13 @@ fn answer_keeping(
         printer.answer(i, &answer);
         if let Ok(r) = &answer.result {
             if r.is_solved() {
-                roadmap = roadmap.with_path(&r.path).map_err(anyhow::Error::msg)?;
+                let trees: Vec<_> = match &r.trees {
+                    Some(t) if keep_trees => t.iter().collect(),
+                    _ => Vec::new(),
+                };
+                roadmap = roadmap
+                    .with_kept(&r.path, &trees)
+                    .map_err(anyhow::Error::msg)?;
                 kept += 1;
             }
         }
@@ -420,6 +433,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
                 oracle.as_ref(),
                 &options,
                 &queries,
+                a.keep_trees,
                 &deadline,
                 &printer,
             )?;

@@ -28,7 +28,7 @@ use super::params::Budget;
 use super::persist::check_local_spec;
 use super::persist::RoadmapError;
 use super::rooted::RoadmapTrees;
-use super::tree::{TreeParams, TreeStop};
+use super::tree::{Rooted, TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::{
     direct_connection, direct_pieces, drop_corners_known, path_length, shorten_known, Connection,
@@ -278,6 +278,10 @@ pub struct QueryResult {
     /// Nodes the query added to a copy of the roadmap while growing it, or grew as trees (0:
     /// it did neither).
     pub grown_nodes: usize,
+    /// The trees grown out of the roadmap ([`QueryOptions::trees`]) as they ended, for a
+    /// workcell to keep with the answer ([`Roadmap::with_kept`]); `None` where none grew.
+    #[serde(skip)]
+    pub trees: Option<Box<[Rooted; 2]>>,
 }
 
 impl QueryResult {
@@ -299,6 +303,7 @@ impl QueryResult {
             goal_node: None,
             roadmap_nodes: 0,
             grown_nodes: 0,
+            trees: None,
         }
     }
 
@@ -440,6 +445,16 @@ impl<'a> QueryPlanner<'a> {
         self.options = options;
         self.landmarks = OnceLock::new();
         self
+    }
+
+    /// Computes now what the first A* search would ([`QueryOptions::landmarks`]: a graph
+    /// search per landmark), so that a planner kept for many queries (a workcell's server, a
+    /// roadmap just grown by a kept answer) does not charge it to the first query.
+    pub fn prepare(&self) {
+        if self.options.landmarks > 0 && self.roadmap.node_count() > 0 {
+            self.landmarks
+                .get_or_init(|| Landmarks::new(self.roadmap, self.options.landmarks));
+        }
     }
 
     /// The options in use.
@@ -715,6 +730,7 @@ impl<'a> QueryPlanner<'a> {
         )?;
         result.counts += found.counts;
         result.grown_nodes = found.nodes[0] + found.nodes[1];
+        result.trees = found.trees;
         let Some(mut raw) = found.path else {
             result.outcome = match found.stop {
                 TreeStop::NodeBudget => QueryOutcome::Disconnected,

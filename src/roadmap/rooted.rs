@@ -99,6 +99,7 @@ impl<'a> RoadmapTrees<'a> {
                     counts,
                     stop: TreeStop::Connected,
                     attempts: 1,
+                    trees: None,
                 });
             }
         }

@@ -252,19 +252,28 @@ pub struct TreeOutcome {
     /// Why it stopped.
     pub stop: TreeStop,
     /// Attempts made (1 without restarts); `nodes` are those of the last one, `extends` and
-    /// `counts` those of all (with [`TreeParams::streams`]: `path`, `nodes`, `stop` and
-    /// `attempts` of the answering stream, else of stream 0; `extends` and `counts` of all).
+    /// `counts` those of all (with [`TreeParams::streams`]: `path`, `nodes`, `stop`, `trees`
+    /// and `attempts` of the answering stream, else of stream 0; `extends` and `counts` of all).
     pub attempts: u32,
+    /// The start tree and the goal tree as they ended (of the last attempt), every branch a
+    /// chain of certified free single-group motions: what a roadmap may keep
+    /// ([`crate::roadmap::Roadmap::with_kept`]). `None` where no tree grew.
+    pub trees: Option<Box<[Rooted; 2]>>,
 }
 
 /// Where one tree of [`rrt_connect_rooted`] begins: its end alone ([`Rooted::at`]), or its end
 /// with certified free corners around it already (a roadmap's component,
 /// [`super::rooted::RoadmapTrees`]), each joined to its parent by free single-group motions in
 /// the groups' order. The end is node 0.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Rooted {
     nodes: Vec<Config>,
     parent: Vec<u32>,
+    /// Whether each node is a corner on the way to a grown node rather than an extend's end
+    /// ([`Stairs::Whole`] indexes only the ends).
+    corner: Vec<bool>,
+    /// Nodes the tree began with, the end included ([`Self::given`]).
+    given: usize,
 }
 
 impl Rooted {
@@ -273,7 +282,33 @@ impl Rooted {
         Rooted {
             nodes: vec![end.to_vec()],
             parent: vec![u32::MAX],
+            corner: vec![false],
+            given: 1,
         }
+    }
+
+    /// Nodes the tree began with, the end included: nodes `0..given` were given (a roadmap's
+    /// component, [`super::rooted::RoadmapTrees`]), the rest grown by the extends.
+    pub fn given(&self) -> usize {
+        self.given
+    }
+
+    /// Whether node `i` is a corner on the way to a grown node (never a nearest node of an
+    /// extend) rather than an extend's end or a given node.
+    ///
+    /// # Panics
+    /// If `i` is not a node index.
+    pub fn is_corner(&self, i: u32) -> bool {
+        self.corner[i as usize]
+    }
+
+    /// The node that node `i` was grown from (`None` for the end).
+    ///
+    /// # Panics
+    /// If `i` is not a node index.
+    pub fn parent(&self, i: u32) -> Option<u32> {
+        let p = self.parent[i as usize];
+        (p != u32::MAX).then_some(p)
     }
 
     /// The end (node 0).
@@ -302,9 +337,14 @@ impl Rooted {
     /// Adds `q`, joined to node `parent` by free single-group motions (the caller's
     /// certificate), and returns its index.
     pub(crate) fn add(&mut self, q: Config, parent: u32) -> u32 {
+        self.push(q, parent, false)
+    }
+
+    fn push(&mut self, q: Config, parent: u32, corner: bool) -> u32 {
         debug_assert!((parent as usize) < self.nodes.len());
         self.nodes.push(q);
         self.parent.push(parent);
+        self.corner.push(corner);
         self.nodes.len() as u32 - 1
     }
 
@@ -335,8 +375,10 @@ impl Tree {
         for (id, q) in root.nodes.iter().enumerate() {
             nn.insert(id as u32, q);
         }
+        let mut base = root.clone();
+        base.given = root.node_count();
         Tree {
-            base: root.clone(),
+            base,
             nn,
             given: root.node_count() - 1,
         }
@@ -359,7 +401,7 @@ impl Tree {
 
     /// Adds a corner on the way to a node: on the path, never the nearest node.
     fn add_corner(&mut self, q: Config, parent: u32) -> u32 {
-        self.base.add(q, parent)
+        self.base.push(q, parent, true)
     }
 
     fn nearest(&self, q: &[f64]) -> u32 {
@@ -893,23 +935,24 @@ fn grow_once(
         extends: 0,
         centred: 0,
     };
-    let finish = |trees: &[Tree; 2], g: &Grower, path, stop| TreeOutcome {
+    let finish = |trees: [Tree; 2], g: &Grower, path, stop| TreeOutcome {
         path,
         nodes: [trees[0].grown(), trees[1].grown()],
         extends: g.extends,
         counts: g.counts,
         stop,
         attempts: 1,
+        trees: Some(Box::new(trees.map(|t| t.base))),
     };
     // the ends themselves first: often the straight staircase is free
     let mut a = only.unwrap_or(0);
     let mut target = Some(roots[1 - a].end().to_vec());
     loop {
         if deadline.expired() {
-            return Ok(finish(&trees, &g, None, TreeStop::TimedOut));
+            return Ok(finish(trees, &g, None, TreeStop::TimedOut));
         }
         if max_nodes.is_some_and(|m| trees[0].grown() + trees[1].grown() >= m) {
-            return Ok(finish(&trees, &g, None, TreeStop::NodeBudget));
+            return Ok(finish(trees, &g, None, TreeStop::NodeBudget));
         }
         let q_rand = target
             .take()
@@ -941,7 +984,7 @@ fn grow_once(
                         let back = trees[1].base.branch(t);
                         // the meeting node is in both branches (as the same pose)
                         path.extend(back.into_iter().rev().skip(1));
-                        return Ok(finish(&trees, &g, Some(path), TreeStop::Connected));
+                        return Ok(finish(trees, &g, Some(path), TreeStop::Connected));
                     }
                     Extend::Advanced(m) => {
                         if params.centre > 0 {
