@@ -69,6 +69,16 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
         );
         assert_eq!(r.query_ms.n, r.valid);
         assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
+        // the time found is the latency less the answer's shortening
+        assert_eq!((r.found_ms.n, r.shorten_ms.len()), (r.valid, r.valid));
+        for (t, s) in r.latencies_ms.iter().zip(&r.shorten_ms) {
+            assert!((0.0..=*t).contains(s), "shortening {s} ms of {t} ms");
+        }
+        assert!(
+            r.shorten_ms.iter().any(|&s| s > 0.0),
+            "answers are shortened"
+        );
+        assert!(r.found_ms.p50 <= r.query_ms.p50);
         assert_eq!(
             (r.kept, r.nodes_after),
             (0, r.nodes),

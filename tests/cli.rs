@@ -6,7 +6,7 @@ mod common;
 
 use common::cli::{fails_with, stderr, stdout, viaroad, write};
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const EXAMPLE: &str = "scenes/discs-example.toml";
 const CLUTTERED: &str = "scenes/discs-cluttered.toml";
@@ -592,6 +592,6 @@ fn query_keeps_its_answers_in_the_roadmap() {
     assert!(stderr(&o).contains("--keep-answers"), "{}", stderr(&o));
 }
 
-fn temp_dir(name: &str) -> PathBuf {
+fn temp_dir(name: &str) -> common::cli::TempDir {
     common::cli::temp_dir("cli", name)
 }

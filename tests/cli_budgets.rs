@@ -179,6 +179,6 @@ fn an_invalid_scene_query_warns_build_and_stops_solve() {
     fails_with(&["solve", &scene, "--roadmap"], "goal of query 1");
 }
 
-fn temp_dir(name: &str) -> PathBuf {
+fn temp_dir(name: &str) -> common::cli::TempDir {
     common::cli::temp_dir("budgets", name)
 }

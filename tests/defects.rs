@@ -8,7 +8,7 @@ mod common;
 use common::cli::{fails_alone_with as fails_with, stderr, stdout, viaroad};
 
 use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 fn s(p: &Path) -> String {
@@ -977,7 +977,7 @@ fn library_refuses_special_files_with_typed_errors() {
     assert!(Space::se2([-1e100, 0.0], [1e100, 1.0], 1.0).is_ok());
 }
 
-fn temp_dir(name: &str) -> PathBuf {
+fn temp_dir(name: &str) -> common::cli::TempDir {
     common::cli::temp_dir("defects", name)
 }
 

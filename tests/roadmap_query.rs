@@ -148,6 +148,8 @@ fn astar_finds_shortest_roadmap_paths() {
             }
             let (a, b) = (r.start_node.unwrap(), r.goal_node.unwrap());
             assert_eq!(roadmap.component(a), roadmap.component(b));
+            assert_eq!(r.shorten_s, 0.0, "nothing shortened, no time shortening");
+            assert_eq!(r.path, r.raw_path);
             let through = dijkstra(&roadmap, a)[b as usize];
             // raw = attach(start → a) + roadmap(a → b) + attach(b → goal)
             let ia = r

@@ -81,7 +81,7 @@ fn check_page(name: &str, args: &[&str]) -> Option<Value> {
     let out = Command::new("node")
         .arg(&script)
         .arg(&page)
-        .arg(&dir)
+        .arg(&*dir)
         .env("CHROMIUM", &chromium)
         .output()
         .unwrap();

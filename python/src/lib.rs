@@ -399,6 +399,8 @@ struct PyQueryResult {
     grown_nodes: usize,
     /// Milliseconds the Rust call took (the Python call's own cost is not included).
     ms: f64,
+    /// Of `ms`, milliseconds spent shortening the path found.
+    shorten_ms: f64,
     /// Why the query could not be asked (only in `query_many`; `query` raises `QueryError`).
     error: Option<String>,
 }
@@ -422,6 +424,7 @@ impl PyQueryResult {
                 depth: r.depth,
                 grown_nodes: r.grown_nodes,
                 ms,
+                shorten_ms: r.shorten_s * 1e3,
                 error: None,
             },
             Err(e) => PyQueryResult {
@@ -435,6 +438,7 @@ impl PyQueryResult {
                 depth: 0,
                 grown_nodes: 0,
                 ms,
+                shorten_ms: 0.0,
                 error: Some(e.clone()),
             },
         })

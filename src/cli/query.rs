@@ -239,6 +239,7 @@ fn answer_line(
                 "calls": r.counts.intersect_calls(),
                 "depth": r.depth,
                 "query_ms": t,
+                "shorten_ms": r.shorten_s * 1e3,
                 "outcome": r.outcome,
                 "length": r.length,
                 "raw_length": r.raw_length,
@@ -253,7 +254,7 @@ fn answer_line(
             v.to_string()
         }
         Ok(r) if r.is_solved() => format!(
-            "query {}: solved ({:?}{}), length {:.4} (raw {:.4}), {} corners, {} intersect calls, {:.3} ms{}",
+            "query {}: solved ({:?}{}), length {:.4} (raw {:.4}), {} corners, {} intersect calls, {:.3} ms ({:.3} shortening){}",
             i + 1,
             r.outcome,
             if r.grown_nodes > 0 {
@@ -266,6 +267,7 @@ fn answer_line(
             r.path.len(),
             r.counts.intersect_calls(),
             t,
+            r.shorten_s * 1e3,
             match check {
                 None => String::new(),
                 Some(Ok(())) => ", certified".into(),

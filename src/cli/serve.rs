@@ -149,6 +149,7 @@ pub fn answer_reply(id: &Value, result: &Result<QueryResult, String>, ms: f64) -
             "calls": r.counts.intersect_calls(),
             "depth": r.depth,
             "query_ms": ms,
+            "shorten_ms": r.shorten_s * 1e3,
             "outcome": r.outcome,
             "length": r.length,
             "raw_length": r.raw_length,

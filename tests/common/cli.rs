@@ -59,11 +59,39 @@ pub fn fails_alone_with(args: &[&str], needle: &str) -> String {
 
 /// A fresh directory for one test: `suite` and `name` keep tests apart, the process id keeps
 /// concurrent runs apart.
-pub fn temp_dir(suite: &str, name: &str) -> PathBuf {
+pub fn temp_dir(suite: &str, name: &str) -> TempDir {
     let d = std::env::temp_dir().join(format!("viaroad-{suite}-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
-    d
+    TempDir(d)
+}
+
+/// A test's own directory ([`temp_dir`]), removed when the test ends; kept, and named on
+/// stderr, when it ends in a panic, so that a failure's files can be looked at.
+pub struct TempDir(PathBuf);
+
+impl std::ops::Deref for TempDir {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for TempDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("test files kept in {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 /// Writes `text` to `dir/name` and returns the path as a string for the command line.

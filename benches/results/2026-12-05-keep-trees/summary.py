@@ -18,8 +18,10 @@ def table(before, after, title):
     if a is None or t is None:
         return
     print(f"\n### {title}\n")
-    print("| family | valid | solved, answers / trees | certified | query p50 ms | p95 ms | sum of latencies s | nodes after |")
-    print("|---|---|---|---|---|---|---|---|")
+    found = "found_ms" in a[0]
+    print("| family | valid | solved, answers / trees | certified | query p50 ms | p95 ms | sum of latencies s | nodes after |"
+          + (" found p50 ms |" if found else ""))
+    print("|---|---|---|---|---|---|---|---|" + ("---|" if found else ""))
     for x, y in zip(a, t):
         print(
             f"| {x['family'].replace('_panda', '')} | {x['valid']} | {x['solved']} / {y['solved']} "
@@ -27,6 +29,7 @@ def table(before, after, title):
             f"| {x['query_ms']['p95']:.0f} / {y['query_ms']['p95']:.0f} "
             f"| {sum(x['latencies_ms']) / 1e3:.2f} / {sum(y['latencies_ms']) / 1e3:.2f} "
             f"| {x['nodes_after']} / {y['nodes_after']} |"
+            + (f" {x['found_ms']['p50']:.2f} / {y['found_ms']['p50']:.2f} |" if found else "")
         )
     sa = sum(sum(x["latencies_ms"]) for x in a) / 1e3
     st = sum(sum(y["latencies_ms"]) for y in t) / 1e3
@@ -35,5 +38,6 @@ def table(before, after, title):
 
 table("race-answers-30", "race-trees-30", "`--race 50`, run 1")
 table("rep-race-answers-30", "rep-race-trees-30", "`--race 50`, run 2")
+table("found-race-answers-30", "found-race-trees-30", "`--race 50`, run 3 (with the time found, before shortening)")
 table("turn-answers-30", "turn-trees-30", "in turn")
 table("race-answers-30", "race2-trees-30", "answers kept with `--race 50` / trees kept with `--race 2`")
