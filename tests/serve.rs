@@ -312,50 +312,58 @@ fn answers_are_those_of_query_json_with_id_for_query() {
         })
         .collect();
     std::fs::write(&file, text).unwrap();
-    let o = common::cli::viaroad(&[
-        "query",
-        DISCS_MAP,
-        "--scene",
-        DISCS,
-        "--json",
-        "--queries",
-        file.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", common::cli::stderr(&o));
-    let mut batch: BTreeMap<u64, Value> = BTreeMap::new();
-    for line in common::cli::stdout(&o).lines() {
-        let v: Value = serde_json::from_str(line).unwrap();
-        batch.insert(v["query"].as_u64().unwrap() - 1, v);
-    }
-    let mut server = Server::start(DISCS_MAP, DISCS, &[]);
-    for (i, p) in pairs.iter().enumerate() {
-        server.send(query_line(i as u64, p).as_bytes());
-    }
-    drop(server.stdin.take()); // end of input: answer what was read, then stop
-    let mut served = BTreeMap::new();
-    for _ in &pairs {
-        let v = server.reply();
-        served.insert(v["id"].as_u64().unwrap(), v);
-    }
-    assert!(server.exit().success());
-    std::fs::remove_dir_all(&dir).unwrap();
-    assert_eq!(batch.len(), pairs.len());
-    for (i, b) in &batch {
-        let s = &served[i];
-        let keys = |v: &Value| -> BTreeSet<String> {
-            v.as_object()
-                .unwrap()
-                .keys()
-                .filter(|k| !["id", "query"].contains(&k.as_str()))
-                .cloned()
-                .collect()
-        };
-        assert_eq!(keys(s), keys(b), "fields of {s} and {b}");
-        // queries never change the roadmap: the same question, the same answer
-        for k in ["solved", "path", "shortened", "calls", "outcome", "length"] {
-            assert_eq!(s[k], b[k], "{k} of query {i}");
+    // with `--check` on both sides, each answer also says whether the checker certified it
+    for extra in [&[][..], &["--check"][..]] {
+        let mut args = vec![
+            "query",
+            DISCS_MAP,
+            "--scene",
+            DISCS,
+            "--json",
+            "--queries",
+            file.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = common::cli::viaroad(&args);
+        assert!(o.status.success(), "{}", common::cli::stderr(&o));
+        let mut batch: BTreeMap<u64, Value> = BTreeMap::new();
+        for line in common::cli::stdout(&o).lines() {
+            let v: Value = serde_json::from_str(line).unwrap();
+            batch.insert(v["query"].as_u64().unwrap() - 1, v);
+        }
+        let mut server = Server::start(DISCS_MAP, DISCS, extra);
+        for (i, p) in pairs.iter().enumerate() {
+            server.send(query_line(i as u64, p).as_bytes());
+        }
+        drop(server.stdin.take()); // end of input: answer what was read, then stop
+        let mut served = BTreeMap::new();
+        for _ in &pairs {
+            let v = server.reply();
+            served.insert(v["id"].as_u64().unwrap(), v);
+        }
+        assert!(server.exit().success());
+        assert_eq!(batch.len(), pairs.len());
+        for (i, b) in &batch {
+            let s = &served[i];
+            let keys = |v: &Value| -> BTreeSet<String> {
+                v.as_object()
+                    .unwrap()
+                    .keys()
+                    .filter(|k| !["id", "query"].contains(&k.as_str()))
+                    .cloned()
+                    .collect()
+            };
+            assert_eq!(keys(s), keys(b), "fields of {s} and {b} ({extra:?})");
+            // queries never change the roadmap: the same question, the same answer
+            for k in ["solved", "path", "shortened", "calls", "outcome", "length"] {
+                assert_eq!(s[k], b[k], "{k} of query {i}");
+            }
+            if !extra.is_empty() && s["solved"] == true {
+                assert_eq!(s["certified"], true, "query {i}: {s}");
+            }
         }
     }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// One TCP client: sends its queries (a malformed line among them) all at once from one

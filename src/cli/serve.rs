@@ -24,6 +24,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
 use viaroad::limits::duration_from_secs;
 use viaroad::roadmap::{QueryOptions, QueryPlanner, QueryResult, Roadmap};
@@ -56,6 +57,11 @@ pub struct ServeArgs {
     /// copy of it (as `query --trees`): `auto` (default: on for arms), `on`, `off`.
     #[arg(long, value_name = "MODE", value_enum, default_value_t = super::query::Trees::Auto)]
     pub trees: super::query::Trees,
+    /// Re-check every solved answer's path (the shortened one it returns) with the scene's
+    /// independent checker, as `query --check` does, outside the query's time (`query_ms`):
+    /// each reply says `"certified": true|false` (and `"check_error"`).
+    #[arg(long)]
+    pub check: bool,
 }
 
 /// The longest request line read (bytes): a start and a goal of any shipped robot fit many
@@ -138,10 +144,17 @@ fn error_reply(id: &Value, message: &str) -> String {
     json!({ "id": id, "error": message }).to_string()
 }
 
-/// The reply to a query: the fields of `viaroad query --json`, with `id` for `query`.
-pub fn answer_reply(id: &Value, result: &Result<QueryResult, String>, ms: f64) -> String {
+/// The reply to a query: the fields of `viaroad query --json`, with `id` for `query`; with
+/// `check` (`--check`), whether the independent checker certified the path.
+pub fn answer_reply(
+    id: &Value,
+    result: &Result<QueryResult, String>,
+    ms: f64,
+    check: Option<&Result<(), String>>,
+) -> String {
     match result {
-        Ok(r) => json!({
+        Ok(r) => {
+            let mut v = json!({
             "id": id,
             "solved": r.is_solved(),
             "path": r.raw_path,
@@ -154,8 +167,15 @@ pub fn answer_reply(id: &Value, result: &Result<QueryResult, String>, ms: f64) -
             "length": r.length,
             "raw_length": r.raw_length,
             "grown_nodes": r.grown_nodes,
-        })
-        .to_string(),
+            });
+            if let Some(c) = check {
+                v["certified"] = json!(c.is_ok());
+                if let Err(e) = c {
+                    v["check_error"] = json!(e);
+                }
+            }
+            v.to_string()
+        }
         Err(e) => json!({ "id": id, "solved": false, "error": e, "query_ms": ms }).to_string(),
     }
 }
@@ -172,6 +192,8 @@ struct Server<'a> {
     errors: AtomicU64,
     /// Where the `shutdown` reply goes once every query read is answered.
     shutdown_reply: Mutex<Option<(Value, Arc<dyn Sink>)>>,
+    /// The independent checker of `--check`.
+    checker: Option<Checker>,
 }
 
 /// The shortenings a request may name, in [`Server::planners`]'s order.
@@ -310,8 +332,13 @@ impl Server<'_> {
                 .query_within(&job.start, &job.goal, &outer)
                 .map_err(|e| e.to_string());
             let ms = began.elapsed().as_secs_f64() * 1e3;
+            let check = match (&self.checker, &result) {
+                (Some(c), Ok(r)) if r.is_solved() => Some(c.check_path(&r.path)),
+                _ => None,
+            };
             self.answered.fetch_add(1, Ordering::Relaxed);
-            job.sink.send(&answer_reply(&job.id, &result, ms));
+            job.sink
+                .send(&answer_reply(&job.id, &result, ms, check.as_ref()));
         }
     }
 
@@ -424,7 +451,15 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         .collect();
         m.extend(extra);
     }
+    let checker =
+        match a.check {
+            true => Some(Checker::for_scene(&scene).map_err(|e| {
+                anyhow::anyhow!("--check: no independent checker for this scene: {e}")
+            })?),
+            false => None,
+        };
     let server = Server {
+        checker,
         planners,
         info,
         stop: AtomicBool::new(false),
