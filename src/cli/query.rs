@@ -221,6 +221,19 @@ fn answer_keeping(
     Ok((roadmap, kept))
 }
 
+/// The scene's independent checker for `--check` (`query`, `serve`), or `None` without it.
+pub(super) fn independent_checker(
+    scene: &viaroad::scene::Scene,
+    check: bool,
+) -> anyhow::Result<Option<Checker>> {
+    if !check {
+        return Ok(None);
+    }
+    Checker::for_scene(scene)
+        .map(Some)
+        .map_err(|e| anyhow::anyhow!("--check: no independent checker for this scene: {e}"))
+}
+
 /// One answer as printed: a JSON object or a line of text; `t` its time in ms.
 fn answer_line(
     i: usize,
@@ -405,13 +418,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     if !a.json && queries.len() > 1 {
         loaded();
     }
-    let checker =
-        match a.check {
-            true => Some(Checker::for_scene(&scene).map_err(|e| {
-                anyhow::anyhow!("--check: no independent checker for this scene: {e}")
-            })?),
-            false => None,
-        };
+    let checker = independent_checker(&scene, a.check)?;
     let printer = Printer {
         json: a.json,
         total: queries.len(),

@@ -451,13 +451,7 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         .collect();
         m.extend(extra);
     }
-    let checker =
-        match a.check {
-            true => Some(Checker::for_scene(&scene).map_err(|e| {
-                anyhow::anyhow!("--check: no independent checker for this scene: {e}")
-            })?),
-            false => None,
-        };
+    let checker = super::query::independent_checker(&scene, a.check)?;
     let server = Server {
         checker,
         planners,

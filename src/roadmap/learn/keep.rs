@@ -99,11 +99,7 @@ fn keep_tree(work: &mut Work, tree: &Rooted) {
         let anchor = chain[0];
         let from = match node_of[anchor as usize] {
             Some(n) => n,
-            None => {
-                let n = keep_given(work, tree, anchor, &mut node_of);
-                node_of[anchor as usize] = Some(n);
-                n
-            }
+            None => keep_given(work, tree, anchor, &mut node_of),
         };
         let mut corners = Vec::new();
         for w in chain.windows(2) {
@@ -122,7 +118,7 @@ fn keep_tree(work: &mut Work, tree: &Rooted) {
 }
 
 /// The roadmap node of the tree's given node `i` (or its end), joined to the end along its
-/// branch, every corner a node.
+/// branch, every corner a node; `node_of` learns every node of the branch.
 fn keep_given(work: &mut Work, tree: &Rooted, i: u32, node_of: &mut [Option<u32>]) -> u32 {
     let mut branch = vec![i];
     let mut at = i;
@@ -161,14 +157,13 @@ fn keep_segment_from(work: &mut Work, mut from: u32, a: &[f64], z: &[f64]) -> u3
 mod tests {
     use crate::bench::discs::DiscProblem;
     use crate::local::{LocalSpec, ViaPointOptions};
-    use crate::roadmap::{Budget, LearnParams, Learner};
+    use crate::roadmap::{Budget, LearnParams, Learner, Roadmap};
 
-    #[test]
-    fn a_kept_path_joins_its_corners_with_single_group_edges() {
+    /// A 30-node roadmap of a disc problem whose local method moves one axis at a time (so
+    /// that a diagonal step is two edges, and a tree's stair two pieces), with that method.
+    fn split_axes_roadmap() -> (DiscProblem, Box<dyn crate::local::LocalMethod>, Roadmap) {
         let space = DiscProblem::space();
         let problem = crate::bench::discs::problem(3, 0, 0.05);
-        let oracle = problem.oracle();
-        // one group per axis, so that a diagonal step of the path is two edges
         let LocalSpec::ViaPoint(options) = LocalSpec::roadmap_default() else {
             unreachable!("the roadmap default is the via-point planner")
         };
@@ -177,11 +172,16 @@ mod tests {
             ..options
         })
         .build();
-        let learner = Learner::new(&space, &oracle, local.as_ref(), 0);
-        let base = learner
+        let base = Learner::new(&space, &problem.oracle(), local.as_ref(), 0)
             .learn(&LearnParams::default(), &Budget::nodes(30), 1, &mut |_| {})
             .unwrap()
             .roadmap;
+        (problem, local, base)
+    }
+
+    #[test]
+    fn a_kept_path_joins_its_corners_with_single_group_edges() {
+        let (_, _, base) = split_axes_roadmap();
         let (n, e) = (base.node_count(), base.edge_count());
         let first = base.node(0).to_vec();
         // three new corners, then an existing node
@@ -216,24 +216,11 @@ mod tests {
     fn kept_trees_bring_their_ends_joined_by_single_group_corners() {
         use crate::deadline::Deadline;
         use crate::roadmap::tree::{rrt_connect, TreeParams};
-        let space = DiscProblem::space();
-        let problem = crate::bench::discs::problem(3, 0, 0.05);
-        let oracle = problem.oracle();
+        let (problem, local, base) = split_axes_roadmap();
+        let (space, oracle) = (DiscProblem::space(), problem.oracle());
         // one group per axis: each stair is two pieces, so that edges have corners
-        let LocalSpec::ViaPoint(options) = LocalSpec::roadmap_default() else {
-            unreachable!("the roadmap default is the via-point planner")
-        };
-        let local = LocalSpec::ViaPoint(ViaPointOptions {
-            split_axes: true,
-            ..options
-        })
-        .build();
         let groups = local.groups(&space);
         assert_eq!(groups.len(), 2);
-        let base = Learner::new(&space, &oracle, local.as_ref(), 0)
-            .learn(&LearnParams::default(), &Budget::nodes(30), 1, &mut |_| {})
-            .unwrap()
-            .roadmap;
         let params = TreeParams {
             max_nodes: Some(400),
             ..TreeParams::default()
