@@ -819,6 +819,7 @@ pub fn run_workcell(
     let options = QueryOptions {
         time: Some(roadmap_time),
         trees: o.trees.clone().filter(|_| in_query),
+        return_trees: o.keep_trees,
         ..QueryOptions::default()
     };
     let arm = &check.arm().clone();

@@ -376,6 +376,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     defaults.time = time;
     defaults.grow = !a.no_grow;
     defaults.trees = a.trees.params(&scene.space);
+    defaults.return_trees = a.keep_trees;
     if let Some(n) = a.direct_calls {
         defaults.direct_calls = n;
     }

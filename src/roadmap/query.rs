@@ -139,6 +139,10 @@ pub struct QueryOptions {
     /// benchmarks of deep local methods can bound the query phase reproducibly
     /// (`viaroad bench local --query-calls`).
     pub max_calls: Option<u64>,
+    /// Hand the trees [`Self::trees`] grew to the answer ([`QueryResult::trees`]) for a caller
+    /// that keeps them ([`Roadmap::with_kept`]). Off by default: trees can hold 10⁵ nodes, and
+    /// a batch holds every answer until it ends.
+    pub return_trees: bool,
 }
 
 impl QueryOptions {
@@ -162,6 +166,7 @@ impl Default for QueryOptions {
             grow: true,
             trees: None,
             max_calls: None,
+            return_trees: false,
         }
     }
 }
@@ -281,7 +286,8 @@ pub struct QueryResult {
     /// it did neither).
     pub grown_nodes: usize,
     /// The trees grown out of the roadmap ([`QueryOptions::trees`]) as they ended, for a
-    /// workcell to keep with the answer ([`Roadmap::with_kept`]); `None` where none grew.
+    /// workcell to keep with the answer ([`Roadmap::with_kept`]); `None` where none grew or
+    /// [`QueryOptions::return_trees`] is off.
     #[serde(skip)]
     pub trees: Option<Box<[Rooted; 2]>>,
     /// Of the query's time, seconds spent shortening the path found (the rest found it):
@@ -496,10 +502,16 @@ impl<'a> QueryPlanner<'a> {
     /// search per landmark), so that a planner kept for many queries (a workcell's server, a
     /// roadmap just grown by a kept answer) does not charge it to the first query.
     pub fn prepare(&self) {
-        if self.options.landmarks > 0 && self.roadmap.node_count() > 0 {
+        self.landmarks();
+    }
+
+    /// The landmarks of A*'s heuristic ([`QueryOptions::landmarks`]), computed at the first
+    /// call; `None` where there are none to compute.
+    fn landmarks(&self) -> Option<&Landmarks> {
+        (self.options.landmarks > 0 && self.roadmap.node_count() > 0).then(|| {
             self.landmarks
-                .get_or_init(|| Landmarks::new(self.roadmap, self.options.landmarks));
-        }
+                .get_or_init(|| Landmarks::new(self.roadmap, self.options.landmarks))
+        })
     }
 
     /// The options in use.
@@ -775,7 +787,7 @@ impl<'a> QueryPlanner<'a> {
         )?;
         result.counts += found.counts;
         result.grown_nodes = found.nodes[0] + found.nodes[1];
-        result.trees = found.trees;
+        result.trees = found.trees.filter(|_| self.options.return_trees);
         let Some(mut raw) = found.path else {
             result.outcome = match found.stop {
                 TreeStop::NodeBudget => QueryOutcome::Disconnected,
@@ -1020,10 +1032,7 @@ impl<'a> QueryPlanner<'a> {
         // each node's estimate once: A* asks again at every improvement of a node's cost, and
         // an SE(3) distance costs a rotation angle
         let mut estimate = vec![f64::NAN; self.roadmap.node_count()];
-        let landmarks = (self.options.landmarks > 0).then(|| {
-            self.landmarks
-                .get_or_init(|| Landmarks::new(self.roadmap, self.options.landmarks))
-        });
+        let landmarks = self.landmarks();
         petgraph::algo::astar(
             self.roadmap.graph(),
             NodeIndex::new(s as usize),

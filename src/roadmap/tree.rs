@@ -365,8 +365,6 @@ impl Rooted {
 struct Tree {
     base: Rooted,
     nn: NearestNeighbours,
-    /// Nodes given by the [`Rooted`] beyond its end: not grown, so not counted as grown.
-    given: usize,
 }
 
 impl Tree {
@@ -377,16 +375,12 @@ impl Tree {
         }
         let mut base = root.clone();
         base.given = root.node_count();
-        Tree {
-            base,
-            nn,
-            given: root.node_count() - 1,
-        }
+        Tree { base, nn }
     }
 
     /// Nodes grown (the end counts as one, given nodes do not).
     fn grown(&self) -> usize {
-        self.base.node_count() - self.given
+        self.base.node_count() + 1 - self.base.given
     }
 
     fn node(&self, id: u32) -> &Config {
