@@ -138,6 +138,11 @@ pub struct Raced<A, B> {
 /// `second` on the rayon pool, the first of them to answer (`first_won`, `second_won`)
 /// stopping the other through their shared deadline. The caller picks the answer.
 ///
+/// `first` gets two deadlines: the one its search stops at, and the one by which it finishes
+/// (shortens) a path it found. In the head start they are `head_start` and `deadline`: the head
+/// start bounds the search, and a path found as it ends is still shortened rather than handed
+/// back raw. In the race both are the race's.
+///
 /// Without a time limit nothing is stopped: both sides run to their own budgets, so that a
 /// caller who prefers the first side's answer gets the same answer on any thread count (as
 /// racing tree streams do, [`crate::roadmap::tree::rrt_connect`]).
@@ -147,14 +152,14 @@ pub struct Raced<A, B> {
 pub fn race<A: Send, B: Send>(
     deadline: &Deadline,
     head_start: Duration,
-    first: impl Fn(&Deadline) -> A + Sync,
+    first: impl Fn(&Deadline, &Deadline) -> A + Sync,
     first_won: impl Fn(&A) -> bool + Sync,
     second: impl FnOnce(&Deadline) -> B + Send,
     second_won: impl FnOnce(&B) -> bool + Send,
 ) -> Raced<A, B> {
     let mut alone = None;
     if !head_start.is_zero() {
-        let a = first(&deadline.within(Some(head_start)));
+        let a = first(&deadline.within(Some(head_start)), deadline);
         if first_won(&a) || deadline.expired() {
             return Raced {
                 first: a,
@@ -172,7 +177,7 @@ pub fn race<A: Send, B: Send>(
     };
     let (a, b) = rayon::join(
         || {
-            let a = first(&racing);
+            let a = first(&racing, &racing);
             if first_won(&a) {
                 won.store(true, Ordering::Relaxed);
             }
@@ -261,7 +266,7 @@ mod tests {
         let raced = race(
             &Deadline::none(),
             Duration::from_secs(3600),
-            |d| count(10, d),
+            |d, _| count(10, d),
             |a| a.1,
             |d| count(10, d),
             |b| b.1,
@@ -277,7 +282,7 @@ mod tests {
         let raced = race(
             &hour,
             Duration::ZERO,
-            |d| count(u64::MAX, d),
+            |d, _| count(u64::MAX, d),
             |a| a.1,
             |d| count(1000, d),
             |b| b.1,
@@ -289,7 +294,7 @@ mod tests {
         let raced = race(
             &hour,
             Duration::from_millis(1),
-            |d| count(u64::MAX, d),
+            |d, _| count(u64::MAX, d),
             |a| a.1,
             |d| count(1000, d),
             |b| b.1,
@@ -303,7 +308,7 @@ mod tests {
         let raced = race(
             &Deadline::none(),
             Duration::ZERO,
-            |d| count(2000, d),
+            |d, _| count(2000, d),
             |a| a.1,
             |d| count(10, d),
             |b| b.1,
@@ -312,5 +317,25 @@ mod tests {
             (raced.first, raced.second),
             ((2000, true), Some((10, true)))
         );
+    }
+
+    /// The head start ends the first side's search, not its finishing: a path found as the
+    /// head start ends is still finished (shortened) within the whole deadline.
+    #[test]
+    fn the_head_start_bounds_the_search_not_the_finishing() {
+        let hour = Deadline::after(Duration::from_secs(3600));
+        let raced = race(
+            &hour,
+            Duration::from_millis(1),
+            |search, finish| {
+                count(u64::MAX, search);
+                (search.expired(), finish.expired())
+            },
+            |_| true,
+            |d| count(10, d),
+            |b| b.1,
+        );
+        assert_eq!(raced.first, (true, false));
+        assert!(raced.second.is_none());
     }
 }

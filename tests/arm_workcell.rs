@@ -79,6 +79,10 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
             "answers are shortened"
         );
         assert!(r.found_ms.p50 <= r.query_ms.p50);
+        // every answer's length as found and as returned, never longer once shortened
+        assert_eq!((r.raw_length.n, r.length.n), (r.solved, r.solved));
+        assert!(r.length.min > 0.0 && r.length.p50 <= r.raw_length.p50 + 1e-9);
+        assert!(r.length.max <= r.raw_length.max + 1e-9, "{r:?}");
         assert_eq!(
             (r.kept, r.nodes_after),
             (0, r.nodes),

@@ -18,7 +18,7 @@
 //! an end the checker accepts ("valid, refused by the oracle").
 
 use crate::deadline::{race, Deadline};
-use crate::local::{path_length, shorten, Connection, LocalSpec};
+use crate::local::{path_length, shorten_known, Connection, KnownPieces, LocalSpec};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::rooted::RoadmapTrees;
 use crate::roadmap::tree::{rrt_connect, shortcut_passes, Rooted, TreeOutcome, TreeParams};
@@ -325,7 +325,8 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
     let groups = method.groups(&scene.space);
     let mut path: Option<(Vec<Config>, Vec<Config>)> = None;
     // the via-point planner's answer and when it came (its stage time, racing or not)
-    let via_points = |d: &Deadline| {
+    // (the path it finds is shortened after the race, within the problem's deadline)
+    let via_points = |d: &Deadline, _: &Deadline| {
         let c = method.connect_within(&scene.space, oracle.as_ref(), &start, &goal, d);
         (c, began.elapsed().as_secs_f64())
     };
@@ -360,7 +361,7 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
             }
             (raced.first, raced.second)
         }
-        None => (via_points(&deadline), None),
+        None => (via_points(&deadline, &deadline), None),
     };
     let (connected, direct_s) = connected;
     r.direct_s = direct_s;
@@ -369,7 +370,19 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
             counts += c.counts;
             if c.is_connected() {
                 let shortening = Instant::now();
-                let short = shorten(&scene.space, oracle.as_ref(), &groups, &c.path, &mut counts);
+                // within the problem's time, as every stage (the shortest path over the pairs
+                // found free when it ends)
+                let mut known = KnownPieces::new();
+                known.certify_path(&scene.space, &groups, &c.path);
+                let short = shorten_known(
+                    &scene.space,
+                    oracle.as_ref(),
+                    &groups,
+                    &c.path,
+                    &mut known,
+                    &mut counts,
+                    &deadline,
+                );
                 r.shorten_s = shortening.elapsed().as_secs_f64();
                 match short {
                     Ok(s) => path = Some((c.path, s)),
@@ -723,6 +736,10 @@ pub struct WorkcellResult {
     pub shorten_ms: Vec<f64>,
     /// Each valid request's intersect calls (the query's and the trees'), in request order.
     pub calls: Vec<u64>,
+    /// Lengths of the answered paths as found (joint-space L2, radians).
+    pub raw_length: Stats,
+    /// Lengths of the answered paths as returned, shortened.
+    pub length: Stats,
     /// Answers fed back into the roadmap ([`Roadmap::with_path`]; 0 unless `keep_answers`).
     pub kept: usize,
     /// Nodes of the roadmap after the last request (more than `nodes` where answers were kept).
@@ -829,6 +846,7 @@ pub fn run_workcell(
     let validator = scene.oracle();
     let mut roadmap = roadmap;
     let mut times = Vec::new();
+    let (mut raw_lengths, mut lengths) = (Vec::new(), Vec::new());
     let mut next = 0;
     while next < problems.len() {
         // one planner until an answer is to be kept, then a new one over the grown roadmap
@@ -845,7 +863,11 @@ pub fn run_workcell(
             r.valid += 1;
             let t = Instant::now();
             let deadline = Deadline::none().within(Some(o.query_time));
-            let ask_roadmap = |d: &Deadline| planner.query_within(&s, &g, d).ok();
+            // the head start bounds the roadmap's search; a path it found is shortened within
+            // the request's time, not handed back raw when the head start ends
+            let ask_roadmap = |search: &Deadline, whole: &Deadline| {
+                planner.query_finding_within(&s, &g, search, whole).ok()
+            };
             let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
             let grow_trees = |tree: &TreeParams, d: &Deadline| {
                 if !o.trees_from_roadmap {
@@ -875,7 +897,7 @@ pub fn run_workcell(
                     );
                     (raced.first, raced.head_start.flatten(), raced.second)
                 }
-                _ => (ask_roadmap(&deadline), None, None),
+                _ => (ask_roadmap(&deadline, &deadline), None, None),
             };
             let mut calls: u64 = [&head_start, &answer]
                 .into_iter()
@@ -888,10 +910,11 @@ pub fn run_workcell(
                     .as_ref()
                     .is_some_and(|a| a.outcome == QueryOutcome::Trees),
             );
-            let (mut path, mut grown, mut shorten_s) = match answer.filter(|a| a.is_solved()) {
-                Some(a) => (Some(a.path), a.trees, a.shorten_s),
-                None => (None, None, 0.0),
-            };
+            let (mut path, mut raw, mut grown, mut shorten_s) =
+                match answer.filter(|a| a.is_solved()) {
+                    Some(a) => (Some(a.path), a.raw_path, a.trees, a.shorten_s),
+                    None => (None, Vec::new(), None, 0.0),
+                };
             let trees = raced.or_else(|| match (&path, &o.trees) {
                 (None, Some(tree)) if !in_query => Some(grow_trees(tree, &deadline)),
                 _ => None,
@@ -899,7 +922,10 @@ pub fn run_workcell(
             if let Some(Ok(found)) = trees {
                 calls += found.counts.intersect_calls();
                 if path.is_none() {
-                    path = found.path.map(|(_, short)| short);
+                    if let Some((found_raw, short)) = found.path {
+                        path = Some(short);
+                        raw = found_raw;
+                    }
                     r.by_trees += usize::from(path.is_some());
                     grown = found.trees;
                     shorten_s = found.shorten_s;
@@ -910,6 +936,8 @@ pub fn run_workcell(
             r.calls.push(calls);
             if let Some(path) = path {
                 r.solved += 1;
+                raw_lengths.push(path_length(&scene.space, &groups, &raw));
+                lengths.push(path_length(&scene.space, &groups, &path));
                 let certified = check
                     .check_path(&path, check_step(&check))
                     .is_ok_and(|rep| rep.valid);
@@ -939,6 +967,8 @@ pub fn run_workcell(
         .map(|(t, s)| t - s)
         .collect();
     r.found_ms = Stats::of(&found);
+    r.raw_length = Stats::of(&raw_lengths);
+    r.length = Stats::of(&lengths);
     r.latencies_ms = times;
     Ok(r)
 }

@@ -346,8 +346,8 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
         families.dedup();
         let mut md = String::from(
-            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms |\n\
-             |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms | raw length p50 | length p50 |\n\
+             |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
         );
         let mut all = Vec::new();
         for f in &families {
@@ -360,7 +360,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             let r = mbm::run_workcell(&robot, &ps, &workcell, &save)
                 .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
             let line = format!(
-                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
+                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
                 r.family,
                 r.nodes,
                 r.learn_s,
@@ -377,7 +377,9 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
                 r.query_ms.p95,
                 r.query_ms.max,
                 r.found_ms.p50,
-                r.found_ms.p95
+                r.found_ms.p95,
+                r.raw_length.p50,
+                r.length.p50
             );
             eprint!("{line}");
             md.push_str(&line);

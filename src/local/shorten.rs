@@ -50,7 +50,9 @@ pub fn shorten(
 /// [`shorten()`] with the pieces known so far (those of `path` among them, see
 /// [`KnownPieces::certify_path`]), kept up to date: a query shares them between the greedy
 /// pass and the visibility graph. Once `deadline` passes (checked before every check of a
-/// pair) `path` itself is returned: a query's time is a promise, and the path is valid.
+/// pair) it stops, a query's time being a promise, and returns the shortest path over the
+/// pairs it had found free: valid, and never longer than `path` (whose own pairs are among
+/// them), so the checks made before the deadline are not lost.
 pub fn shorten_known(
     space: &Space,
     oracle: &dyn CollisionOracle,
@@ -89,7 +91,17 @@ pub fn shorten_known(
             let k = w[0].min(w[1]) * m + w[0].max(w[1]);
             if state[k] == Pair::Unknown {
                 if deadline.expired() {
-                    return Ok(path.to_vec());
+                    // the best path certified so far: unchecked pairs count as blocked
+                    let mut free = vec![f64::INFINITY; m * m];
+                    for i in 0..m {
+                        for j in i + 1..m {
+                            if state[i * m + j] == Pair::Free {
+                                free[i * m + j] = cost[i * m + j];
+                                free[j * m + i] = cost[i * m + j];
+                            }
+                        }
+                    }
+                    return Ok(assemble(path, &astar(m, &free, &h), &corners));
                 }
                 let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
                 match check_direct_known(
@@ -116,23 +128,31 @@ pub fn shorten_known(
             }
         }
         if all_free {
-            let mut out = vec![path[0].clone()];
-            for w in order.windows(2) {
-                let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
-                match &corners[i * m + j] {
-                    // a direct path checked from i to j, walked here from j to i: the same
-                    // pieces backwards, so its corners reversed (dropping j itself), then i
-                    Some(c) if w[0] > w[1] => {
-                        out.extend(c[..c.len() - 1].iter().rev().cloned());
-                        out.push(path[i].clone());
-                    }
-                    Some(c) => out.extend(c.iter().cloned()),
-                    None => out.push(path[w[1]].clone()),
-                }
-            }
-            return Ok(out);
+            return Ok(assemble(path, &order, &corners));
         }
     }
+}
+
+/// The path through corners `order` of `path` (indices, from the first to the last), each
+/// pair joined by its free direct path: the corners recorded when it was checked (`corners`,
+/// indexed `i * m + j` with `i < j`), or the step itself where it is one of `path`'s own.
+fn assemble(path: &[Config], order: &[usize], corners: &[Option<Vec<Config>>]) -> Vec<Config> {
+    let m = path.len();
+    let mut out = vec![path[0].clone()];
+    for w in order.windows(2) {
+        let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
+        match &corners[i * m + j] {
+            // a direct path checked from i to j, walked here from j to i: the same
+            // pieces backwards, so its corners reversed (dropping j itself), then i
+            Some(c) if w[0] > w[1] => {
+                out.extend(c[..c.len() - 1].iter().rev().cloned());
+                out.push(path[i].clone());
+            }
+            Some(c) => out.extend(c.iter().cloned()),
+            None => out.push(path[w[1]].clone()),
+        }
+    }
+    out
 }
 
 /// A* on the complete graph over `m` corners (dense, `O(m)` per expansion), from corner 0 to

@@ -564,7 +564,22 @@ impl<'a> QueryPlanner<'a> {
         goal: &[f64],
         outer: &Deadline,
     ) -> Result<QueryResult, QueryError> {
-        let deadline = outer.within(self.options.time);
+        self.query_finding_within(start, goal, outer, outer)
+    }
+
+    /// [`Self::query_within`] whose search for a path ends at `finding`, a deadline within
+    /// `outer` (`outer.within(head_start)`), while the path found is shortened until `outer`:
+    /// a portfolio's head start ([`crate::deadline::race`]) bounds the search, and a path found
+    /// at its end is still an answer worth shortening, not one to hand back raw.
+    pub fn query_finding_within(
+        &self,
+        start: &[f64],
+        goal: &[f64],
+        finding: &Deadline,
+        outer: &Deadline,
+    ) -> Result<QueryResult, QueryError> {
+        let deadline = finding.within(self.options.time);
+        let shortening = outer.within(self.options.time);
         let mut counts = CallCounts::default();
         let start = self.check_endpoint(Endpoint::Start, start, &mut counts)?;
         let goal = self.check_endpoint(Endpoint::Goal, goal, &mut counts)?;
@@ -574,7 +589,7 @@ impl<'a> QueryPlanner<'a> {
         if self.options.try_direct {
             let (quick, retry) = self.quick_try(&start, &goal, &mut result, &deadline)?;
             if let Some(path) = result.take_direct(quick) {
-                return self.finish(result, path, &deadline);
+                return self.finish(result, path, &shortening);
             }
             retry_direct = retry;
         }
@@ -611,7 +626,7 @@ impl<'a> QueryPlanner<'a> {
         if meeting.is_none() && retry_direct {
             let c = self.attempt(local, (&start, &goal), &mut result, &attaching)?;
             if let Some(path) = result.take_direct(c) {
-                return self.finish(result, path, &deadline);
+                return self.finish(result, path, &shortening);
             }
         }
         // where the roadmap cannot join them, grow it around them for the rest of the time
@@ -620,20 +635,20 @@ impl<'a> QueryPlanner<'a> {
         if let (None, Some(tree)) = (meeting, &self.options.trees) {
             let bounded = timed || tree.max_nodes.is_some();
             if bounded && !deadline.expired() && !spent {
-                return self.trees(result, tree, &deadline);
+                return self.trees(result, tree, &deadline, &shortening);
             }
         }
         if meeting.is_none() && self.options.grow && timed && !deadline.expired() && !spent {
-            return self.grow(result, &deadline);
+            return self.grow(result, &deadline, &shortening);
         }
         if meeting.is_none() {
             match self.escalate(ends_q, &mut ends, &mut result, &deadline)? {
-                Escalated::Direct(path) => return self.finish(result, path, &deadline),
+                Escalated::Direct(path) => return self.finish(result, path, &shortening),
                 Escalated::Attached(m) => meeting = m,
             }
         }
         match meeting {
-            Some((si, gi)) => self.through_roadmap(result, &ends.0[si], &ends.1[gi], &deadline),
+            Some((si, gi)) => self.through_roadmap(result, &ends.0[si], &ends.1[gi], &shortening),
             None => {
                 result.outcome = unjoined(&deadline, self.calls_left(&result), &ends);
                 Ok(result)
@@ -673,13 +688,13 @@ impl<'a> QueryPlanner<'a> {
     }
 
     /// The answer through the roadmap from the start's attachment `s` to the goal's `g` (in
-    /// one component): A* between their nodes, then the path shortened.
+    /// one component): A* between their nodes, then the path shortened until `shortening`.
     fn through_roadmap(
         &self,
         mut result: QueryResult,
         s: &Attached,
         g: &Attached,
-        deadline: &Deadline,
+        shortening: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let Some(nodes) = self.astar(s.node, g.node) else {
             // attached to one component, so a path exists; kept as a typed outcome regardless
@@ -694,7 +709,7 @@ impl<'a> QueryPlanner<'a> {
         let mut raw = s.connection.path.clone();
         raw.extend(self.node_path(&nodes));
         raw.extend(g.connection.path.iter().skip(1).cloned());
-        self.finish(result, raw, deadline)
+        self.finish(result, raw, shortening)
     }
 
     /// The corners along roadmap nodes `nodes` (adjacent pairs joined by their cheapest edge),
@@ -709,11 +724,12 @@ impl<'a> QueryPlanner<'a> {
     }
 
     /// Grows a copy of the roadmap around the query's ends until they meet or `deadline`
-    /// passes ([`QueryOptions::grow`]), and answers through it.
+    /// passes ([`QueryOptions::grow`]), and answers through it, shortened until `shortening`.
     fn grow(
         &self,
         mut result: QueryResult,
         deadline: &Deadline,
+        shortening: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let header = self.roadmap.header();
         let learner = Learner::new(
@@ -766,16 +782,18 @@ impl<'a> QueryPlanner<'a> {
         result.roadmap_nodes = nodes.len();
         let mut raw = vec![result.start.clone()];
         raw.extend(inner.node_path(&nodes));
-        self.finish(result, raw, deadline)
+        self.finish(result, raw, shortening)
     }
 
     /// Grows two trees out of the roadmap from the query's ends until they meet or
-    /// `deadline` passes ([`QueryOptions::trees`]), and answers along them.
+    /// `deadline` passes ([`QueryOptions::trees`]), and answers along them, shortened until
+    /// `shortening`.
     fn trees(
         &self,
         mut result: QueryResult,
         params: &TreeParams,
         deadline: &Deadline,
+        shortening: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let seed = query_seed(self.roadmap.header().seed, &result);
         let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups).connect(
@@ -803,7 +821,7 @@ impl<'a> QueryPlanner<'a> {
         let mut known = KnownPieces::new();
         let mut fewer = raw.clone();
         if self.options.shorten {
-            let shortening = Instant::now();
+            let began = Instant::now();
             known.certify_path(self.space(), &self.groups, &raw);
             loop {
                 let next = drop_corners_known(
@@ -813,19 +831,19 @@ impl<'a> QueryPlanner<'a> {
                     &fewer,
                     &mut known,
                     &mut result.counts,
-                    deadline,
+                    shortening,
                 )?;
                 let better = next.len() < fewer.len();
                 fewer = next;
-                if !better || deadline.expired() {
+                if !better || shortening.expired() {
                     break;
                 }
             }
-            result.shorten_s += shortening.elapsed().as_secs_f64();
+            result.shorten_s += began.elapsed().as_secs_f64();
         }
         // the visibility graph costs up to m²/2 checks: not over what is still hundreds
         let exact = fewer.len() <= TREE_SHORTENING_FACTOR * self.options.exact_shortening_limit;
-        let mut answer = self.finish_with(result, fewer, deadline, exact, known)?;
+        let mut answer = self.finish_with(result, fewer, shortening, exact, known)?;
         answer.raw_length = path_length(self.space(), &self.groups, &raw);
         answer.raw_path = raw;
         Ok(answer)
@@ -1066,7 +1084,8 @@ impl<'a> QueryPlanner<'a> {
 
     /// Drops repeated corners, shortens, measures.
     /// Shortening stops when the query's time is up (before each check of a pair): what it
-    /// had shortened, or the raw path, is a valid answer.
+    /// had shortened (the greedy pass's prefix, the visibility graph's best over the pairs it
+    /// found free), or the raw path, is a valid answer.
     fn finish(
         &self,
         result: QueryResult,
