@@ -365,3 +365,38 @@ fn peer_paths_pass_at_ompl_resolution_and_one_fails_at_a_tenth() {
         }
     }
 }
+
+/// The convex-hull cull changes no verdict: at the peer's sampled configurations, and along
+/// the segments between consecutive ones (where links graze obstacles and each other), the
+/// checker finds exactly the collisions, surface or containment, that it finds testing every
+/// pair's shapes themselves ([`ArmChecker::without_hulls`]).
+#[test]
+fn the_hull_cull_changes_no_verdict() {
+    let v = verdicts();
+    let mut checkers: HashMap<String, (ArmChecker, ArmChecker)> = HashMap::new();
+    let (mut asked, mut colliding) = (0, 0);
+    for w in v.states.windows(2) {
+        let (culled, reference) = checkers.entry(w[0].scene.clone()).or_insert_with(|| {
+            let c = in_scene(&w[0].scene).2;
+            (c.clone(), c.without_hulls())
+        });
+        let steps = if w[0].scene == w[1].scene { 8 } else { 0 };
+        for k in 0..=steps {
+            let t = k as f64 / 8.0;
+            let q: Vec<f64> = w[0]
+                .q
+                .iter()
+                .zip(&w[1].q)
+                .map(|(a, b)| a + t * (b - a))
+                .collect();
+            let ours = culled.collisions(&q);
+            assert_eq!(ours, reference.collisions(&q), "{} {q:?}", w[0].scene);
+            asked += 1;
+            colliding += usize::from(!ours.is_empty());
+        }
+    }
+    assert!(
+        asked >= 300 && colliding >= 50 && colliding < asked,
+        "{colliding} of {asked}"
+    );
+}

@@ -3,9 +3,14 @@
 //! independent [`viaroad::robot::ArmChecker`] inside `run_problem`; this test holds it to that
 //! and to the stage times adding up.
 
+mod common;
+
+use common::cli::{stderr, temp_dir, viaroad};
 use std::path::Path;
 use std::time::Duration;
-use viaroad::bench::mbm::{find_problems, load_robot, run_problem, MbmOptions, Planner};
+use viaroad::bench::mbm::{
+    check_step, checker, find_problems, load_robot, problem_scene, run_problem, MbmOptions, Planner,
+};
 use viaroad::roadmap::tree::{Prefix, Stairs, TreeParams};
 
 #[test]
@@ -57,4 +62,67 @@ fn raced_or_in_turn_every_answer_is_certified() {
             }
         }
     }
+}
+
+/// `bench mbm --paths-out` (for the peer's `armcheck`): each solved problem's returned and
+/// found paths, read back from the files, run from the request's start to its goal one
+/// single-joint move per line and pass the independent checker; a file an earlier run left
+/// under the same name is replaced, and the workcell mode refuses the option.
+#[test]
+fn paths_out_writes_the_returned_and_the_found_path() {
+    let dir = temp_dir("arm_mbm", "paths-out");
+    let paths = dir.join("paths");
+    std::fs::create_dir_all(&paths).unwrap();
+    let stale = paths.join("table_pick_0001_raw.path");
+    std::fs::write(&stale, "an earlier run's file\n").unwrap();
+    let (out, paths_arg) = (dir.join("out"), paths.display().to_string());
+    let out = out.display().to_string();
+    let args = [
+        "bench",
+        "mbm",
+        "scenes/arms/mbm/table_pick",
+        "--robot",
+        "scenes/arms/panda",
+        "--time",
+        "20",
+        "--limit",
+        "1",
+        "--out",
+        &out,
+        "--paths-out",
+        &paths_arg,
+    ];
+    let o = viaroad(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let arms = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
+    let robot = load_robot(&arms.join("panda")).unwrap();
+    let problem = &find_problems(&arms.join("mbm/table_pick"), Some(1)).unwrap()[0];
+    let scene = problem_scene(&robot, problem).unwrap();
+    let check = checker(&scene).unwrap();
+    let query = &scene.queries[0];
+    for name in ["table_pick_0001.path", "table_pick_0001_raw.path"] {
+        let text = std::fs::read_to_string(paths.join(name)).unwrap();
+        let path: Vec<Vec<f64>> = text
+            .lines()
+            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+            .collect();
+        assert!(path.len() >= 2, "{name}: {text}");
+        assert_eq!(
+            (&path[0], &path[path.len() - 1]),
+            (&query.start, &query.goal),
+            "{name}"
+        );
+        for w in path.windows(2) {
+            let moved = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
+            assert_eq!(moved, 1, "{name}: one joint per step: {w:?}");
+        }
+        let report = check.check_path(&path, check_step(&check)).unwrap();
+        assert!(report.valid, "{name}: {report:?}");
+    }
+    // a usage error, as clap reports them (exit status 2)
+    let mut workcell = args.to_vec();
+    workcell.push("--workcell");
+    let o = viaroad(&workcell);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--paths-out"), "{}", stderr(&o));
 }

@@ -157,6 +157,12 @@ pub struct ProblemResult {
     pub check_samples: usize,
     /// Why the problem could not be run, if it could not.
     pub error: String,
+    /// The path as found (empty if unsolved), for `bench mbm --paths-out`; not in the JSON.
+    #[serde(skip)]
+    pub raw_path: Vec<Config>,
+    /// The path as returned, shortened (empty if unsolved).
+    #[serde(skip)]
+    pub path: Vec<Config>,
 }
 
 /// Lists the problems of `dir`: its own `sceneNNNN.yaml`/`requestNNNN.yaml` pairs, or those of
@@ -471,6 +477,8 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
             r.certified = Some(rep.valid);
             r.check_samples = rep.samples;
         }
+        r.raw_path = raw;
+        r.path = short;
     }
     r
 }

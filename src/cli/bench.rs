@@ -288,6 +288,13 @@ pub struct MbmArgs {
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
     #[arg(long)]
     pub out: PathBuf,
+    /// Write every solved problem's path into this directory, one configuration per line in
+    /// the group's joint order: `FAMILY_NNNN.path` as returned (shortened) and
+    /// `FAMILY_NNNN_raw.path` as found, so that another checker (`ompl_peer armcheck`) can
+    /// judge them. A problem's old files are removed before it runs: the files present
+    /// afterwards are this run's.
+    #[arg(long, value_name = "DIR", conflicts_with = "workcell")]
+    pub paths_out: Option<PathBuf>,
 }
 
 /// Where a workcell's trees grow from (`bench mbm --trees-from`).
@@ -393,9 +400,27 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         )?;
         return Ok(());
     }
+    if let Some(dir) = &a.paths_out {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
     let mut results = Vec::new();
     for p in &problems {
+        let files = a.paths_out.as_ref().map(|dir| {
+            let name = format!("{}_{}", p.family, p.id);
+            (
+                dir.join(format!("{name}.path")),
+                dir.join(format!("{name}_raw.path")),
+            )
+        });
+        if let Some((short, raw)) = &files {
+            remove_stale(short)?;
+            remove_stale(raw)?;
+        }
         let r = mbm::run_problem(&robot, p, &options);
+        if let (Some((short, raw)), true) = (&files, r.solved) {
+            viaroad::scene::ompl_cfg::write_states(short, &r.path)?;
+            viaroad::scene::ompl_cfg::write_states(raw, &r.raw_path)?;
+        }
         eprintln!(
             "{} {}: valid {} solved {} ({}) {:.3} s, {} calls, {} nodes, length {:.3} → {:.3}, certified {:?}{}",
             r.family,
@@ -422,6 +447,15 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         &a.out.join("report.json"),
         serde_json::to_string_pretty(&results)?.as_bytes(),
     )?;
+    Ok(())
+}
+
+/// Removes a regular file an earlier run left at `path` (nothing else: a directory or a device
+/// of that name is an error when the file is written).
+fn remove_stale(path: &std::path::Path) -> anyhow::Result<()> {
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+        std::fs::remove_file(path).with_context(|| format!("removing {}", path.display()))?;
+    }
     Ok(())
 }
 
