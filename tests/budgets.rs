@@ -356,6 +356,21 @@ fn connect_pair_grows_a_roadmap_from_start_and_goal() {
     roadmap_valid(roadmap, &discs(&scene)).unwrap();
 }
 
+/// The disc scene and 300-node roadmap of the shortening tests: its queries' raw paths have
+/// many corners and many pairs to check.
+fn shortening_scene() -> (viaroad::scene::Scene, viaroad::roadmap::Roadmap) {
+    let scene = disc_scene(4, 120, 0.05);
+    let roadmap = learn(
+        &scene,
+        &LocalSpec::default(),
+        &LearnParams::default(),
+        300,
+        1,
+    )
+    .roadmap;
+    (scene, roadmap)
+}
+
 /// Shortening honours the query's time (it did not: a workcell query of the cage ran its
 /// shortening to the end, 19 s on a 5 s budget): the greedy pass and the visibility graph stop
 /// within one check of the deadline, and what they return is still a valid path from start to
@@ -365,16 +380,8 @@ fn connect_pair_grows_a_roadmap_from_start_and_goal() {
 #[test]
 fn shortening_stops_within_one_check_of_its_deadline() {
     use viaroad::local::{drop_corners_known, path_length, shorten_known, KnownPieces};
-    let scene = disc_scene(4, 120, 0.05);
+    let (scene, roadmap) = shortening_scene();
     let d = discs(&scene);
-    let roadmap = learn(
-        &scene,
-        &LocalSpec::default(),
-        &LearnParams::default(),
-        300,
-        1,
-    )
-    .roadmap;
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
         .unwrap()
@@ -461,16 +468,8 @@ fn shortening_stops_within_one_check_of_its_deadline() {
 /// the workcell's race, cage answers found in the head start came back raw after 50 ms.
 #[test]
 fn a_search_deadline_does_not_cut_the_shortening() {
-    let scene = disc_scene(4, 120, 0.05);
+    let (scene, roadmap) = shortening_scene();
     let d = discs(&scene);
-    let roadmap = learn(
-        &scene,
-        &LocalSpec::default(),
-        &LearnParams::default(),
-        300,
-        1,
-    )
-    .roadmap;
     let oracle = scene.oracle();
     let plain = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
     let raw_only = QueryPlanner::new(&roadmap, oracle.as_ref())
