@@ -291,8 +291,8 @@ pub struct MbmArgs {
     /// Write every solved problem's path into this directory, one configuration per line in
     /// the group's joint order: `FAMILY_NNNN.path` as returned (shortened) and
     /// `FAMILY_NNNN_raw.path` as found, so that another checker (`ompl_peer armcheck`) can
-    /// judge them. A problem's old files are removed before it runs: the files present
-    /// afterwards are this run's.
+    /// judge them. A problem's old files are removed before it runs, so that the files of the
+    /// problems this run asked are its own (an unsolved problem leaves none).
     #[arg(long, value_name = "DIR", conflicts_with = "workcell")]
     pub paths_out: Option<PathBuf>,
 }
