@@ -234,6 +234,9 @@ pub(crate) struct Caches {
     /// An obstacle face in the robot's frame with its cylindrical box about the axis of a
     /// turn: a large face (a shelf board) is returned with many robot leaves.
     obst_faces: Memo<(Face, CylBox)>,
+    /// An obstacle face in the robot's frame at a static test's pose, with its box grown by
+    /// the distance tolerance: a large face (a wall) is returned with many robot leaves.
+    posed_faces: Memo<(Face, Aabb)>,
     /// Containment along a path.
     pieces: containment::Pieces,
 }
@@ -580,6 +583,8 @@ impl Polyhedra {
             }
             let placed = &mut caches.placed;
             placed.reset(robot.bvh.node_count());
+            let posed = &mut caches.posed_faces;
+            posed.reset(obst.faces.len());
             robot.bvh.visit_pairs(
                 &obst.bvh,
                 (),
@@ -590,12 +595,14 @@ impl Polyhedra {
                 },
                 |ri, oi, ()| {
                     for &o in oi {
-                        let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
-                        let obox = Aabb::of_points(of.v.iter()).grown(m);
+                        let (of, obox) = &*posed.get_or_insert_with(o as usize, || {
+                            let of = Face::new(obst.corners(o).map(|w| pose.body_point(&w)));
+                            let obox = Aabb::of_points(of.v.iter()).grown(m);
+                            (of, obox)
+                        });
                         for &r in ri {
                             let rf = robot.face(r);
-                            if Aabb::of_points(rf.v.iter()).overlaps(&obox) && test(rf, &of, counts)
-                            {
+                            if Aabb::of_points(rf.v.iter()).overlaps(obox) && test(rf, of, counts) {
                                 hit = true;
                                 return false;
                             }

@@ -82,8 +82,22 @@ pub(crate) fn edge_meets_face(p: &V3, q: &V3, f: &Face, tol: &Tolerance) -> bool
 /// edges of each against the other's face.
 pub(crate) fn faces_meet(a: &Face, b: &Face, tol: &Tolerance) -> bool {
     let edges = |f: &Face| [(f.v[0], f.v[1]), (f.v[1], f.v[2]), (f.v[2], f.v[0])];
-    edges(a).iter().any(|(p, q)| edge_meets_face(p, q, b, tol))
-        || edges(b).iter().any(|(p, q)| edge_meets_face(p, q, a, tol))
+    let meet = |a: &Face, b: &Face| {
+        !beyond_plane(a, b, tol) && edges(a).iter().any(|(p, q)| edge_meets_face(p, q, b, tol))
+    };
+    meet(a, b) || meet(b, a)
+}
+
+/// Whether every corner of `a` lies beyond the same side of `f`'s plane, past the tolerance
+/// [`edge_meets_face`] allows: then the predicate's plane test refuses every edge of `a`
+/// against `f` (the same expressions, evaluated the same way), and three dot products replace
+/// three edge tests. Not the same as "the triangles are apart": within the tolerances an edge
+/// of `f` may still meet `a` (nearly coplanar triangles), so `f`'s edges are still tested.
+fn beyond_plane(a: &Face, f: &Face, tol: &Tolerance) -> bool {
+    let th = tol.dist * f.n_norm;
+    let side = |p: &V3| f.n.dot(p) - f.offset;
+    let s = [side(&a.v[0]), side(&a.v[1]), side(&a.v[2])];
+    s.iter().all(|&x| x > th) || s.iter().all(|&x| x < -th)
 }
 
 #[cfg(test)]
@@ -190,5 +204,65 @@ mod tests {
             V3::new(3.0, 1.0, 0.5),
         ]);
         assert!(!faces_meet(&a, &c, &tol()));
+    }
+
+    /// The plane pre-test answers exactly as the six edge tests would: on random triangles, on
+    /// triangles whose corners lie within a few tolerances of the other's plane (where the
+    /// tolerances decide), and on triangles sharing a corner or lying in one plane.
+    #[test]
+    fn the_plane_test_changes_no_verdict() {
+        use rand::{Rng, SeedableRng};
+        let by_edges = |a: &Face, b: &Face, t: &Tolerance| {
+            let edges = |f: &Face| [(f.v[0], f.v[1]), (f.v[1], f.v[2]), (f.v[2], f.v[0])];
+            edges(a).iter().any(|(p, q)| edge_meets_face(p, q, b, t))
+                || edges(b).iter().any(|(p, q)| edge_meets_face(p, q, a, t))
+        };
+        let t = tol();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let point = |rng: &mut rand_chacha::ChaCha8Rng| {
+            V3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+        };
+        let (mut met, mut near, mut refused) = (0, 0, 0);
+        for k in 0..200_000 {
+            let a = Face::new([point(&mut rng), point(&mut rng), point(&mut rng)]);
+            let v = match k % 4 {
+                // anywhere
+                0 => [point(&mut rng), point(&mut rng), point(&mut rng)],
+                // corners within a few tolerances of a's plane, on either side or on it
+                1 | 2 => {
+                    let unit = a.n / a.n_norm;
+                    [0, 1, 2].map(|_| {
+                        let p = point(&mut rng);
+                        let off = unit.dot(&p) - a.offset / a.n_norm;
+                        let k: i32 = rng.random_range(-3..=3);
+                        p - unit * off + unit * (f64::from(k) * t.dist)
+                    })
+                }
+                // sharing a corner with a
+                _ => [
+                    a.v[rng.random_range(0..3)],
+                    point(&mut rng),
+                    point(&mut rng),
+                ],
+            };
+            let b = Face::new(v);
+            if b.n_norm < 1e-9 || a.n_norm < 1e-9 {
+                continue;
+            }
+            let want = by_edges(&a, &b, &t);
+            assert_eq!(faces_meet(&a, &b, &t), want, "{a:?} {b:?}");
+            met += usize::from(want);
+            near += usize::from(k % 4 != 0 && k % 4 != 3);
+            refused += usize::from(beyond_plane(&a, &b, &t) || beyond_plane(&b, &a, &t));
+        }
+        // the cases occur: triangles that meet, and some the pre-test refuses
+        assert!(
+            met > 10_000 && refused > 10_000 && near > 10_000,
+            "{met} {near} {refused}"
+        );
     }
 }
