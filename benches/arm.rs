@@ -24,6 +24,10 @@
 //! - `ARM_MOVES=table`: 64 moves (the batch's 16 first), each timed alone, the variants
 //!   interleaved (A/B in one run on a noisy machine); prints mean, median and p95 per variant,
 //!   for light moves (free), heavy ones (they collide somewhere along the move) and in all;
+//! - `ARM_MOVES=states`: the exact static test at 40 000 uniform configurations of box 1 (a
+//!   quarter of them collide), each asked once (the oracle remembers a link's answer per
+//!   pose), the mean time of those that collide and of those that do not; shortening's
+//!   corner tests are mostly of the first kind;
 //! - `ARM_MOVES=shared|unshared|free|first|rebuilt`: the 64 moves once with that variant and
 //!   nothing else, for `valgrind --tool=callgrind` (instruction counts repeat whatever the
 //!   load): `ARM_MOVES=shared valgrind --tool=callgrind target/release/deps/arm-*`.
@@ -157,6 +161,42 @@ fn table() {
     }
 }
 
+/// `ARM_MOVES=states`: the static test at uniform configurations of box 1, per verdict.
+fn states() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
+    let dir = root.join("panda");
+    let mut arm = Arm::load(
+        &dir.join("panda.urdf"),
+        Some(&dir.join("panda.srdf")),
+        &ArmOptions::default(),
+    )
+    .unwrap();
+    let scene = load_planning_scene(&root.join("mbm/box/scene0001.yaml")).unwrap();
+    scene.apply_to(&mut arm).unwrap();
+    let oracle = ArmOracle::new(&arm, &scene.objects).unwrap();
+    let g = arm.group.clone();
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let mut t = [(0.0, 0usize); 2];
+    let mut counts = CallCounts::default();
+    for _ in 0..40_000 {
+        let q: Vec<f64> = (0..g.dof())
+            .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+            .collect();
+        let start = std::time::Instant::now();
+        let hit = oracle.collides(&q, &mut counts).unwrap();
+        let e = start.elapsed().as_secs_f64();
+        t[usize::from(hit)].0 += e;
+        t[usize::from(hit)].1 += 1;
+    }
+    for (name, (s, n)) in ["free", "collide"].iter().zip(t) {
+        println!(
+            "{name:<8} {n:>6} configurations, {:.1} µs each",
+            s * 1e6 / n.max(1) as f64
+        );
+    }
+    println!("exact pairs {}", counts.pairs_tested);
+}
+
 /// `ARM_MOVES=<variant>`: the moves once, for callgrind.
 fn once(variant: &str) {
     let (_, oracle, _, moves) = setup(MOVES);
@@ -269,6 +309,7 @@ criterion_group!(benches, bench);
 fn main() {
     match std::env::var("ARM_MOVES").as_deref() {
         Ok("table") => table(),
+        Ok("states") => states(),
         Ok(v) => once(v),
         Err(_) => {
             benches();
