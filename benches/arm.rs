@@ -40,7 +40,7 @@ use std::path::Path;
 use std::time::Duration;
 use viaroad::oracle::CallCounts;
 use viaroad::robot::{Arm, ArmChecker, ArmOptions, ArmOracle};
-use viaroad::scene::moveit::load_planning_scene;
+use viaroad::scene::moveit::{load_planning_scene, PlanningScene};
 
 const BATCH: usize = 16;
 
@@ -49,8 +49,8 @@ const MOVES: usize = 64;
 
 type Move = (Vec<f64>, usize, f64);
 
-/// The Panda in table_pick 1: checker, oracle, and `n` collision-free starts with a move each.
-fn setup(n: usize) -> (ArmChecker, ArmOracle, f64, Vec<Move>) {
+/// The shipped Panda in the first scene of MotionBenchMaker family `family`, and the scene.
+fn panda_in(family: &str) -> (Arm, PlanningScene) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
     let dir = root.join("panda");
     let mut arm = Arm::load(
@@ -59,8 +59,14 @@ fn setup(n: usize) -> (ArmChecker, ArmOracle, f64, Vec<Move>) {
         &ArmOptions::default(),
     )
     .unwrap();
-    let scene = load_planning_scene(&root.join("mbm/table_pick/scene0001.yaml")).unwrap();
+    let scene = load_planning_scene(&root.join(format!("mbm/{family}/scene0001.yaml"))).unwrap();
     scene.apply_to(&mut arm).unwrap();
+    (arm, scene)
+}
+
+/// The Panda in table_pick 1: checker, oracle, and `n` collision-free starts with a move each.
+fn setup(n: usize) -> (ArmChecker, ArmOracle, f64, Vec<Move>) {
+    let (arm, scene) = panda_in("table_pick");
     let checker = ArmChecker::new(&arm, &scene.objects).unwrap();
     let oracle = ArmOracle::new(&arm, &scene.objects).unwrap();
     let g = arm.group.clone();
@@ -163,16 +169,7 @@ fn table() {
 
 /// `ARM_MOVES=states`: the static test at uniform configurations of box 1, per verdict.
 fn states() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
-    let dir = root.join("panda");
-    let mut arm = Arm::load(
-        &dir.join("panda.urdf"),
-        Some(&dir.join("panda.srdf")),
-        &ArmOptions::default(),
-    )
-    .unwrap();
-    let scene = load_planning_scene(&root.join("mbm/box/scene0001.yaml")).unwrap();
-    scene.apply_to(&mut arm).unwrap();
+    let (arm, scene) = panda_in("box");
     let oracle = ArmOracle::new(&arm, &scene.objects).unwrap();
     let g = arm.group.clone();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
