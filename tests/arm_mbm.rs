@@ -1,6 +1,7 @@
 //! `bench mbm`'s per-problem pipeline (issue 10 part 5): the via-point planner and then the
-//! trees, or both at once (`--race`). Whichever answers, the path comes back re-checked by the
-//! independent [`viaroad::robot::ArmChecker`] inside `run_problem`; this test holds it to that
+//! trees, both at once (`--race`), or the trees first (`--trees-first`, the default).
+//! Whichever answers, the path comes back re-checked by the independent
+//! [`viaroad::robot::ArmChecker`] inside `run_problem`; this test holds it to that
 //! and to the stage times adding up.
 
 mod common;
@@ -21,7 +22,13 @@ fn raced_or_in_turn_every_answer_is_certified() {
     let mut problems = find_problems(&arms.join("mbm/box"), Some(1)).unwrap();
     problems.extend(find_problems(&arms.join("mbm/table_pick"), Some(1)).unwrap());
     assert_eq!(problems.len(), 2);
-    for race in [None, Some(Duration::ZERO)] {
+    // in turn with the via-point planner first, racing, and in turn with the trees first
+    let modes = [
+        (None, None),
+        (Some(Duration::ZERO), None),
+        (None, Some(0.2)),
+    ];
+    for (race, trees_first) in modes {
         let options = MbmOptions {
             // generous: the node budget, not the clock, ends the trees on a slow machine
             time: Duration::from_secs(30),
@@ -37,10 +44,14 @@ fn raced_or_in_turn_every_answer_is_certified() {
                 ..TreeParams::default()
             },
             race,
+            trees_first,
         };
         for p in &problems {
             let r = run_problem(&robot, p, &options);
-            let name = format!("{} {} (race {race:?})", p.family, p.id);
+            let name = format!(
+                "{} {} (race {race:?}, trees first {trees_first:?})",
+                p.family, p.id
+            );
             assert!(r.valid && r.oracle_valid, "{name}: {r:?}");
             assert!(r.solved, "{name}: not solved: {r:?}");
             assert_eq!(r.certified, Some(true), "{name}: {r:?}");
@@ -62,6 +73,38 @@ fn raced_or_in_turn_every_answer_is_certified() {
             }
         }
     }
+}
+
+/// With the trees first, a problem the trees leave unsolved in their share goes to the
+/// via-point search: table_pick 1's direct path is blocked, trees cut at one node cannot solve
+/// it, and the via-point planner then does (36 calls on 2026-12-05), after the trees ran.
+#[test]
+fn trees_first_hand_over_to_the_via_point_search() {
+    let arms = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms");
+    let robot = load_robot(&arms.join("panda")).unwrap();
+    let p = &find_problems(&arms.join("mbm/table_pick"), Some(1)).unwrap()[0];
+    let options = MbmOptions {
+        time: Duration::from_secs(30),
+        direct_calls: 300,
+        seed: 1,
+        limit: None,
+        planner: Planner::Tree,
+        tree: TreeParams {
+            max_nodes: Some(1),
+            ..TreeParams::default()
+        },
+        race: None,
+        trees_first: Some(0.2),
+    };
+    let r = run_problem(&robot, p, &options);
+    assert!(r.solved && r.stage == "direct", "{r:?}");
+    assert_eq!(r.certified, Some(true), "{r:?}");
+    // the trees ran first and grew their one node; the search's calls come on top of theirs
+    assert!(r.grow_s > 0.0 && r.nodes >= 1, "{r:?}");
+    assert!(
+        r.direct_s + r.grow_s + r.shorten_s <= r.time_s + 1e-6,
+        "{r:?}"
+    );
 }
 
 /// `bench mbm --paths-out` (for the peer's `armcheck`): each solved problem's returned and
@@ -125,4 +168,13 @@ fn paths_out_writes_the_returned_and_the_found_path() {
     let o = viaroad(&workcell);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--paths-out"), "{}", stderr(&o));
+    // a share outside [0, 1] (or NaN) is refused in one line, before any problem runs
+    for share in ["1.5", "NaN"] {
+        let mut bad = args.to_vec();
+        bad.extend(["--trees-first", share]);
+        let o = viaroad(&bad);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+        assert!(stderr(&o).contains("--trees-first"), "{}", stderr(&o));
+        assert_eq!(stderr(&o).trim().lines().count(), 1, "{}", stderr(&o));
+    }
 }

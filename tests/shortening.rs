@@ -173,3 +173,80 @@ fn a_corner_in_collision_refuses_the_pair_before_any_sweep() {
     }
     assert!(refused_by_corner > 20, "{refused_by_corner}");
 }
+
+/// The trees' greedy shortcut passes keep what each pass learnt ([`KnownPieces`]): the same
+/// path as passes asking every pair afresh (the reference below, written out here), in fewer
+/// calls, every piece free for the independent segment test.
+#[test]
+fn shortcut_passes_ask_each_pair_once() {
+    use viaroad::deadline::Deadline;
+    use viaroad::roadmap::tree::shortcut_passes;
+    let scene = disc_scene(9, 60, 0.07);
+    let d = discs(&scene);
+    let oracle = scene.oracle();
+    let groups: Vec<Group> = scene.space.groups(true);
+    let window = 8;
+    let (mut plain_calls, mut known_calls) = (0, 0);
+    for seed in 0..12 {
+        let path = staircase(&scene, seed, 60);
+        // the reference: passes until one drops no corner, each pair asked by `check_direct`
+        let plain = &mut CallCounts::default();
+        let mut want = path.clone();
+        loop {
+            let mut out = vec![want[0].clone()];
+            let mut i = 0;
+            while i + 1 < want.len() {
+                let far = (i + 1 + window).min(want.len());
+                let jump = ((i + 2)..far).rev().find_map(|j| {
+                    check_direct(
+                        &scene.space,
+                        oracle.as_ref(),
+                        &groups,
+                        &want[i],
+                        &want[j],
+                        plain,
+                    )
+                    .unwrap()
+                    .map(|c| (j, c))
+                });
+                match jump {
+                    Some((j, c)) => {
+                        out.extend(c);
+                        i = j;
+                    }
+                    None => {
+                        out.push(want[i + 1].clone());
+                        i += 1;
+                    }
+                }
+            }
+            let better = out.len() < want.len();
+            want = out;
+            if !better {
+                break;
+            }
+        }
+        let c = &mut CallCounts::default();
+        let (got, error) = shortcut_passes(
+            &scene.space,
+            oracle.as_ref(),
+            &groups,
+            &path,
+            window,
+            c,
+            &Deadline::none(),
+        );
+        assert!(error.is_none(), "{error:?}");
+        assert_eq!(got, want, "seed {seed}");
+        assert!(one_axis_at_a_time(&got), "seed {seed}");
+        for w in got.windows(2) {
+            assert!(segment_free(&w[0], &w[1], &d), "seed {seed}: {w:?}");
+        }
+        plain_calls += plain.intersect_calls();
+        known_calls += c.intersect_calls();
+    }
+    assert!(
+        known_calls < plain_calls,
+        "{known_calls} calls with the pieces known, {plain_calls} without"
+    );
+}

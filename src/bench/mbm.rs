@@ -11,7 +11,9 @@
 //! [`MbmOptions::direct_calls`] oracle calls), then, if it did not connect, by two trees from
 //! start and goal ([`Planner::Tree`], as `viaroad solve --tree`) or a roadmap grown from both
 //! until they meet ([`Planner::Roadmap`], as `solve --roadmap`, OMPL PRM's `solve`), until the
-//! time is up; with [`MbmOptions::race`] the via-point planner and the trees run at once. The
+//! time is up; with [`MbmOptions::race`] the via-point planner and the trees run at once; with
+//! [`MbmOptions::trees_first`] (`bench mbm`'s default) the direct path, then the trees for a
+//! share of the time, then the via-point search, then the trees again. The
 //! returned path is shortened and then re-checked by the independent
 //! [`ArmChecker`] at 1/10 of OMPL's default resolution. "Valid" is the checker's verdict on the
 //! start and goal (exact shapes); the exact oracle uses circumscribed shapes, so it may refuse
@@ -85,6 +87,13 @@ pub struct MbmOptions {
     /// sweep whole joint ranges, then no longer delays the trees by its failures. The value
     /// is the via-point planner's head start alone ([`race`]; zero: none).
     pub race: Option<Duration>,
+    /// With [`Planner::Tree`], not racing, and a via-point budget: the direct path alone, then
+    /// the trees alone for this share of [`Self::time`], then the via-point planner, then the
+    /// trees afresh (another random stream) for what is left. The trees answer most problems
+    /// in a few tens of milliseconds and the via-point search's calls sweep whole joint ranges
+    /// (≈ 1–3 ms each), so it waits for the problems the trees do not solve soon (a goal deep
+    /// in a narrow shelf); `None`: the via-point planner first, the trees after it.
+    pub trees_first: Option<f64>,
 }
 
 /// The stage after the via-point planner alone.
@@ -339,20 +348,26 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
     let connects = |(c, _): &(Result<Connection, OracleError>, f64)| {
         c.as_ref().is_ok_and(|c| c.is_connected())
     };
-    let trees = |d: &Deadline| {
-        tree_stage(
+    // the trees searching until `search`, a path they found shortened until `whole`
+    let trees_seeded = |search: &Deadline, whole: &Deadline, seed: u64| {
+        tree_stage_within(
             &scene,
             oracle.as_ref(),
             &groups,
             &start,
             &goal,
             &o.tree,
-            o.seed,
-            d,
+            seed,
+            search,
+            whole,
         )
     };
-    let (connected, raced) = match o.race.filter(|_| o.planner == Planner::Tree) {
-        Some(head_start) => {
+    let trees = |d: &Deadline| trees_seeded(d, d, o.seed);
+    let trees_first = o
+        .trees_first
+        .filter(|_| o.planner == Planner::Tree && o.direct_calls > 0);
+    let (connected, raced) = match (o.race.filter(|_| o.planner == Planner::Tree), trees_first) {
+        (Some(head_start), _) => {
             let raced = race(
                 &deadline,
                 head_start,
@@ -367,7 +382,41 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
             }
             (raced.first, raced.second)
         }
-        None => (via_points(&deadline, &deadline), None),
+        (None, Some(share)) => {
+            // the direct path alone, then the trees for their share of the time, then the
+            // via-point search, then the trees afresh (another random stream) for the rest
+            let direct_path = LocalSpec::default().budgeted(0).unwrap_or_default().build();
+            let path =
+                direct_path.connect_within(&scene.space, oracle.as_ref(), &start, &goal, &deadline);
+            let path_s = began.elapsed().as_secs_f64();
+            let blocked = matches!(&path, Ok(c) if !c.is_connected());
+            if !blocked || deadline.expired() {
+                ((path, path_s), None)
+            } else {
+                let slice = deadline.within(Some(o.time.mul_f64(share)));
+                let first = trees_seeded(&slice, &deadline, o.seed);
+                if trees_found(&first) || first.is_err() || deadline.expired() {
+                    ((path, path_s), Some(first))
+                } else {
+                    if let Ok(c) = &path {
+                        counts += c.counts;
+                    }
+                    let searching = Instant::now();
+                    let (searched, _) = via_points(&deadline, &deadline);
+                    let direct_s = path_s + searching.elapsed().as_secs_f64();
+                    let grown =
+                        if matches!(&searched, Ok(c) if c.is_connected()) || deadline.expired() {
+                            first
+                        } else {
+                            let seed = crate::roadmap::tree::stream_seed(o.seed, 1);
+                            let again = trees_seeded(&deadline, &deadline, seed);
+                            first.and_then(|f| again.map(|a| a.after(f)))
+                        };
+                    ((searched, direct_s), Some(grown))
+                }
+            }
+        }
+        (None, None) => (via_points(&deadline, &deadline), None),
     };
     let (connected, direct_s) = connected;
     r.direct_s = direct_s;
@@ -501,6 +550,17 @@ pub struct TreeStage {
     pub trees: Option<Box<[Rooted; 2]>>,
 }
 
+impl TreeStage {
+    /// This stage after an `earlier` one that found nothing: the work of both (nodes, calls,
+    /// growing time), this one's trees and path.
+    pub fn after(mut self, earlier: TreeStage) -> TreeStage {
+        self.nodes += earlier.nodes;
+        self.counts += earlier.counts;
+        self.grow_s += earlier.grow_s;
+        self
+    }
+}
+
 /// Whether the trees of a [`tree_stage`] found a path (a side of a [`race`] that answered).
 fn trees_found(stage: &Result<TreeStage, OracleError>) -> bool {
     stage.as_ref().is_ok_and(|t| t.path.is_some())
@@ -521,6 +581,25 @@ pub fn tree_stage(
     seed: u64,
     deadline: &Deadline,
 ) -> Result<TreeStage, OracleError> {
+    tree_stage_within(
+        scene, oracle, groups, start, goal, tree, seed, deadline, deadline,
+    )
+}
+
+/// [`tree_stage`] growing until `search` and shortening a path found until `whole` (a slice
+/// of a problem's time bounds the search, not the finishing of what it found).
+#[allow(clippy::too_many_arguments)]
+fn tree_stage_within(
+    scene: &Scene,
+    oracle: &dyn CollisionOracle,
+    groups: &[crate::space::Group],
+    start: &Config,
+    goal: &Config,
+    tree: &TreeParams,
+    seed: u64,
+    search: &Deadline,
+    whole: &Deadline,
+) -> Result<TreeStage, OracleError> {
     let growing = Instant::now();
     let found = rrt_connect(
         &scene.space,
@@ -530,9 +609,9 @@ pub fn tree_stage(
         goal,
         tree,
         seed,
-        deadline,
+        search,
     )?;
-    Ok(shortened(scene, oracle, groups, found, growing, deadline))
+    Ok(shortened(scene, oracle, groups, found, growing, whole))
 }
 
 /// The trees' outcome `found` (grown since `growing`) as a [`TreeStage`], its path shortened

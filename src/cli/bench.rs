@@ -191,12 +191,14 @@ pub struct MbmArgs {
     /// Planning seconds per problem.
     #[arg(long, default_value_t = 10.0)]
     pub time: f64,
-    /// Oracle calls the via-point planner alone may spend before the trees (or a roadmap)
-    /// take over (racing, beside them). Its calls sweep whole joint ranges (≈ 3 ms each on the
-    /// Panda problems against ≈ 50 µs for a tree's stair), so a smaller budget answers sooner
-    /// but loses what only the via-point search solves: over the 700 Panda problems 60 calls
-    /// solve 668 at p50 236 ms, 300 calls 676 at p50 373 ms, and `--race` with 300 calls 677 at
-    /// p50 117 ms (2026-12-04, `benches/results/2026-12-04-direct-budget/`). 0: the direct path only.
+    /// Oracle calls the via-point planner alone may spend (after the trees' first share,
+    /// `--trees-first`; with `--trees-first 0` before the trees, or a roadmap, take over;
+    /// racing, beside them). Its calls sweep whole joint ranges (≈ 1–3 ms each on the Panda
+    /// problems against ≈ 50 µs for a tree's stair), so it is kept for what the trees do not
+    /// solve soon: over the 700 Panda problems, with it first, 60 calls solved 668 at p50 236 ms
+    /// and 300 calls 676 at p50 373 ms (2026-12-04, `benches/results/2026-12-04-direct-budget/`);
+    /// with the trees first, 700 at p50 39 ms (2026-12-05,
+    /// `benches/results/2026-12-05-trees-first/`). 0: the direct path only, then the trees.
     #[arg(long, default_value_t = 300)]
     pub direct_calls: u64,
     /// At most this many problems per family.
@@ -255,6 +257,12 @@ pub struct MbmArgs {
     /// it has not answered (`--race 50`).
     #[arg(long, value_name = "MS", num_args = 0..=1, default_missing_value = "0")]
     pub race: Option<f64>,
+    /// `--planner tree`, not racing: the direct path, then the trees alone for this share of
+    /// `--time`, then the via-point planner (`--direct-calls`), then the trees afresh for the
+    /// rest. `0`: the via-point planner first, the trees after it (the order before
+    /// 2026-12-05).
+    #[arg(long, value_name = "SHARE", default_value_t = 0.2)]
+    pub trees_first: f64,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
@@ -319,9 +327,16 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         }
         ms => ms.map(|ms| std::time::Duration::from_secs_f64(ms / 1000.0)),
     };
+    if !(0.0..=1.0).contains(&a.trees_first) {
+        anyhow::bail!(
+            "--trees-first takes a share from 0 to 1, got {}",
+            a.trees_first
+        );
+    }
     let options = mbm::MbmOptions {
         time,
         direct_calls: a.direct_calls,
+        trees_first: (a.trees_first > 0.0).then_some(a.trees_first),
         seed: a.seed,
         limit: a.limit,
         planner: a.planner,

@@ -24,6 +24,7 @@
 //! node budget and no deadline the answer is the same on every machine.
 
 use crate::deadline::Deadline;
+use crate::local::{check_direct_known, KnownPieces};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::roadmap::bounce::SECTION_MARGIN;
 use crate::roadmap::centre::{centre_round, Across};
@@ -830,7 +831,7 @@ pub fn rrt_connect_rooted(
 
 /// The random stream of portfolio stream `k` (stream 0: `seed` itself, so one stream is the
 /// run without streams).
-fn stream_seed(seed: u64, k: usize) -> u64 {
+pub(crate) fn stream_seed(seed: u64, k: usize) -> u64 {
     if k == 0 {
         return seed;
     }
@@ -1015,6 +1016,27 @@ pub fn shortcut(
     counts: &mut CallCounts,
     deadline: &Deadline,
 ) -> Result<Vec<Config>, OracleError> {
+    let mut known = KnownPieces::new();
+    known.certify_path(space, groups, path);
+    shortcut_known(
+        space, oracle, groups, path, window, &mut known, counts, deadline,
+    )
+}
+
+/// [`shortcut`] with the pieces and corners known so far ([`KnownPieces`]: `path`'s own pieces
+/// certified by the caller): the same answer, and a pair's piece or corner asked before, in this
+/// pass or an earlier one, costs no call.
+#[allow(clippy::too_many_arguments)]
+pub fn shortcut_known(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    window: usize,
+    known: &mut KnownPieces,
+    counts: &mut CallCounts,
+    deadline: &Deadline,
+) -> Result<Vec<Config>, OracleError> {
     if path.len() <= 2 {
         return Ok(path.to_vec());
     }
@@ -1027,9 +1049,15 @@ pub fn shortcut(
                 if deadline.expired() {
                     break;
                 }
-                if let Some(c) =
-                    crate::local::check_direct(space, oracle, groups, &path[i], &path[j], counts)?
-                {
+                if let Some(c) = check_direct_known(
+                    space,
+                    oracle,
+                    groups,
+                    &path[i],
+                    &path[j],
+                    Some(&mut *known),
+                    counts,
+                )? {
                     jumped = Some((j, c));
                     break;
                 }
@@ -1062,8 +1090,13 @@ pub fn shortcut_passes(
     deadline: &Deadline,
 ) -> (Vec<Config>, Option<OracleError>) {
     let mut short = path.to_vec();
+    // one record for all passes: a pass asks again most pairs the one before found blocked
+    let mut known = KnownPieces::new();
+    known.certify_path(space, groups, path);
     loop {
-        match shortcut(space, oracle, groups, &short, window, counts, deadline) {
+        match shortcut_known(
+            space, oracle, groups, &short, window, &mut known, counts, deadline,
+        ) {
             Ok(p) => {
                 let better = p.len() < short.len();
                 short = p;
