@@ -319,3 +319,49 @@ fn kept_answers_are_the_oracles_answers() {
     assert!(hits >= 9, "{hits}");
     assert!(static_hits >= 3, "{static_hits}");
 }
+
+/// A path that moves the Panda's 7 joints one at a time turns 7 corners per diagonal step:
+/// the greedy pass before the visibility graph starts above 112 corners for it (32 per two
+/// groups, `QueryOptions::exact_shortening_limit`), so the answers with up to 112 corners are
+/// the exact shortening's, and some of those have more than 32.
+#[test]
+fn arm_paths_of_up_to_112_corners_are_shortened_exactly() {
+    use viaroad::roadmap::QueryOptions;
+    let scene = Scene::load(&arms("panda-box-1.toml")).unwrap();
+    let oracle = scene.oracle();
+    // direct-path edges (a staircase of one move per joint each): answers of many corners
+    let method = LocalSpec::Straight.build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(200), 3, &mut |_| {})
+        .unwrap();
+    let roadmap = &learnt.roadmap;
+    let fast = QueryPlanner::new(roadmap, oracle.as_ref()).unwrap();
+    let exact = QueryPlanner::new(roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            exact_shortening_limit: usize::MAX,
+            ..QueryOptions::default()
+        });
+    let nodes: Vec<Vec<f64>> = roadmap.nodes().map(<[f64]>::to_vec).collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let mut above_32 = 0;
+    for _ in 0..60 {
+        let (s, g) = (
+            &nodes[rng.random_range(0..nodes.len())],
+            &nodes[rng.random_range(0..nodes.len())],
+        );
+        if s == g {
+            continue;
+        }
+        let a = fast.query(s, g).unwrap();
+        if !a.is_solved() || a.raw_path.len() > 112 {
+            continue;
+        }
+        let b = exact.query(s, g).unwrap();
+        assert_eq!(a.raw_path, b.raw_path);
+        assert_eq!(a.path, b.path, "{} corners", a.raw_path.len());
+        certify(&scene, &a.path, s, g);
+        above_32 += usize::from(a.raw_path.len() > 32);
+    }
+    assert!(above_32 > 0, "no answer of more than 32 corners to compare");
+}

@@ -86,12 +86,20 @@ pub struct QueryOptions {
     pub direct_calls: u64,
     /// Shorten the path over its corners (CHS A.1).
     pub shorten: bool,
-    /// Paths with more corners than this first go through one greedy pass
+    /// Paths with more corners than this per two DOF groups first go through one greedy pass
     /// ([`crate::local::drop_corners`], at most one check per corner) before the visibility
     /// graph over what is left: the full graph over a long roadmap path costs up to `m²/2`
     /// checks. `usize::MAX` shortens every path over all its corners. On OMPL.app's Home
     /// (a 32 803-node roadmap, its 50 queries) the default answered at p50 12 ms against 23 ms
     /// with 4.2× fewer intersect calls, for paths 1.7 % longer on average.
+    ///
+    /// Per two groups because a path that moves `g` groups one at a time turns `g` corners
+    /// per diagonal step, and the visibility graph does not check a pair that only reorders a
+    /// step (no gain, [`crate::local::shorten::UNCHECKED`]) while the greedy pass does: with
+    /// 32 corners for the Panda's 7 joints, the greedy pass cost more than it saved (the box
+    /// workcell's query p50 2.6–2.7 → 2.0–2.1 ms with 112, bookshelf_thin 1.4–1.5 → 1.2, the
+    /// same lengths, the cage unchanged; 2026-12-05). Spaces of one or two groups (Home) keep
+    /// 32 corners.
     pub exact_shortening_limit: usize,
     /// Landmarks for A*'s heuristic ([`super::Landmarks`]): the space's distance, or the
     /// landmarks' lower bound where it is larger. Computed at the planner's first A* search;
@@ -1112,7 +1120,7 @@ impl<'a> QueryPlanner<'a> {
             // greedy pass's answers are shared with the visibility graph
             known.certify_path(space, &self.groups, &raw);
             let fewer;
-            let corners = if raw.len() > self.options.exact_shortening_limit {
+            let corners = if raw.len() > self.greedy_above() {
                 fewer = drop_corners_known(
                     space,
                     self.oracle,
@@ -1145,6 +1153,13 @@ impl<'a> QueryPlanner<'a> {
         result.raw_path = raw;
         result.path = path;
         Ok(result)
+    }
+
+    /// The most corners a path may have for the visibility graph to run over all of them
+    /// ([`QueryOptions::exact_shortening_limit`] per two DOF groups).
+    fn greedy_above(&self) -> usize {
+        let groups = self.groups.len().max(2);
+        self.options.exact_shortening_limit.saturating_mul(groups) / 2
     }
 
     /// Answers many queries in parallel on the current rayon pool; answers in input order.
