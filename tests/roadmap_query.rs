@@ -606,3 +606,61 @@ fn the_quick_try_asks_yes_or_no_for_the_direct_path() {
         "{direct} direct, {blocked} blocked"
     );
 }
+
+/// An answer still longer than `TREE_SHORTENING_FACTOR × exact_shortening_limit` corners after
+/// its first greedy pass is shortened by greedy passes alone (the visibility graph over hundreds
+/// of corners took 0.9 s in the cage workcell), a shorter one by the visibility graph: both
+/// rebuilt here from the answer's raw path with the public passes, every path checked free by
+/// the independent segment test.
+#[test]
+fn long_answers_get_greedy_passes_only() {
+    use viaroad::local::{drop_corners, shorten};
+    use viaroad::oracle::CallCounts;
+    use viaroad::roadmap::query::TREE_SHORTENING_FACTOR;
+    let (scene, roadmap) = scene_and_roadmap(true, 400);
+    let d = discs(&scene);
+    let oracle = scene.oracle();
+    let limit = 2;
+    let long = TREE_SHORTENING_FACTOR * limit;
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(QueryOptions {
+            exact_shortening_limit: limit,
+            ..QueryOptions::default()
+        });
+    let groups = roadmap.header().local_spec.build().groups(roadmap.space());
+    let (mut greedy_only, mut graph) = (0, 0);
+    for (s, g) in random_queries(&scene, 60, 11) {
+        let a = planner.query(&s, &g).unwrap();
+        if !a.is_solved() || a.outcome != QueryOutcome::Roadmap {
+            continue;
+        }
+        assert!(path_free(&a.path, &d), "{s:?} → {g:?}");
+        let c = &mut CallCounts::default();
+        let once = if a.raw_path.len() > limit {
+            drop_corners(&scene.space, oracle.as_ref(), &groups, &a.raw_path, c).unwrap()
+        } else {
+            a.raw_path.clone()
+        };
+        let want = if once.len() > long {
+            greedy_only += 1;
+            let mut fewer = once;
+            loop {
+                let next = drop_corners(&scene.space, oracle.as_ref(), &groups, &fewer, c).unwrap();
+                let better = next.len() < fewer.len();
+                fewer = next;
+                if !better {
+                    break fewer;
+                }
+            }
+        } else {
+            graph += 1;
+            shorten(&scene.space, oracle.as_ref(), &groups, &once, c).unwrap()
+        };
+        assert_eq!(a.path, want, "{s:?} → {g:?}");
+    }
+    assert!(
+        greedy_only > 0 && graph > 0,
+        "{greedy_only} long, {graph} short"
+    );
+}
