@@ -350,7 +350,7 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
     };
     // the trees searching until `search`, a path they found shortened until `whole`
     let trees_seeded = |search: &Deadline, whole: &Deadline, seed: u64| {
-        tree_stage_within(
+        tree_stage(
             &scene,
             oracle.as_ref(),
             &groups,
@@ -566,30 +566,13 @@ fn trees_found(stage: &Result<TreeStage, OracleError>) -> bool {
     stage.as_ref().is_ok_and(|t| t.path.is_some())
 }
 
-/// Two trees from `start` and `goal` ([`rrt_connect`]) within `deadline`, their path shortened
-/// by greedy shortcut passes in what is left: the visibility-graph `shorten` of the other
+/// Two trees from `start` and `goal` ([`rrt_connect`]) growing until `search`, their path
+/// shortened by greedy shortcut passes until `whole` (a slice of a problem's time bounds the
+/// search, not the finishing of what it found): the visibility-graph `shorten` of the other
 /// stages checks long multi-joint pairs of a tree path's hundreds of corners for seconds (cage
 /// 4: 8 s over a 5 s budget), so it is not run here.
 #[allow(clippy::too_many_arguments)]
 pub fn tree_stage(
-    scene: &Scene,
-    oracle: &dyn CollisionOracle,
-    groups: &[crate::space::Group],
-    start: &Config,
-    goal: &Config,
-    tree: &TreeParams,
-    seed: u64,
-    deadline: &Deadline,
-) -> Result<TreeStage, OracleError> {
-    tree_stage_within(
-        scene, oracle, groups, start, goal, tree, seed, deadline, deadline,
-    )
-}
-
-/// [`tree_stage`] growing until `search` and shortening a path found until `whole` (a slice
-/// of a problem's time bounds the search, not the finishing of what it found).
-#[allow(clippy::too_many_arguments)]
-fn tree_stage_within(
     scene: &Scene,
     oracle: &dyn CollisionOracle,
     groups: &[crate::space::Group],
@@ -958,7 +941,17 @@ pub fn run_workcell(
             let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
             let grow_trees = |tree: &TreeParams, d: &Deadline| {
                 if !o.trees_from_roadmap {
-                    return tree_stage(&scene, oracle.as_ref(), &groups, &s, &g, tree, o.seed, d);
+                    return tree_stage(
+                        &scene,
+                        oracle.as_ref(),
+                        &groups,
+                        &s,
+                        &g,
+                        tree,
+                        o.seed,
+                        d,
+                        d,
+                    );
                 }
                 let growing = Instant::now();
                 let found = RoadmapTrees::new(&roadmap, oracle.as_ref(), &groups)

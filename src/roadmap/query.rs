@@ -50,7 +50,7 @@ pub const ATTACH_SHARE: u32 = 2;
 /// corners after a greedy pass (a tree answer, or a roadmap answer through kept staircases) is
 /// shortened by greedy passes alone, not by the visibility graph. Since 2026-12-05 for roadmap
 /// answers too: in the cage workcell one of 230 corners took the visibility graph 0.9 s for 18 %
-/// fewer corners (query p95 0.77–1.06 s → 0.26–0.33 s, length p50 3–4 % longer).
+/// fewer corners (query p95 0.75–1.09 s → 0.27–0.36 s, length p50 3–4 % longer).
 pub const TREE_SHORTENING_FACTOR: usize = 4;
 
 /// A query that may grow trees out of the roadmap ([`QueryOptions::trees`]) spends at most
@@ -100,8 +100,8 @@ pub struct QueryOptions {
     /// per diagonal step, and the visibility graph does not check a pair that only reorders a
     /// step (no gain, [`crate::local::shorten::UNCHECKED`]) while the greedy pass does: with
     /// 32 corners for the Panda's 7 joints, the greedy pass cost more than it saved (the box
-    /// workcell's query p50 2.6–2.7 → 2.0–2.1 ms with 112, bookshelf_thin 1.4–1.5 → 1.2, the
-    /// same lengths, the cage unchanged; 2026-12-05). Spaces of one or two groups (Home) keep
+    /// workcell's query p50 2.5–2.7 → 2.0–2.2 ms with 112, the same lengths; bookshelf_thin
+    /// and the cage within their noise; 2026-12-05). Spaces of one or two groups (Home) keep
     /// 32 corners.
     pub exact_shortening_limit: usize,
     /// Landmarks for A*'s heuristic ([`super::Landmarks`]): the space's distance, or the
