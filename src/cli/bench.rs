@@ -254,7 +254,10 @@ pub struct MbmArgs {
     /// the rayon pool, the first to connect answering, instead of one after the other; in
     /// workcell mode, the roadmap's query and the trees. With a value, the via-point planner
     /// (the roadmap's query) first runs alone for MS milliseconds and the race starts only if
-    /// it has not answered (`--race 50`).
+    /// it has not answered. In the workcell 2 ms keeps every family's quick answers off the
+    /// pool and cuts every p95 against 50 ms; none at all suits a workcell whose goals the
+    /// roadmap rarely reaches (the cage: p50 80 → 18 ms), at 0.1–0.2 ms more elsewhere
+    /// (2026-12-05, `benches/results/2026-12-05-greedy-per-group/head-start.tsv`).
     #[arg(long, value_name = "MS", num_args = 0..=1, default_missing_value = "0")]
     pub race: Option<f64>,
     /// `--planner tree`, not racing: the direct path, then the trees alone for this share of
