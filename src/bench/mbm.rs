@@ -20,7 +20,9 @@
 //! an end the checker accepts ("valid, refused by the oracle").
 
 use crate::deadline::{race, Deadline};
-use crate::local::{path_length, shorten_known, Connection, KnownPieces, LocalSpec};
+use crate::local::{
+    direct_connection, path_length, shorten_known, Connection, KnownPieces, LocalSpec,
+};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::rooted::RoadmapTrees;
 use crate::roadmap::tree::{rrt_connect, shortcut_passes, Rooted, TreeOutcome, TreeParams};
@@ -385,9 +387,7 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         (None, Some(share)) => {
             // the direct path alone, then the trees for their share of the time, then the
             // via-point search, then the trees afresh (another random stream) for the rest
-            let direct_path = LocalSpec::default().budgeted(0).unwrap_or_default().build();
-            let path =
-                direct_path.connect_within(&scene.space, oracle.as_ref(), &start, &goal, &deadline);
+            let path = direct_connection(&scene.space, oracle.as_ref(), &groups, &start, &goal);
             let path_s = began.elapsed().as_secs_f64();
             let blocked = matches!(&path, Ok(c) if !c.is_connected());
             if !blocked || deadline.expired() {
