@@ -537,6 +537,7 @@ fn slides_and_turns_of_a_toy_arm_agree_with_the_reference_and_the_checker() {
     std::fs::remove_dir_all(&dir).ok();
     let post = |id: &str, at: [f64; 3], size: [f64; 3]| CollisionObject {
         id: id.into(),
+        frame: String::new(),
         parts: vec![(
             nalgebra::Isometry3::translation(at[0], at[1], at[2]),
             ObjectShape::Primitive(Primitive::Box { size }),

@@ -5,7 +5,8 @@
 //!
 //! A family directory holds `sceneNNNN.yaml` (a MoveIt PlanningScene) and `requestNNNN.yaml`
 //! (a MotionPlanRequest) pairs, as in MBM's `problems.tar.bz2`; a directory of family
-//! directories runs them all, in name order.
+//! directories runs them all, in name order. Each request plans for its own `group_name`
+//! (the Fetch's `arm_with_torso`: eight joints, the torso's prismatic lift first).
 //!
 //! Each problem is planned first by the via-point planner alone (a bounded search,
 //! [`MbmOptions::direct_calls`] oracle calls), then, if it did not connect, by two trees from
@@ -269,10 +270,16 @@ pub fn problem_scene(robot: &Arm, p: &Problem) -> Result<Scene, SceneError> {
         path: p.request.clone(),
         message: e.to_string(),
     };
-    let mut arm = robot.clone();
+    let req = load_motion_plan_request(&p.request)?;
+    // the request's group, as MoveIt plans for it (the Fetch's `arm_with_torso`, not the
+    // SRDF's first group `arm`)
+    let mut arm = if req.group.is_empty() || req.group == robot.group.name {
+        robot.clone()
+    } else {
+        robot.with_srdf_group(&req.group).map_err(invalid)?
+    };
     let ps = load_planning_scene(&p.scene)?;
     ps.apply_to(&mut arm).map_err(invalid)?;
-    let req = load_motion_plan_request(&p.request)?;
     let (start, goal) = req.start_goal(&mut arm).map_err(invalid)?;
     let robot = ArmRobot::new(arm, ps.objects, PathBuf::new(), None, Some(p.scene.clone()))
         .map_err(invalid)?;
@@ -1062,10 +1069,12 @@ fn valid_request(
     p: &Problem,
 ) -> Option<(Config, Config)> {
     let req = load_motion_plan_request(&p.request).ok()?;
-    let s = arm.group_config(&req.start.names, &req.start.positions, "start");
-    let g = arm.group_config(&req.goal.names, &req.goal.positions, "goal");
-    let s = scene.check_config(oracle, "start", &s.ok()?).ok()?;
-    let g = scene.check_config(oracle, "goal", &g.ok()?).ok()?;
+    if !(req.group.is_empty() || req.group == arm.group.name) {
+        return None;
+    }
+    let (s, g) = req.ends(arm).ok()?;
+    let s = scene.check_config(oracle, "start", &s).ok()?;
+    let g = scene.check_config(oracle, "goal", &g).ok()?;
     Some((s, g))
 }
 

@@ -252,6 +252,53 @@ impl Arm {
         self.model.link_poses(&self.base, &self.full_values(q))
     }
 
+    /// The world pose of frame `name`, as a PlanningScene's `header.frame_id` names it: the
+    /// world itself (`""`, `world`, or a virtual joint's parent frame), or a link the group
+    /// does not move — the root link where the base puts it, a link below joints outside the
+    /// group where their values put it (MotionBenchMaker's Fetch scenes give every object in
+    /// `base_link`, the root). A link the group moves would carry an object along (an
+    /// attached object, not supported): refused, as is a name that is neither.
+    pub fn frame_pose(&self, name: &str) -> Result<Isometry3<f64>, RobotError> {
+        let name = name.trim_start_matches('/');
+        if name.is_empty()
+            || name == "world"
+            || self
+                .srdf
+                .virtual_joints
+                .iter()
+                .any(|v| v.parent_frame == name)
+        {
+            return Ok(Isometry3::identity());
+        }
+        let refuse = |message: String| RobotError::Config {
+            what: format!("frame {name:?}"),
+            message,
+        };
+        let l = self.model.link(name).ok_or_else(|| {
+            refuse(
+                "neither the world nor a link of the robot (objects must be given in one)".into(),
+            )
+        })?;
+        let group_moves = |k: usize| {
+            let master = self.model.mimic_master[k].unwrap_or(k);
+            self.group.joints.contains(&master)
+        };
+        if let Some(&k) = self
+            .model
+            .chain_to(l)
+            .iter()
+            .rev()
+            .find(|&&k| group_moves(k))
+        {
+            return Err(refuse(format!(
+                "the link moves with the planning group's joint {} (objects attached to the \
+                 robot are not supported)",
+                self.model.urdf.joints[k].name
+            )));
+        }
+        Ok(self.link_poses(&vec![0.0; self.group.dof()])[l])
+    }
+
     /// The group configuration with the named values (every group joint must be named once;
     /// names outside the group are skipped). Used for a request's start and goal.
     pub fn group_config(
@@ -279,6 +326,26 @@ impl Arm {
         }
         self.check_config(&q, what)?;
         Ok(q)
+    }
+
+    /// The same robot planning for the SRDF's group `name` (a MoveIt request's `group_name`):
+    /// the joints outside it keep their values, the base and the exempt pairs stay.
+    pub fn with_srdf_group(&self, name: &str) -> Result<Arm, RobotError> {
+        let group = self.model.resolve_group(&self.srdf, name, &self.dir)?;
+        Ok(Arm {
+            group,
+            ..self.clone()
+        })
+    }
+
+    /// Whether group joint `i` has limits (revolute or prismatic, not continuous): the joints
+    /// whose values MoveIt moves onto a limit they pass (see
+    /// [`crate::scene::moveit::MotionPlanRequest::ends`]).
+    pub fn is_bounded(&self, i: usize) -> bool {
+        !matches!(
+            self.model.urdf.joints[self.group.joints[i]].kind,
+            super::urdf::JointKind::Continuous
+        )
     }
 
     /// Names of the group's joints, in group order.

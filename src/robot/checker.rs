@@ -203,12 +203,16 @@ impl ArmChecker {
         }
         let mut obstacles = Vec::new();
         for (i, o) in objects.iter().enumerate() {
+            // the object's frame placed as the oracle places it: reading the scene is shared,
+            // the geometry and its tests are not
+            let at = arm
+                .frame_pose(&o.frame)
+                .map_err(|e| invalid(&o.id, e.to_string()))?;
             for (pose, shape) in &o.parts {
+                let pose = at * pose;
                 obstacles.push(match shape {
-                    ObjectShape::Primitive(p) => primitive_part(i, *pose, p),
-                    ObjectShape::Mesh(m) => {
-                        mesh_part(i, *pose, m).map_err(|m| invalid(&o.id, m))?
-                    }
+                    ObjectShape::Primitive(p) => primitive_part(i, pose, p),
+                    ObjectShape::Mesh(m) => mesh_part(i, pose, m).map_err(|m| invalid(&o.id, m))?,
                 });
             }
         }

@@ -278,15 +278,20 @@ impl ArmOracle {
     pub fn new(arm: &Arm, objects: &[CollisionObject]) -> Result<ArmOracle, RobotError> {
         let mut environment = Vec::new();
         for o in objects {
+            let what = || format!("collision object {}", o.id);
+            let at = arm.frame_pose(&o.frame).map_err(|e| RobotError::Config {
+                what: what(),
+                message: e.to_string(),
+            })?;
             for (pose, shape) in &o.parts {
                 let local = match shape {
                     ObjectShape::Primitive(p) => p.polytope().map_err(|e| RobotError::Config {
-                        what: format!("collision object {}", o.id),
+                        what: what(),
                         message: e.to_string(),
                     })?,
                     ObjectShape::Mesh(m) => m.clone(),
                 };
-                let world = placed(&local, pose);
+                let world = placed(&local, &(at * pose));
                 let ball = Ball::of(&world);
                 environment.push((world, ball));
             }

@@ -16,8 +16,20 @@ pub struct Srdf {
     pub groups: Vec<GroupSpec>,
     /// Link pairs never checked against each other (`<disable_collisions>`).
     pub disabled_collisions: Vec<(String, String)>,
-    /// Virtual joints (name, child link).
-    pub virtual_joints: Vec<(String, String)>,
+    /// Virtual joints: where the robot's root link hangs in the world.
+    pub virtual_joints: Vec<VirtualJoint>,
+}
+
+/// A `<virtual_joint>`: the frame its child link (the robot's root) is placed in. A
+/// PlanningScene may give objects in that frame, which is the planning frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VirtualJoint {
+    /// `name`.
+    pub name: String,
+    /// `parent_frame` (`world`, `odom_combined`, …).
+    pub parent_frame: String,
+    /// `child_link`.
+    pub child_link: String,
 }
 
 /// A planning group as written: its members, resolved against the URDF by
@@ -84,9 +96,11 @@ pub fn parse_srdf(text: &str, path: &Path) -> Result<Srdf, RobotError> {
             "disable_collisions" => srdf
                 .disabled_collisions
                 .push((attr(node, "link1")?, attr(node, "link2")?)),
-            "virtual_joint" => srdf
-                .virtual_joints
-                .push((attr(node, "name")?, attr(node, "child_link")?)),
+            "virtual_joint" => srdf.virtual_joints.push(VirtualJoint {
+                name: attr(node, "name")?,
+                parent_frame: attr(node, "parent_frame")?,
+                child_link: attr(node, "child_link")?,
+            }),
             _ => {}
         }
     }
@@ -129,7 +143,14 @@ mod tests {
         assert_eq!(s.group("both").unwrap().subgroups, ["arm", "hand"]);
         assert!(s.is_disabled("b", "a"));
         assert!(!s.is_disabled("a", "c"));
-        assert_eq!(s.virtual_joints, [("v".into(), "a".into())]);
+        assert_eq!(
+            s.virtual_joints,
+            [VirtualJoint {
+                name: "v".into(),
+                parent_frame: "world".into(),
+                child_link: "a".into()
+            }]
+        );
     }
 
     #[test]

@@ -9,7 +9,8 @@
 //! urdf = "panda/panda.urdf"            # relative to this file; meshes relative to the URDF
 //! srdf = "panda/panda.srdf"            # optional: groups, disable_collisions
 //! group = ["panda_joint1", "panda_joint2"]   # joints in this order; or an SRDF group's name
-//!                                      # (group = "panda_arm"); default: the SRDF's first group
+//!                                      # (group = "panda_arm"); default: the first
+//!                                      # moveit_request's group_name, else the SRDF's first
 //! fixed = { panda_finger_joint1 = 0.04 }     # optional: joints outside the group
 //! [environment]                        # optional (without it only self-collision counts)
 //! moveit_scene = "mbm/table_pick/scene0001.yaml"
@@ -21,7 +22,11 @@
 //! ```
 //!
 //! Joints outside the group take, in this order, the scene's `robot_state`, the start state
-//! of every `moveit_request` (MoveIt's rule: the request's start state wins), then `fixed`.
+//! of every `moveit_request` (MoveIt's rule: the request's start state wins), then `fixed`;
+//! a MoveIt state may name joints the URDF lacks (skipped, [`crate::scene::moveit::JointState::set_known`]), and a
+//! request's ends are moved onto joint limits as MoveIt moves them
+//! ([`crate::scene::moveit::MotionPlanRequest::ends`]). Collision objects may be given in the
+//! world or in a link the group does not move ([`crate::robot::Arm::frame_pose`]).
 //! The environment's curved primitives become circumscribed polytopes
 //! ([`crate::robot::Primitive::polytope`]), so a path certified against them is certified
 //! against the true shapes.
@@ -133,6 +138,8 @@ impl ArmRobot {
         srdf: Option<PathBuf>,
         moveit_scene: Option<PathBuf>,
     ) -> Result<ArmRobot, RobotError> {
+        // in the world frame once, for the digest and for drawing
+        let objects = super::moveit::placed_objects(&objects, &arm)?;
         let oracle = Arc::new(ArmOracle::new(&arm, &objects)?);
         let digest = digest(&arm, &objects);
         Ok(ArmRobot {
@@ -556,8 +563,20 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
     };
     let urdf = dir.join(&file.robot.urdf);
     let srdf = file.robot.srdf.as_ref().map(|s| dir.join(s));
+    // without a group of its own, the scene plans for its first MoveIt request's group (as
+    // MoveIt would), else for the SRDF's first group
+    let request_group = || -> Result<Option<String>, SceneError> {
+        let Some(r) = file.queries.iter().find_map(|q| q.moveit_request.as_ref()) else {
+            return Ok(None);
+        };
+        let group = load_motion_plan_request(&dir.join(r))?.group;
+        Ok((!group.is_empty()).then_some(group))
+    };
     let group = match &file.robot.group {
-        None => GroupChoice::FirstSrdfGroup,
+        None => match request_group()? {
+            Some(g) => GroupChoice::Srdf(g),
+            None => GroupChoice::FirstSrdfGroup,
+        },
         Some(GroupSpec::Name(n)) => GroupChoice::Srdf(n.clone()),
         Some(GroupSpec::Joints(j)) => GroupChoice::Joints(j.clone()),
     };

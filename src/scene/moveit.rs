@@ -9,8 +9,10 @@
 //! with `mesh_poses[]`; `robot_state.joint_state` (`name`, `position`) and the virtual joint's
 //! transform in `robot_state.multi_dof_joint_state`; `allowed_collision_matrix`. Poses are
 //! `position` + `orientation` (quaternion `[x, y, z, w]`, or `{x, y, z, w}` maps), composed as
-//! `pose · primitive_pose`. Objects must be in the world frame (`header.frame_id` empty or
-//! `world`); attached objects, planes and octomaps are not read.
+//! `pose · primitive_pose`, in the frame `header.frame_id` names: the world (empty, `world`, a
+//! virtual joint's parent frame) or a link of the robot that the planning group does not move,
+//! placed by [`CollisionObject::placed`] once the robot's state is known ([`Arm::frame_pose`]);
+//! attached objects, planes and octomaps are not read.
 //!
 //! Curved primitives become polytopes that contain them ([`crate::robot::shapes`]) when the
 //! exact oracle needs them; here they stay exact [`Primitive`]s.
@@ -48,13 +50,67 @@ pub struct JointState {
     pub positions: Vec<f64>,
 }
 
-/// One collision object: parts placed in the world.
+impl JointState {
+    /// Sets the joints outside `arm`'s group to these values, skipping names the robot model
+    /// does not have: a MoveIt state describes the whole robot it was recorded on, and a
+    /// trimmed URDF (VAMP's Fetch has no wheels) lacks joints that could not move any link of
+    /// it. A group joint missing from a start state or goal is still an error
+    /// ([`Arm::group_config`]).
+    pub fn set_known(&self, arm: &mut Arm) -> Result<(), RobotError> {
+        if self.names.len() != self.positions.len() {
+            return arm.set_joint_values(&self.names, &self.positions);
+        }
+        let (names, values): (Vec<String>, Vec<f64>) = self
+            .names
+            .iter()
+            .zip(&self.positions)
+            .filter(|(n, _)| arm.model.joint(n).is_some())
+            .map(|(n, &v)| (n.clone(), v))
+            .unzip();
+        arm.set_joint_values(&names, &values)
+    }
+}
+
+/// One collision object: parts placed in a frame (the world once [`CollisionObject::placed`]).
 #[derive(Clone, Debug)]
 pub struct CollisionObject {
     /// The object's id (names it in collision reports).
     pub id: String,
-    /// World pose and shape of each part.
+    /// The frame the parts' poses are in: `header.frame_id` as written (without a leading
+    /// `/`), empty for the world.
+    pub frame: String,
+    /// Pose (in `frame`) and shape of each part.
     pub parts: Vec<(Isometry3<f64>, ObjectShape)>,
+}
+
+impl CollisionObject {
+    /// The object in the world frame: its parts moved by the pose of its frame on `arm` (the
+    /// arm's base and joint values as set; see [`Arm::frame_pose`] for the frames allowed).
+    pub fn placed(&self, arm: &Arm) -> Result<CollisionObject, RobotError> {
+        let at = arm
+            .frame_pose(&self.frame)
+            .map_err(|e| RobotError::Config {
+                what: format!("collision object {}", self.id),
+                message: e.to_string(),
+            })?;
+        Ok(CollisionObject {
+            id: self.id.clone(),
+            frame: String::new(),
+            parts: self
+                .parts
+                .iter()
+                .map(|(pose, shape)| (at * pose, shape.clone()))
+                .collect(),
+        })
+    }
+}
+
+/// Every object of `objects` in the world frame ([`CollisionObject::placed`]).
+pub fn placed_objects(
+    objects: &[CollisionObject],
+    arm: &Arm,
+) -> Result<Vec<CollisionObject>, RobotError> {
+    objects.iter().map(|o| o.placed(arm)).collect()
 }
 
 /// The shape of a part of a collision object.
@@ -356,11 +412,6 @@ fn primitive(p: &RawPrimitive, what: &str) -> Result<Primitive, String> {
 fn object(o: &RawObject) -> Result<CollisionObject, String> {
     let what = format!("collision object {}", o.id);
     let frame = o.header.frame_id.trim_start_matches('/');
-    if !(frame.is_empty() || frame == "world") {
-        return Err(format!(
-            "{what}: frame {frame:?} is not supported (objects must be in the world frame)"
-        ));
-    }
     let base = match &o.pose {
         Some(p) => pose(p, &what)?,
         None => Isometry3::identity(),
@@ -387,6 +438,11 @@ fn object(o: &RawObject) -> Result<CollisionObject, String> {
     }
     Ok(CollisionObject {
         id: o.id.clone(),
+        frame: if frame == "world" {
+            String::new()
+        } else {
+            frame.to_string()
+        },
         parts,
     })
 }
@@ -509,7 +565,7 @@ impl PlanningScene {
     /// the root takes the virtual joint's transform, and link pairs the allowed-collision
     /// matrix allows are exempt from self-collision checking (as MoveIt does).
     pub fn apply_to(&self, arm: &mut Arm) -> Result<(), RobotError> {
-        arm.set_joint_values(&self.joint_state.names, &self.joint_state.positions)?;
+        self.joint_state.set_known(arm)?;
         if let Some(b) = self.base {
             arm.base = b;
         }
@@ -525,15 +581,40 @@ impl MotionPlanRequest {
     /// (and the root pose) from the start state, which takes precedence over the scene's
     /// `robot_state` (MoveIt's rule).
     pub fn start_goal(&self, arm: &mut Arm) -> Result<(Vec<f64>, Vec<f64>), RobotError> {
-        arm.set_joint_values(&self.start.names, &self.start.positions)?;
+        self.start.set_known(arm)?;
         if let Some(b) = self.base {
             arm.base = b;
         }
-        let start = arm.group_config(&self.start.names, &self.start.positions, "start state")?;
-        let goal = arm.group_config(&self.goal.names, &self.goal.positions, "goal")?;
+        self.ends(arm)
+    }
+
+    /// Start and goal in the arm's group order, moved onto the joint limits as MoveIt moves
+    /// them: a goal joint constraint beyond a limit is taken at the limit
+    /// (`JointConstraint::configure`, "assuming maximum bounds instead"; MotionBenchMaker's
+    /// Fetch goals at ±π against VAMP's limits of ±3.14159), a start state beyond a limit by
+    /// at most [`START_BOUNDS_ERROR`] is moved onto it (the `FixStartStateBounds` adapter's
+    /// default); a start further out stays as it is, for the scene to refuse.
+    pub fn ends(&self, arm: &Arm) -> Result<(Vec<f64>, Vec<f64>), RobotError> {
+        let mut start =
+            arm.group_config(&self.start.names, &self.start.positions, "start state")?;
+        let mut goal = arm.group_config(&self.goal.names, &self.goal.positions, "goal")?;
+        let g = &arm.group;
+        for i in (0..g.dof()).filter(|&i| arm.is_bounded(i)) {
+            let (lo, hi) = (g.lower[i], g.upper[i]);
+            goal[i] = goal[i].clamp(lo, hi);
+            if start[i] < lo && lo - start[i] <= START_BOUNDS_ERROR {
+                start[i] = lo;
+            } else if start[i] > hi && start[i] - hi <= START_BOUNDS_ERROR {
+                start[i] = hi;
+            }
+        }
         Ok((start, goal))
     }
 }
+
+/// How far (rad or m) beyond a joint limit a request's start state is moved onto it: MoveIt's
+/// `start_state_max_bounds_error` default.
+pub const START_BOUNDS_ERROR: f64 = 0.05;
 
 #[cfg(test)]
 mod tests {
@@ -614,7 +695,6 @@ goal_constraints:
             "world: {collision_objects: [{id: a, primitives: [{type: box, dimensions: [1, -1, 1]}], primitive_poses: [{position: [0,0,0], orientation: [0,0,0,1]}]}]}",
             "world: {collision_objects: [{id: a, primitives: [{type: torus, dimensions: [1]}], primitive_poses: [{position: [0,0,0], orientation: [0,0,0,1]}]}]}",
             "world: {collision_objects: [{id: a, primitives: [{type: sphere, dimensions: [1]}], primitive_poses: [{position: [0,0,0], orientation: [0,0,0,0]}]}]}",
-            "world: {collision_objects: [{id: a, header: {frame_id: panda_hand}}]}",
             "robot_state: {joint_state: {name: [a], position: []}}",
             "allowed_collision_matrix: {entry_names: [a, b], entry_values: [[false]]}",
             "world: {collision_objects: [{id: a, meshes: [{vertices: [[0,0,0]], triangles: [{vertex_indices: [0, 1, 2]}]}], mesh_poses: [{position: [0,0,0], orientation: [0,0,0,1]}]}]}",
