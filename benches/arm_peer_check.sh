@@ -10,7 +10,8 @@
 # File names: FAMILY_NNNN<kind>.path, FAMILY a problem directory of $PROBLEMS (table_pick_panda):
 # `viaroad bench mbm --paths-out` writes FAMILY_NNNN.path / FAMILY_NNNN_raw.path, the peer's
 # `arm_sweep.sh` with SAVE_PATHS FAMILY_NNNN_rrtconnect_run0[_simplified].path. Env: PROBLEMS
-# (MBM's problems/), ROBOT (vamp-planner's resources/panda), OMPL_PEER (default
+# (MBM's problems/), ROBOT (vamp-planner's resources/panda, or ur5, fetch: ROBOT/NAME.urdf and
+# .srdf with NAME its folder's), OMPL_PEER (default
 # /tmp/ompl-peer/build/ompl_peer). Writes one peer line per file, with "file" and "kind" added, and
 # prints "checked N paths, M invalid".
 set -euo pipefail
@@ -18,6 +19,7 @@ dir=${1:?usage: arm_peer_check.sh PATHS_DIR OUT.jsonl [RESOLUTION]}
 out=${2:?usage: arm_peer_check.sh PATHS_DIR OUT.jsonl [RESOLUTION]}
 res=${3:-0.001}
 : "${PROBLEMS:?MBM problems/ directory}" "${ROBOT:?vamp-planner resources/panda}"
+robot=$(basename "$ROBOT")
 peer=${OMPL_PEER:-/tmp/ompl-peer/build/ompl_peer}
 [ -x "$peer" ] || { echo "no OMPL peer at $peer (see ../shared/ompl-peer/build.sh)" >&2; exit 2; }
 : > "$out"
@@ -29,7 +31,7 @@ for f in "$dir"/*.path; do
     continue
   fi
   family=${BASH_REMATCH[1]}; id=${BASH_REMATCH[2]}; kind=${BASH_REMATCH[3]#_}
-  line=$("$peer" armcheck "$ROBOT/panda.urdf" "$ROBOT/panda.srdf" "$PROBLEMS/$family/scene$id.yaml" \
+  line=$("$peer" armcheck "$ROBOT/$robot.urdf" "$ROBOT/$robot.srdf" "$PROBLEMS/$family/scene$id.yaml" \
     "$f" --resolution "$res" --request "$PROBLEMS/$family/request$id.yaml" 2>/dev/null || true)
   [ -n "$line" ] || line='{"valid": false, "error": "armcheck gave no answer"}'
   n=$((n + 1))

@@ -26,6 +26,7 @@ fn panda() -> Arm {
         Some(&dir.join("panda.srdf")),
         &ArmOptions {
             group: GroupChoice::Srdf("panda_arm".into()),
+            ..ArmOptions::default()
         },
     )
     .unwrap()

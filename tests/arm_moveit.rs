@@ -20,7 +20,10 @@ fn panda(group: GroupChoice) -> Arm {
     Arm::load(
         &dir.join("panda.urdf"),
         Some(&dir.join("panda.srdf")),
-        &ArmOptions { group },
+        &ArmOptions {
+            group,
+            ..ArmOptions::default()
+        },
     )
     .unwrap()
 }

@@ -531,6 +531,7 @@ fn slides_and_turns_of_a_toy_arm_agree_with_the_reference_and_the_checker() {
         None,
         &ArmOptions {
             group: GroupChoice::Joints(vec!["slide".into(), "turn".into()]),
+            ..ArmOptions::default()
         },
     )
     .unwrap();

@@ -339,6 +339,7 @@ fn panda_table_pick() -> (Arm, viaroad::scene::moveit::PlanningScene, Vec<Vec<f6
         Some(&dir.join("panda/panda.srdf")),
         &ArmOptions {
             group: GroupChoice::Srdf(req.group.clone()),
+            ..ArmOptions::default()
         },
     )
     .unwrap();

@@ -241,8 +241,13 @@ fn family_problems(dir: &Path, entries: &[PathBuf], limit: Option<usize>) -> Vec
 }
 
 /// The robot of a folder: its one `.urdf` and (optional) one `.srdf`, loaded with the SRDF's
-/// first group.
+/// first group (each problem then plans for its request's group).
 pub fn load_robot(dir: &Path) -> Result<Arm, MbmError> {
+    load_robot_with(dir, &ArmOptions::default())
+}
+
+/// [`load_robot`] with these options (a big mesh enveloped or not).
+pub fn load_robot_with(dir: &Path, options: &ArmOptions) -> Result<Arm, MbmError> {
     let find = |ext: &str| -> Result<Option<PathBuf>, MbmError> {
         let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
             .map_err(|e| MbmError::Layout {
@@ -260,7 +265,7 @@ pub fn load_robot(dir: &Path) -> Result<Arm, MbmError> {
         message: "no .urdf file".into(),
     })?;
     let srdf = find("srdf")?;
-    Ok(Arm::load(&urdf, srdf.as_deref(), &ArmOptions::default())?)
+    Ok(Arm::load(&urdf, srdf.as_deref(), options)?)
 }
 
 /// The scene of one problem: `robot` (cloned) in the problem's environment with the request's

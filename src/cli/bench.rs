@@ -266,6 +266,12 @@ pub struct MbmArgs {
     /// 2026-12-05).
     #[arg(long, value_name = "SHARE", default_value_t = 0.2)]
     pub trees_first: f64,
+    /// Plan against every link mesh as it is: without this, a mesh of more than 4 000
+    /// triangles is planned against its enveloping polytope (a few hundred faces that contain
+    /// it, standing off it by at most a quarter of its radius; the UR5's gripper base and
+    /// force–torque sensor). The independent checker always uses the meshes.
+    #[arg(long)]
+    pub exact_meshes: bool,
     /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
@@ -321,7 +327,13 @@ pub enum TreesFrom {
 fn mbm(a: MbmArgs) -> anyhow::Result<()> {
     use viaroad::bench::mbm;
     let time = super::limits::parse_seconds("--time", a.time)?;
-    let robot = mbm::load_robot(&a.robot)?;
+    let robot = mbm::load_robot_with(
+        &a.robot,
+        &viaroad::robot::ArmOptions {
+            exact_meshes: a.exact_meshes,
+            ..Default::default()
+        },
+    )?;
     let problems = mbm::find_problems(&a.dir, a.limit)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let race = match a.race {

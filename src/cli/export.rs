@@ -98,6 +98,7 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
         a.srdf.as_deref(),
         &ArmOptions {
             group: GroupChoice::Srdf(req.group.clone()),
+            ..ArmOptions::default()
         },
     )?;
     scene.apply_to(&mut arm)?;

@@ -27,12 +27,17 @@ pub enum GroupChoice {
 pub struct ArmOptions {
     /// The planning group.
     pub group: GroupChoice,
+    /// The exact oracle plans against every link mesh as it is, however many triangles it
+    /// has; off (the default), a mesh of more than [`super::shapes::ENVELOPE_ABOVE`] triangles
+    /// is planned against its enveloping polytope ([`super::shapes::envelope`]).
+    pub exact_meshes: bool,
 }
 
 impl Default for ArmOptions {
     fn default() -> Self {
         ArmOptions {
             group: GroupChoice::FirstSrdfGroup,
+            exact_meshes: false,
         }
     }
 }
@@ -61,8 +66,12 @@ pub struct LinkShape {
     pub origin: Isometry3<f64>,
     /// The shape as described.
     pub source: ShapeSource,
-    /// The polytope that contains the shape, in the element's frame (meshes: the mesh).
+    /// The polytope that contains the shape, in the element's frame: the mesh, or its
+    /// envelope (see `envelope_gap`), or a primitive's circumscribed polytope.
     pub polytope: TriMesh,
+    /// Where `polytope` is a mesh's envelope ([`super::shapes::envelope`]): how far it stands
+    /// off the mesh at most.
+    pub envelope_gap: Option<f64>,
 }
 
 /// A robot arm ready for planning: model, geometry, self-collision pairs, group.
@@ -117,25 +126,24 @@ impl Arm {
         let mut shapes = Vec::new();
         for (l, link) in model.urdf.links.iter().enumerate() {
             for c in &link.collisions {
-                let (source, polytope) = match &c.geometry {
+                let (source, polytope, envelope_gap) = match &c.geometry {
                     Geometry::Mesh { filename, scale } => {
                         let path = resolve_mesh_path(filename, &dir);
                         let mesh = crate::scene::mesh_io::load_mesh(&path)?;
                         let mesh = scaled(mesh, *scale, &path)?;
-                        (
-                            ShapeSource::Mesh {
-                                path,
-                                mesh: mesh.clone(),
-                            },
-                            mesh,
-                        )
+                        let around = (!options.exact_meshes)
+                            .then(|| super::shapes::envelope(&mesh))
+                            .flatten();
+                        let gap = around.as_ref().map(|e| e.gap);
+                        let polytope = around.map_or_else(|| mesh.clone(), |e| e.polytope);
+                        (ShapeSource::Mesh { path, mesh }, polytope, gap)
                     }
                     Geometry::Primitive(p) => {
                         let poly = p.polytope().map_err(|source| SceneError::Geometry {
                             path: urdf.to_path_buf(),
                             source,
                         })?;
-                        (ShapeSource::Primitive(*p), poly)
+                        (ShapeSource::Primitive(*p), poly, None)
                     }
                 };
                 shapes.push(LinkShape {
@@ -143,6 +151,7 @@ impl Arm {
                     origin: c.origin,
                     source,
                     polytope,
+                    envelope_gap,
                 });
             }
         }

@@ -11,7 +11,7 @@
 //! |---|---|
 //! | [`urdf`] | links, joints (revolute, continuous, prismatic, fixed), origins, axes, collision elements |
 //! | [`srdf`] | planning groups, `disable_collisions`, the virtual joint |
-//! | [`shapes`] | primitives (box, cylinder, sphere, cone) and the polytopes that contain them |
+//! | [`shapes`] | primitives (box, cylinder, sphere, cone) and the polytopes that contain them; a big mesh's envelope |
 //! | [`kinematics`] | the kinematic tree, forward kinematics, planning groups and their bounds |
 //! | [`arm`] | a loaded arm: model + link geometry + self-collision pairs + a planning group |
 //! | [`oracle`] | exact collision intervals of a single-joint move (the polyhedra oracle's rotations) |

@@ -12,6 +12,8 @@
 //!                                      # (group = "panda_arm"); default: the first
 //!                                      # moveit_request's group_name, else the SRDF's first
 //! fixed = { panda_finger_joint1 = 0.04 }     # optional: joints outside the group
+//! exact_meshes = false                 # optional: true plans against every mesh as it is,
+//!                                      # not a big mesh's envelope (robot::shapes::envelope)
 //! [environment]                        # optional (without it only self-collision counts)
 //! moveit_scene = "mbm/table_pick/scene0001.yaml"
 //! [[query]]
@@ -86,6 +88,8 @@ struct RobotSpec {
     group: Option<GroupSpec>,
     #[serde(default)]
     fixed: BTreeMap<String, f64>,
+    #[serde(default)]
+    exact_meshes: bool,
 }
 
 #[derive(Deserialize)]
@@ -580,7 +584,15 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         Some(GroupSpec::Name(n)) => GroupChoice::Srdf(n.clone()),
         Some(GroupSpec::Joints(j)) => GroupChoice::Joints(j.clone()),
     };
-    let mut arm = Arm::load(&urdf, srdf.as_deref(), &ArmOptions { group }).map_err(robot_err)?;
+    let mut arm = Arm::load(
+        &urdf,
+        srdf.as_deref(),
+        &ArmOptions {
+            group,
+            exact_meshes: file.robot.exact_meshes,
+        },
+    )
+    .map_err(robot_err)?;
     let mut warnings = Vec::new();
     let moveit_scene = file
         .environment
