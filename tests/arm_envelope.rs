@@ -130,13 +130,12 @@ fn a_big_mesh_is_planned_against_a_small_polytope_that_contains_it() {
 fn the_envelope_only_adds_collision() {
     let enveloped = puck_arm(false);
     let exact = puck_arm(true);
-    let post = |id: &str, at: [f64; 3], size: [f64; 3]| CollisionObject {
-        id: id.into(),
-        frame: String::new(),
-        parts: vec![(
-            nalgebra::Isometry3::translation(at[0], at[1], at[2]),
-            ObjectShape::Primitive(Primitive::Box { size }),
-        )],
+    let post = |id: &str, at: [f64; 3], size: [f64; 3]| {
+        let at = nalgebra::Isometry3::translation(at[0], at[1], at[2]);
+        CollisionObject::in_world(
+            id,
+            vec![(at, ObjectShape::Primitive(Primitive::Box { size }))],
+        )
     };
     // posts about the puck's circle (0.44–0.56 from the joint; the beam reaches 0.41), some
     // grazing its rim

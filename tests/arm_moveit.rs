@@ -203,3 +203,37 @@ fn a_problem_plans_for_its_requests_group() {
     assert!(e.contains("panda_legs"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn an_arm_scene_warns_where_a_request_was_moved_onto_a_limit() {
+    let dir = std::env::temp_dir().join(format!("viaroad-arm-limits-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let hi = panda(GroupChoice::Srdf("panda_arm".into())).group.upper[6];
+    let robot = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda");
+    let mut goal = HOME;
+    goal[6] = hi + 0.01;
+    std::fs::write(dir.join("request.yaml"), request("panda_arm", HOME, goal)).unwrap();
+    let toml = format!(
+        "[space]\nkind = \"arm\"\n[robot]\nurdf = \"{}\"\nsrdf = \"{}\"\n\
+         [[query]]\nmoveit_request = \"request.yaml\"\n",
+        robot.join("panda.urdf").display(),
+        robot.join("panda.srdf").display()
+    );
+    std::fs::write(dir.join("scene.toml"), toml).unwrap();
+    let scene = viaroad::scene::Scene::load(&dir.join("scene.toml")).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(scene.queries[0].goal[6], hi);
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("goal's panda_joint7") && w.contains("beyond its limit")),
+        "{:?}",
+        scene.warnings
+    );
+    // the group came from the request (the TOML names none)
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("an arm scene")
+    };
+    assert_eq!(a.arm.group.name, "panda_arm");
+}

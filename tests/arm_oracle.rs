@@ -536,13 +536,12 @@ fn slides_and_turns_of_a_toy_arm_agree_with_the_reference_and_the_checker() {
     )
     .unwrap();
     std::fs::remove_dir_all(&dir).ok();
-    let post = |id: &str, at: [f64; 3], size: [f64; 3]| CollisionObject {
-        id: id.into(),
-        frame: String::new(),
-        parts: vec![(
-            nalgebra::Isometry3::translation(at[0], at[1], at[2]),
-            ObjectShape::Primitive(Primitive::Box { size }),
-        )],
+    let post = |id: &str, at: [f64; 3], size: [f64; 3]| {
+        let at = nalgebra::Isometry3::translation(at[0], at[1], at[2]);
+        CollisionObject::in_world(
+            id,
+            vec![(at, ObjectShape::Primitive(Primitive::Box { size }))],
+        )
     };
     // a post the beam sweeps into, a wall the carriage slides into
     let objects = vec![

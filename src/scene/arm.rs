@@ -25,10 +25,11 @@
 //!
 //! Joints outside the group take, in this order, the scene's `robot_state`, the start state
 //! of every `moveit_request` (MoveIt's rule: the request's start state wins), then `fixed`;
-//! a MoveIt state may name joints the URDF lacks (skipped, [`crate::scene::moveit::JointState::set_known`]), and a
-//! request's ends are moved onto joint limits as MoveIt moves them
-//! ([`crate::scene::moveit::MotionPlanRequest::ends`]). Collision objects may be given in the
-//! world or in a link the group does not move ([`crate::robot::Arm::frame_pose`]).
+//! a MoveIt state may name joints the URDF lacks (skipped,
+//! [`crate::scene::moveit::JointState::set_known`]), and a request's ends are moved onto joint
+//! limits as MoveIt moves them ([`crate::scene::moveit::MotionPlanRequest::ends`]; the scene
+//! warns where it did). Collision objects may be given in the world or in a link the group does
+//! not move ([`crate::robot::Arm::frame_pose`]).
 //! The environment's curved primitives become circumscribed polytopes
 //! ([`crate::robot::Primitive::polytope`]), so a path certified against them is certified
 //! against the true shapes.
@@ -617,6 +618,9 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
                 let (start, goal) = req
                     .start_goal(&mut arm)
                     .map_err(|e| invalid(format!("{what} ({r}): {e}")))?;
+                for note in req.moved_onto_limits(&arm) {
+                    warnings.push(format!("{what} ({r}): {note}"));
+                }
                 match &first_values {
                     None => first_values = Some(arm.values.clone()),
                     Some(v) if *v != arm.values => warnings.push(format!(

@@ -84,6 +84,15 @@ pub struct CollisionObject {
 }
 
 impl CollisionObject {
+    /// An object of these parts placed in the world (an object built in code rather than read).
+    pub fn in_world(id: impl Into<String>, parts: Vec<(Isometry3<f64>, ObjectShape)>) -> Self {
+        CollisionObject {
+            id: id.into(),
+            frame: String::new(),
+            parts,
+        }
+    }
+
     /// The object in the world frame: its parts moved by the pose of its frame on `arm` (the
     /// arm's base and joint values as set; see [`Arm::frame_pose`] for the frames allowed).
     pub fn placed(&self, arm: &Arm) -> Result<CollisionObject, RobotError> {
@@ -609,6 +618,29 @@ impl MotionPlanRequest {
             }
         }
         Ok((start, goal))
+    }
+
+    /// Where [`Self::ends`] moved a value onto a limit, one line per joint (for a warning:
+    /// MoveIt warns too).
+    pub fn moved_onto_limits(&self, arm: &Arm) -> Vec<String> {
+        let (Ok(start), Ok(goal), Ok((s, g))) = (
+            arm.group_config(&self.start.names, &self.start.positions, "start state"),
+            arm.group_config(&self.goal.names, &self.goal.positions, "goal"),
+            self.ends(arm),
+        ) else {
+            return Vec::new();
+        };
+        let names = arm.group_joint_names();
+        let mut notes = Vec::new();
+        for (what, asked, taken) in [("start", &start, &s), ("goal", &goal, &g)] {
+            for i in (0..asked.len()).filter(|&i| asked[i] != taken[i]) {
+                notes.push(format!(
+                    "the {what}'s {} = {} lies beyond its limit: taken at {}",
+                    names[i], asked[i], taken[i]
+                ));
+            }
+        }
+        notes
     }
 }
 
