@@ -711,3 +711,64 @@ fn whole_stairs_find_checked_paths_deterministically() {
     check(&s, &out.path.expect("free space not solved"));
     assert_eq!(out.nodes[1], 1, "the goal tree grew: {:?}", out.nodes);
 }
+
+/// Parameters the trees cannot run with are refused before anything grows, each with what is
+/// wrong (before, `rrt_connect` did not check them: a NaN range reached the extends, no streams
+/// grew one).
+#[test]
+fn invalid_parameters_are_refused_with_their_own_error() {
+    use viaroad::roadmap::tree::{rrt_connect, TreeError};
+    let s = scene("scenes/discs-cluttered.toml");
+    let oracle = s.oracle();
+    let groups = s.space.groups(false);
+    let q = &s.checked_queries().unwrap()[0];
+    for (bad, says) in [
+        (
+            TreeParams {
+                range: f64::NAN,
+                ..params(500)
+            },
+            "range",
+        ),
+        (
+            TreeParams {
+                stair: 0.0,
+                ..params(500)
+            },
+            "stair",
+        ),
+        (
+            TreeParams {
+                streams: 0,
+                ..params(500)
+            },
+            "streams",
+        ),
+        (
+            TreeParams {
+                restart: Some(0),
+                ..params(500)
+            },
+            "restarts",
+        ),
+    ] {
+        let e = rrt_connect(
+            &s.space,
+            oracle.as_ref(),
+            &groups,
+            &q.start,
+            &q.goal,
+            &bad,
+            1,
+            &Deadline::none(),
+        )
+        .unwrap_err();
+        assert!(
+            matches!(&e, TreeError::Params(m) if m.contains(says)),
+            "{says}: {e}"
+        );
+        assert!(e.to_string().starts_with("invalid tree parameters"), "{e}");
+    }
+    // and the valid ones still grow
+    assert!(grow(&s, &params(500), 1).nodes.iter().sum::<usize>() > 2);
+}

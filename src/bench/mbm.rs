@@ -26,7 +26,9 @@ use crate::local::{
 };
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::rooted::RoadmapTrees;
-use crate::roadmap::tree::{rrt_connect, shortcut_passes, Rooted, TreeOutcome, TreeParams};
+use crate::roadmap::tree::{
+    rrt_connect, shortcut_passes, Rooted, TreeError, TreeOutcome, TreeParams,
+};
 use crate::roadmap::{
     Budget, LearnParams, Learner, QueryOptions, QueryOutcome, QueryPlanner, QueryResult, Roadmap,
 };
@@ -574,7 +576,7 @@ impl TreeStage {
 }
 
 /// Whether the trees of a [`tree_stage`] found a path (a side of a [`race`] that answered).
-fn trees_found(stage: &Result<TreeStage, OracleError>) -> bool {
+fn trees_found(stage: &Result<TreeStage, TreeError>) -> bool {
     stage.as_ref().is_ok_and(|t| t.path.is_some())
 }
 
@@ -594,7 +596,7 @@ pub fn tree_stage(
     seed: u64,
     search: &Deadline,
     whole: &Deadline,
-) -> Result<TreeStage, OracleError> {
+) -> Result<TreeStage, TreeError> {
     let growing = Instant::now();
     let found = rrt_connect(
         &scene.space,

@@ -28,7 +28,7 @@ use super::params::Budget;
 use super::persist::check_local_spec;
 use super::persist::RoadmapError;
 use super::rooted::RoadmapTrees;
-use super::tree::{Rooted, TreeParams, TreeStop};
+use super::tree::{Rooted, TreeError, TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::{
     direct_connection, direct_pieces, drop_corners_known, path_length, shorten_known, Connection,
@@ -230,6 +230,18 @@ pub enum QueryError {
     /// The oracle cannot answer a motion asked about.
     #[error("collision oracle: {0}")]
     Oracle(#[from] OracleError),
+    /// The trees' parameters fail [`TreeParams::validate`].
+    #[error("invalid tree parameters: {0}")]
+    TreeParams(String),
+}
+
+impl From<TreeError> for QueryError {
+    fn from(e: TreeError) -> Self {
+        match e {
+            TreeError::Params(m) => QueryError::TreeParams(m),
+            TreeError::Oracle(o) => QueryError::Oracle(o),
+        }
+    }
 }
 
 /// How a query ended.

@@ -16,7 +16,7 @@
 //! checked here, so the path is again a chain of certified single-group motions.
 
 use super::graph::Roadmap;
-use super::tree::{rrt_connect_rooted, Rooted, TreeOutcome, TreeParams, TreeStop};
+use super::tree::{rrt_connect_rooted, Rooted, TreeError, TreeOutcome, TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::check_direct;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
@@ -79,7 +79,7 @@ impl<'a> RoadmapTrees<'a> {
         params: &TreeParams,
         seed: u64,
         deadline: &Deadline,
-    ) -> Result<TreeOutcome, OracleError> {
+    ) -> Result<TreeOutcome, TreeError> {
         let mut counts = CallCounts::default();
         let at_start = self.attach(start, &mut counts, deadline)?;
         let at_goal = self.attach(goal, &mut counts, deadline)?;

@@ -228,6 +228,18 @@ impl TreeParams {
     }
 }
 
+/// Why [`rrt_connect`] gave no outcome: parameters it cannot run with, or the oracle's error.
+#[derive(Debug, thiserror::Error)]
+pub enum TreeError {
+    /// The parameters fail [`TreeParams::validate`] (a range that is not a positive share, no
+    /// streams, …), checked before any tree grows.
+    #[error("invalid tree parameters: {0}")]
+    Params(String),
+    /// The oracle refused a motion.
+    #[error(transparent)]
+    Oracle(#[from] OracleError),
+}
+
 /// Why [`rrt_connect`] stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TreeStop {
@@ -750,7 +762,8 @@ fn across_of(motion: &crate::space::Motion, gi: usize, g: &Group) -> Across {
 /// `deadline` passes. `groups` are the DOF groups each stair moves in turn. With
 /// `params.restart` the attempts are seeded `seed`, then streams derived from it, so the first
 /// attempt is the run without restarts cut at its node budget. With `params.streams` above 1,
-/// that many such runs race on the rayon pool ([`TreeParams::streams`]).
+/// that many such runs race on the rayon pool ([`TreeParams::streams`]). Parameters that fail
+/// [`TreeParams::validate`] are refused before anything grows ([`TreeError::Params`]).
 #[allow(clippy::too_many_arguments)]
 pub fn rrt_connect(
     space: &Space,
@@ -761,7 +774,7 @@ pub fn rrt_connect(
     params: &TreeParams,
     seed: u64,
     deadline: &Deadline,
-) -> Result<TreeOutcome, OracleError> {
+) -> Result<TreeOutcome, TreeError> {
     let roots = [&Rooted::at(start), &Rooted::at(goal)];
     rrt_connect_rooted(space, oracle, groups, roots, params, seed, deadline)
 }
@@ -779,9 +792,12 @@ pub fn rrt_connect_rooted(
     params: &TreeParams,
     seed: u64,
     deadline: &Deadline,
-) -> Result<TreeOutcome, OracleError> {
+) -> Result<TreeOutcome, TreeError> {
+    params.validate().map_err(TreeError::Params)?;
     if params.streams <= 1 {
-        return one_stream(space, oracle, groups, roots, params, seed, deadline);
+        return Ok(one_stream(
+            space, oracle, groups, roots, params, seed, deadline,
+        )?);
     }
     use rayon::prelude::*;
     use std::sync::atomic::{AtomicBool, Ordering};
