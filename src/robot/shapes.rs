@@ -14,6 +14,7 @@
 //! polytope of a few hundred faces that contains it, where one stands off it by little.
 
 use crate::geometry::{GeometryError, TriMesh};
+use crate::scene::shapes::convex_hull_3d;
 use nalgebra::{Matrix3, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -332,7 +333,7 @@ pub fn envelope(mesh: &TriMesh) -> Option<Envelope> {
         parry3d_f64::shape::TriMesh::new(mesh.vertices.clone(), mesh.triangles.clone()).ok()?;
     // the hull (thousands of faces on a round part) only where the oriented polytope is too loose
     let candidates: [fn(&TriMesh) -> Option<TriMesh>; 2] =
-        [oriented_polytope, |m| convex_hull(&m.vertices)];
+        [oriented_polytope, |m| convex_hull_3d(&m.vertices).ok()];
     candidates
         .into_iter()
         .filter_map(|make| make(mesh))
@@ -378,21 +379,7 @@ fn oriented_polytope(mesh: &TriMesh) -> Option<TriMesh> {
             .solve(&Vector3::repeat(1.0))?;
         corners.push(Point3::from(x + c.coords));
     }
-    convex_hull(&corners)
-}
-
-/// The convex hull of `points`, faces outward.
-fn convex_hull(points: &[Point3<f64>]) -> Option<TriMesh> {
-    let (vertices, faces) = parry3d_f64::transformation::try_convex_hull(points).ok()?;
-    let mut hull = TriMesh::new(vertices, faces).ok()?;
-    if hull.volume() < 0.0 {
-        for t in &mut hull.triangles {
-            t.swap(1, 2);
-        }
-    }
-    // a solid: not the flat hull of a flat sheet
-    let (lo, hi) = hull.aabb();
-    (hull.volume() > 1e-9 * (hi - lo).norm().powi(3)).then_some(hull)
+    convex_hull_3d(&corners).ok()
 }
 
 /// Whether every point lies inside (or on) every face plane of the convex, outward `polytope`.
