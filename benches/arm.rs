@@ -167,31 +167,71 @@ fn table() {
     }
 }
 
-/// `ARM_MOVES=states`: the static test at uniform configurations of box 1, per verdict.
+/// `ARM_MOVES=states`: the static test at uniform configurations of box 1, per verdict, with
+/// the sure test ([`viaroad::robot::inner`]) and without it (the verdicts compared).
 fn states() {
     let (arm, scene) = panda_in("box");
+    let started = std::time::Instant::now();
     let oracle = ArmOracle::new(&arm, &scene.objects).unwrap();
+    println!(
+        "oracle built in {:.1} ms",
+        started.elapsed().as_secs_f64() * 1e3
+    );
+    // built again: a clone would share the first one's memo of static link tests
+    let exact = ArmOracle::new(&arm, &scene.objects)
+        .unwrap()
+        .with_sure_test(false);
     let g = arm.group.clone();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let mut t = [(0.0, 0usize); 2];
-    let mut counts = CallCounts::default();
+    // [sure test on, off] × [free, collides]: seconds, configurations
+    let mut t = [[(0.0, 0usize); 2]; 2];
+    let mut counts = [CallCounts::default(), CallCounts::default()];
+    // the sure test alone, per verdict: seconds, collisions it found
+    let mut sure_t = [(0.0, 0usize); 2];
     for _ in 0..40_000 {
         let q: Vec<f64> = (0..g.dof())
             .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
             .collect();
+        let mut hits = [false; 2];
+        let order = if rng.random_bool(0.5) { [0, 1] } else { [1, 0] };
+        for k in order {
+            let o = [&oracle, &exact][k];
+            let start = std::time::Instant::now();
+            hits[k] = o.collides(&q, &mut counts[k]).unwrap();
+            let e = start.elapsed().as_secs_f64();
+            t[k][usize::from(hits[k])].0 += e;
+            t[k][usize::from(hits[k])].1 += 1;
+        }
+        assert_eq!(
+            hits[0], hits[1],
+            "the sure test changed the verdict at {q:?}"
+        );
         let start = std::time::Instant::now();
-        let hit = oracle.collides(&q, &mut counts).unwrap();
-        let e = start.elapsed().as_secs_f64();
-        t[usize::from(hit)].0 += e;
-        t[usize::from(hit)].1 += 1;
-    }
-    for (name, (s, n)) in ["free", "collide"].iter().zip(t) {
-        println!(
-            "{name:<8} {n:>6} configurations, {:.1} µs each",
-            s * 1e6 / n.max(1) as f64
+        let sure = oracle.surely_collides(&q);
+        sure_t[usize::from(hits[0])].0 += start.elapsed().as_secs_f64();
+        sure_t[usize::from(hits[0])].1 += usize::from(sure);
+        assert!(
+            !sure || hits[0],
+            "the sure test found a collision the exact test did not at {q:?}"
         );
     }
-    println!("exact pairs {}", counts.pairs_tested);
+    for (v, name) in ["free", "collide"].iter().enumerate() {
+        let (secs, found) = sure_t[v];
+        let n = t[1][v].1.max(1);
+        println!(
+            "sure test alone at {name:<8} configurations: {:.2} µs each, found {found} of {n}",
+            secs * 1e6 / n as f64
+        );
+    }
+    for (k, mode) in ["sure test", "exact only"].iter().enumerate() {
+        for (name, (s, n)) in ["free", "collide"].iter().zip(t[k]) {
+            println!(
+                "{mode:<10} {name:<8} {n:>6} configurations, {:.1} µs each",
+                s * 1e6 / n.max(1) as f64
+            );
+        }
+        println!("{mode:<10} exact pairs {}", counts[k].pairs_tested);
+    }
 }
 
 /// `ARM_MOVES=<variant>`: the moves once, for callgrind.

@@ -239,27 +239,15 @@ pub fn direct_pieces(
 /// when the groups are single axes).
 ///
 /// The same sum as measuring [`direct_pieces`], without building a motion and a corner per
-/// piece: shortening measures every pair of corners (`m²` of them), and those allocations
-/// were 7 % of a workcell query (table_pick, 2026-12-03).
+/// piece ([`Space::group_length`]): shortening measures every pair of corners (`m²` of them),
+/// and those allocations were 7 % of a workcell query (table_pick, 2026-12-03) and still
+/// 0.17 ms of a 1.1 ms shortening in the box with one motion and corner per pair (2026-12-05).
 pub fn direct_length(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> f64 {
-    let mut cur = a.to_vec();
-    let mut motion: Option<Motion> = None;
-    let mut total = 0.0;
-    for g in groups {
-        if space.same_in_group(&cur, z, g) {
-            continue;
-        }
-        let m = match &mut motion {
-            Some(m) => {
-                space.group_motion_into(&cur, z, g, m);
-                m
-            }
-            None => motion.insert(space.group_motion(&cur, z, g)),
-        };
-        total += space.motion_length(m, 0.0, 1.0);
-        cur[g.coords.clone()].copy_from_slice(&z[g.coords.clone()]);
-    }
-    total
+    // a group's piece starts where `a` is in that group (earlier pieces move other groups)
+    groups
+        .iter()
+        .filter(|g| !space.same_in_group(a, z, g))
+        .fold(0.0, |total, g| total + space.group_length(a, z, g))
 }
 
 /// Checks the direct path from `a` to `z` (yes/no, one counted call per piece, stopping at the
@@ -285,13 +273,14 @@ pub fn check_direct(
 /// visibility graph ask about the same pairs. Each piece is then asked once, and the pieces of
 /// the path being shortened, free by the caller's contract, never.
 ///
-/// The corners of the pieces are kept too (static checks, by their bits): a direct path is
-/// found blocked by a corner in collision before any of its sweeps is asked
-/// ([`check_direct_known`]), and the pairs of one shortening share corners as they share
-/// pieces.
+/// The corners of the pieces are kept too (by their bits): a direct path is found blocked by a
+/// corner in collision before any of its sweeps is asked ([`check_direct_known`]), and the
+/// pairs of one shortening share corners as they share pieces.
 #[derive(Debug, Default)]
 pub struct KnownPieces {
     known: FastMap<Vec<u64>, bool>,
+    /// `false` for a corner known to collide; `true` for one known free (a corner of the path)
+    /// or that the oracle's sure test could not show in collision.
     corners: FastMap<Vec<u64>, bool>,
 }
 
@@ -324,21 +313,69 @@ impl KnownPieces {
         q.iter().map(|x| x.to_bits()).collect()
     }
 
-    /// Whether corner `q` is free: the known answer, or the oracle's (a counted state check),
-    /// kept.
-    fn corner_free(
+    /// What is known of corner `q` (see [`Self::corners`]), looked up through `buf`.
+    fn corner_known(&self, q: &[f64], buf: &mut Vec<u64>) -> Option<bool> {
+        buf.clear();
+        buf.extend(q.iter().map(|x| x.to_bits()));
+        self.corners.get(buf.as_slice()).copied()
+    }
+
+    /// The known answer for the piece from `a` to `z`, looked up through `buf`.
+    fn piece_known(&self, a: &[f64], z: &[f64], buf: &mut Vec<u64>) -> Option<bool> {
+        buf.clear();
+        buf.extend(a.iter().chain(z).map(|x| x.to_bits()));
+        self.known.get(buf.as_slice()).copied()
+    }
+
+    /// Whether corner `q` blocks a path through it, kept: the known answer, else the oracle's
+    /// sure test ([`CollisionOracle::surely_collides`]), else, for an oracle without one, its
+    /// full static test (a counted state check).
+    ///
+    /// Where a sure test exists the full test is not asked: the sweeps of a free path cover its
+    /// corners anyway, and a collision the sure test misses is found by the sweep that ends
+    /// there. In the Panda's box workcell the sure test found two of three colliding corners at
+    /// ~1 µs against 10–25 µs for the full test, and leaving the rest to the sweeps lowered the
+    /// query p50 from 1.26–1.41 to 1.06–1.09 ms (three runs each, the same paths, 2026-12-05).
+    fn corner_blocks(
         &mut self,
         oracle: &dyn CollisionOracle,
         q: &[f64],
+        buf: &mut Vec<u64>,
         counts: &mut CallCounts,
     ) -> bool {
-        let key = Self::corner_key(q);
-        if let Some(&free) = self.corners.get(&key) {
-            return free;
+        if let Some(known) = self.corner_known(q, buf) {
+            return !known;
         }
-        let free = oracle.is_free(q, counts);
-        self.corners.insert(key, free);
-        free
+        let free = match oracle.surely_collides(q) {
+            Some(hit) => !hit,
+            None => oracle.is_free(q, counts),
+        };
+        self.corners.insert(Self::corner_key(q), free);
+        !free
+    }
+
+    /// Whether what is known already blocks the direct path from `a` to `z` (an inner corner
+    /// in collision or a piece blocked), without asking the oracle: a shortening's lazy search
+    /// sets aside every such pair on its candidate path at once, where it would otherwise
+    /// search again after each (in the box's workcell two of three pairs a shortening looked at
+    /// were blocked by a corner already found in collision, 2026-12-05).
+    pub fn blocks(&self, space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool {
+        let mut buf = Vec::with_capacity(2 * a.len());
+        let mut cur = a.to_vec();
+        let mut next = a.to_vec();
+        for g in groups {
+            if space.same_in_group(&cur, z, g) {
+                continue;
+            }
+            next[g.coords.clone()].copy_from_slice(&z[g.coords.clone()]);
+            if self.piece_known(&cur, &next, &mut buf) == Some(false)
+                || (next.as_slice() != z && self.corner_known(&next, &mut buf) == Some(false))
+            {
+                return true;
+            }
+            cur[g.coords.clone()].copy_from_slice(&z[g.coords.clone()]);
+        }
+        false
     }
 
     /// Number of pieces known.
@@ -355,12 +392,13 @@ impl KnownPieces {
 /// [`check_direct`] that first looks each piece up in `known` (and records what it asks
 /// there): the same answer, and the same corners, with no call for a piece already known.
 ///
-/// With `known`, the corners between the pieces are checked first, each a static check
-/// (kept in `known`): a corner in collision blocks the path, and the sweeps are not asked. Of
-/// the pairs a shortening checks most are blocked (a path around an obstacle, tried across
-/// it), and a corner inside the obstacle is found by a static check where the sweep before it
-/// might be free and the one after it costs most (the box's workcell: query p50 8.2 → 4.6 ms,
-/// the same paths).
+/// With `known`, the corners between the pieces are tested first ([`KnownPieces`]; the sure
+/// test where the oracle has one, else a static check; kept): a corner in collision blocks the
+/// path, and the sweeps are not asked. Of the pairs a shortening checks most are blocked (a
+/// path around an obstacle, tried across it), and a corner inside the obstacle is found by a
+/// static test where the sweep before it might be free and the one after it costs most (the
+/// box's workcell: query p50 8.2 → 4.6 ms with the full static test, the same paths).
+/// Without `known`, the sure test alone ([`surely_blocked`]).
 pub fn check_direct_known(
     space: &Space,
     oracle: &dyn CollisionOracle,
@@ -370,31 +408,31 @@ pub fn check_direct_known(
     mut known: Option<&mut KnownPieces>,
     counts: &mut CallCounts,
 ) -> Result<Option<Vec<Config>>, OracleError> {
-    let mut corners = Vec::new();
-    let mut cur: &[f64] = a;
     let pieces = direct_pieces(space, groups, 0, a, z);
-    if let Some(k) = known.as_mut() {
-        // the last corner is `z`, a corner of the path being shortened: free
-        let inner = &pieces[..pieces.len().saturating_sub(1)];
-        if inner
+    let mut buf = Vec::with_capacity(2 * a.len());
+    // the last corner is `z`, a corner of the path being shortened or a node: free
+    let inner = &pieces[..pieces.len().saturating_sub(1)];
+    let blocked = match known.as_mut() {
+        Some(k) => inner
             .iter()
-            .any(|(_, end)| !k.corner_free(oracle, end, counts))
-        {
-            return Ok(None);
-        }
+            .any(|(_, end)| k.corner_blocks(oracle, end, &mut buf, counts)),
+        None => surely_blocked(oracle, &pieces),
+    };
+    if blocked {
+        return Ok(None);
     }
+    let mut corners = Vec::with_capacity(pieces.len().max(1));
+    let mut cur: &[f64] = a;
     for (motion, end) in &pieces {
-        let key = known.as_ref().map(|_| KnownPieces::key(cur, end));
-        let cached = match (&known, &key) {
-            (Some(k), Some(key)) => k.known.get(key).copied(),
-            _ => None,
-        };
+        let cached = known
+            .as_ref()
+            .and_then(|k| k.piece_known(cur, end, &mut buf));
         let free = match cached {
             Some(f) => f,
             None => {
                 let f = oracle.check_motion(motion, counts)?;
-                if let (Some(k), Some(key)) = (known.as_mut(), key) {
-                    k.known.insert(key, f);
+                if let Some(k) = known.as_mut() {
+                    k.known.insert(KnownPieces::key(cur, end), f);
                 }
                 f
             }
@@ -409,6 +447,17 @@ pub fn check_direct_known(
         corners.push(z.to_vec());
     }
     Ok(Some(corners))
+}
+
+/// Whether an inner corner of a direct path's `pieces` (each piece's end but the last's)
+/// surely collides ([`CollisionOracle::surely_collides`]): the path is then blocked, whatever
+/// its sweeps would say, and none need be asked. Most direct paths a query tries are blocked
+/// (attaching to the nearest nodes, shortening across an obstacle), and a sweep costs tens of
+/// microseconds where the sure test costs one.
+pub fn surely_blocked(oracle: &dyn CollisionOracle, pieces: &[(Motion, Config)]) -> bool {
+    pieces[..pieces.len().saturating_sub(1)]
+        .iter()
+        .any(|(_, end)| oracle.surely_collides(end) == Some(true))
 }
 
 /// The direct path from `a` to `z` as a connection attempt (CHS's depth 0): one exact call

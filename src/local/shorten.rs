@@ -102,6 +102,21 @@ pub fn shorten_known(
     let h: Vec<f64> = (0..m).map(|i| length[i * m + m - 1]).collect();
     loop {
         let order = astar(m, &cost, &h);
+        // the pairs of the candidate path that what is known blocks already, all at once
+        let mut set_aside = false;
+        for w in order.windows(2) {
+            let (i, j) = (w[0].min(w[1]), w[0].max(w[1]));
+            let k = i * m + j;
+            if state[k] == Pair::Unknown && known.blocks(space, groups, &path[i], &path[j]) {
+                state[k] = Pair::Blocked;
+                cost[i * m + j] = f64::INFINITY;
+                cost[j * m + i] = f64::INFINITY;
+                set_aside = true;
+            }
+        }
+        if set_aside {
+            continue;
+        }
         let mut all_free = true;
         for w in order.windows(2) {
             let k = w[0].min(w[1]) * m + w[0].max(w[1]);

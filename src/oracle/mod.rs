@@ -145,6 +145,17 @@ pub trait CollisionOracle: Send + Sync {
     /// Whether configuration `q` collides.
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool;
 
+    /// Whether `q` surely collides, by a test far cheaper than [`collides`](Self::collides)
+    /// that may miss collisions but never reports one `collides` would not (an arm's balls
+    /// inside its links against the obstacles' true shapes, [`crate::robot::inner`]):
+    /// `Some(true)` where it finds one, `Some(false)` where it does not, `None` for an oracle
+    /// without such a test (the default). A direct path with a surely colliding inner corner
+    /// is blocked before any of its sweeps is asked. Not a counted call.
+    fn surely_collides(&self, q: &[f64]) -> Option<bool> {
+        let _ = q;
+        None
+    }
+
     /// Whether the whole of `motion.range` is free. The default asks for all intervals;
     /// oracles override it to stop at the first collision found.
     fn motion_is_free(
@@ -275,6 +286,9 @@ macro_rules! forward_oracle {
             fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
                 (**self).collides(q, counts)
             }
+            fn surely_collides(&self, q: &[f64]) -> Option<bool> {
+                (**self).surely_collides(q)
+            }
             fn motion_is_free(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError> {
                 (**self).motion_is_free(motion, counts)
             }
@@ -392,6 +406,11 @@ impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
         !self.space.in_bounds(q) || self.inner.collides(q, counts)
+    }
+
+    fn surely_collides(&self, q: &[f64]) -> Option<bool> {
+        let inner = self.inner.surely_collides(q)?;
+        Some(inner || !self.space.in_bounds(q))
     }
 
     fn first_collision(

@@ -31,8 +31,8 @@ use super::rooted::RoadmapTrees;
 use super::tree::{Rooted, TreeError, TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::{
-    direct_connection, direct_pieces, drop_corners_known, path_length, shorten_known, Connection,
-    KnownPieces, LocalMethod, LocalSpec, Outcome,
+    direct_connection, direct_pieces, drop_corners_known, path_length, shorten_known,
+    surely_blocked, Connection, KnownPieces, LocalMethod, LocalSpec, Outcome,
 };
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
@@ -893,7 +893,11 @@ impl<'a> QueryPlanner<'a> {
         deadline: &Deadline,
     ) -> Result<Connection, QueryError> {
         let mut corners = Vec::new();
-        for (motion, end) in direct_pieces(self.space(), &self.groups, 0, a, z) {
+        let pieces = direct_pieces(self.space(), &self.groups, 0, a, z);
+        if surely_blocked(self.oracle, &pieces) {
+            return Ok(Connection::from_corners(a, z, None, CallCounts::default()));
+        }
+        for (motion, end) in pieces {
             if deadline.expired() || self.calls_left(result) == Some(0) {
                 return Ok(Connection::interrupted(a, z));
             }

@@ -1,6 +1,7 @@
 //! A loaded arm: the kinematic model, the collision geometry of every link, the link pairs
 //! checked for self-collision, and the planning group with the values of all other joints.
 
+use super::inner::{inner_balls, InnerBall};
 use super::kinematics::{Group, Model};
 use super::shapes::Primitive;
 use super::srdf::{load_srdf, Srdf};
@@ -9,6 +10,7 @@ use super::RobotError;
 use crate::geometry::TriMesh;
 use crate::scene::SceneError;
 use nalgebra::{Isometry3, Point3};
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// Which joints a loaded arm moves.
@@ -72,6 +74,10 @@ pub struct LinkShape {
     /// Where `polytope` is a mesh's envelope ([`super::shapes::envelope`]): how far it stands
     /// off the mesh at most.
     pub envelope_gap: Option<f64>,
+    /// Balls inside `polytope`, in the element's frame, for the oracle's sure collision test
+    /// ([`super::inner`]); none where the polytope is not closed. Found once per robot load,
+    /// not per scene.
+    pub inner: Vec<InnerBall>,
 }
 
 /// A robot arm ready for planning: model, geometry, self-collision pairs, group.
@@ -152,9 +158,13 @@ impl Arm {
                     source,
                     polytope,
                     envelope_gap,
+                    inner: Vec::new(),
                 });
             }
         }
+        shapes
+            .par_iter_mut()
+            .for_each(|s| s.inner = inner_balls(&s.polytope));
         let with_geometry: Vec<usize> = (0..model.urdf.links.len())
             .filter(|&l| shapes.iter().any(|s| s.link == l))
             .collect();

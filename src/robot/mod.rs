@@ -15,11 +15,13 @@
 //! | [`kinematics`] | the kinematic tree, forward kinematics, planning groups and their bounds |
 //! | [`arm`] | a loaded arm: model + link geometry + self-collision pairs + a planning group |
 //! | [`oracle`] | exact collision intervals of a single-joint move (the polyhedra oracle's rotations) |
+//! | [`inner`] | balls inside the links: a sure collision test ahead of the exact one |
 //! | [`checker`] | the independent checker: parry `intersection_test` of every pair, sampled paths |
 
 pub mod arm;
 pub mod checker;
 mod clearance;
+pub mod inner;
 pub mod kinematics;
 pub mod oracle;
 pub mod shapes;

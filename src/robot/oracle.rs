@@ -59,6 +59,7 @@
 
 use super::arm::Arm;
 use super::clearance::{self, Cloud, Move, Pair};
+use super::inner::{InnerBall, Solid};
 use super::RobotError;
 use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
@@ -201,9 +202,57 @@ pub struct ArmOracle {
     env_clouds: Vec<Option<Cloud>>,
     /// Whether the link oracles of a move share what they find ([`ArmOracle::with_culling`]).
     culling: bool,
+    /// Per link: balls inside its polytopes, in the link frame ([`super::inner`]).
+    inner: Vec<Vec<InnerBall>>,
+    /// Per environment polytope: the true shape it stands for, where the sure test
+    /// ([`super::inner`]) can measure it.
+    solids: Vec<Option<Solid>>,
+    /// Whether [`Self::collides`] tries the sure test first ([`ArmOracle::with_sure_test`]).
+    sure_test: bool,
     /// This oracle's key in the thread's memo of static link tests ([`STATIC_MEMO`]): unique
     /// per construction, so that no other oracle's answers are ever read.
     id: u64,
+}
+
+/// Links and inner balls the sure test places (on the stack): links beyond are left to the
+/// exact test.
+const SURE_LINKS: usize = 32;
+const SURE_BALLS: usize = 128;
+
+/// The sure test's inner balls in the world, each link's placed when first asked for (most
+/// links meet no obstacle), on the stack.
+struct PlacedBalls<'a> {
+    inner: &'a [Vec<InnerBall>],
+    poses: &'a [Isometry3<f64>],
+    balls: [(Point3<f64>, f64); SURE_BALLS],
+    at: [Option<(u16, u16)>; SURE_LINKS],
+    used: usize,
+}
+
+impl<'a> PlacedBalls<'a> {
+    fn new(inner: &'a [Vec<InnerBall>], poses: &'a [Isometry3<f64>]) -> Self {
+        PlacedBalls {
+            inner,
+            poses,
+            balls: [(Point3::origin(), 0.0); SURE_BALLS],
+            at: [None; SURE_LINKS],
+            used: 0,
+        }
+    }
+
+    /// Where link `l`'s balls are in [`Self::balls`] (placed now if they were not).
+    fn of(&mut self, l: usize) -> std::ops::Range<usize> {
+        if let Some((from, to)) = self.at[l] {
+            return from as usize..to as usize;
+        }
+        let from = self.used;
+        for b in self.inner[l].iter().take(SURE_BALLS - from) {
+            self.balls[self.used] = (self.poses[l] * b.centre, b.radius);
+            self.used += 1;
+        }
+        self.at[l] = Some((from as u16, self.used as u16));
+        from..self.used
+    }
 }
 
 /// Entries after which [`STATIC_MEMO`] starts afresh (a few hundred kilobytes).
@@ -277,6 +326,7 @@ impl ArmOracle {
     /// among the scene's collision objects (curved primitives circumscribed).
     pub fn new(arm: &Arm, objects: &[CollisionObject]) -> Result<ArmOracle, RobotError> {
         let mut environment = Vec::new();
+        let mut solids = Vec::new();
         for o in objects {
             let what = || format!("collision object {}", o.id);
             let at = arm.frame_pose(&o.frame).map_err(|e| RobotError::Config {
@@ -294,6 +344,10 @@ impl ArmOracle {
                 let world = placed(&local, &(at * pose));
                 let ball = Ball::of(&world);
                 environment.push((world, ball));
+                solids.push(match shape {
+                    ObjectShape::Primitive(p) => Solid::of(p, &(at * pose)),
+                    ObjectShape::Mesh(_) => None,
+                });
             }
         }
         let link_meshes = (0..arm.model.urdf.links.len())
@@ -368,8 +422,29 @@ impl ArmOracle {
             .iter()
             .map(|(m, _)| Cloud::of(&m.vertices))
             .collect();
+        // each element's balls (found at load) in its link's frame
+        let inner = (0..arm.model.urdf.links.len())
+            .map(|l| {
+                let mut balls: Vec<InnerBall> = arm
+                    .shapes
+                    .iter()
+                    .filter(|s| s.link == l)
+                    .flat_map(|s| {
+                        s.inner.iter().map(|b| InnerBall {
+                            centre: s.origin * b.centre,
+                            radius: b.radius,
+                        })
+                    })
+                    .collect();
+                balls.sort_by(|a, b| b.radius.total_cmp(&a.radius));
+                balls
+            })
+            .collect();
         Ok(ArmOracle {
             arm: arm.clone(),
+            inner,
+            solids,
+            sure_test: true,
             environment,
             link_meshes,
             pair_oracles,
@@ -502,6 +577,9 @@ impl ArmOracle {
         counts.state_checks += 1;
         let poses = self.arm.link_poses(q);
         let balls = self.balls(&poses);
+        if self.sure_test && self.surely_collides_at(&poses, &balls) {
+            return Ok(true);
+        }
         for &(a, b) in &self.arm.self_pairs {
             if let (Some(ba), Some(bb)) = (&balls[a], &balls[b]) {
                 if ba.meets(bb) && self.pair_meets(a, b, &poses, counts) {
@@ -518,6 +596,57 @@ impl ArmOracle {
             }
         }
         Ok(false)
+    }
+
+    /// Whether group configuration `q` surely collides (the sure test of [`super::inner`]
+    /// alone, a few hundred flops): `true` only where [`Self::collides`] is `true`; `false` for
+    /// a configuration it cannot place.
+    pub fn surely_collides(&self, q: &[f64]) -> bool {
+        if !self.sure_test || self.arm.check_config(q, "configuration").is_err() {
+            return false;
+        }
+        let poses = self.arm.link_poses(q);
+        let balls = self.balls(&poses);
+        self.surely_collides_at(&poses, &balls)
+    }
+
+    /// The sure test ([`super::inner`]): a link's inner ball reaching into an obstacle's true
+    /// shape, or two links' inner balls overlapping. `true` only where [`Self::collides`]'
+    /// exact test finds a collision too.
+    fn surely_collides_at(&self, poses: &[Isometry3<f64>], balls: &[Option<Ball>]) -> bool {
+        let links = balls.len().min(SURE_LINKS);
+        let mut placed = PlacedBalls::new(&self.inner, poses);
+        for (l, ball) in balls.iter().enumerate().take(links) {
+            let Some(ball) = ball else { continue };
+            if self.inner[l].is_empty() {
+                continue;
+            }
+            for ((_, ob), solid) in self.environment.iter().zip(&self.solids) {
+                // the link's own ball holds its inner balls: if it misses the true shape, so
+                // do they (one placement instead of one per inner ball)
+                let near = |s: &&Solid| ball.meets(ob) && s.meets(&ball.centre.into(), ball.radius);
+                if let Some(solid) = solid.as_ref().filter(near) {
+                    let mine = placed.of(l);
+                    if placed.balls[mine].iter().any(|(c, r)| solid.meets(c, *r)) {
+                        return true;
+                    }
+                }
+            }
+        }
+        self.arm.self_pairs.iter().any(|&(a, b)| {
+            if a >= links || b >= links || self.inner[a].is_empty() || self.inner[b].is_empty() {
+                return false;
+            }
+            if !matches!((&balls[a], &balls[b]), (Some(x), Some(y)) if x.meets(y)) {
+                return false;
+            }
+            let (ra, rb) = (placed.of(a), placed.of(b));
+            placed.balls[ra].iter().any(|(ca, ra)| {
+                placed.balls[rb.clone()]
+                    .iter()
+                    .any(|(cb, rb)| (ca - cb).norm_squared() < (ra + rb) * (ra + rb))
+            })
+        })
     }
 
     /// What both ways of answering a joint move share: input checks, the distal links, and the
@@ -661,6 +790,14 @@ impl ArmOracle {
             return Ok(all.iter().next().map(|iv| iv.lo));
         }
         self.gathered(q, joint, delta, Gather::First, counts, |g| g.first())
+    }
+
+    /// Switches the sure test of [`Self::collides`] ([`super::inner`]) on or off: the same
+    /// verdicts either way, only slower off (the reference the tests compare with). On by
+    /// default.
+    pub fn with_sure_test(mut self, on: bool) -> ArmOracle {
+        self.sure_test = on;
+        self
     }
 
     /// Switches the sharing between link oracles (skipped windows, early stops) on or off.

@@ -538,6 +538,10 @@ impl CollisionOracle for ArmCollision {
         counts.pairs_tested += own.pairs_tested;
         hit
     }
+
+    fn surely_collides(&self, q: &[f64]) -> Option<bool> {
+        Some(self.oracle.surely_collides(q))
+    }
 }
 
 /// Whether a parsed TOML document is an arm scene (`[space] kind = "arm"`).

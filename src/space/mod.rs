@@ -667,6 +667,39 @@ impl Space {
         }
     }
 
+    /// The length of [`group_motion`](Self::group_motion)`(a, z, group)` over its whole range,
+    /// bit for bit, without building the motion: it depends only on `group`'s coordinates of
+    /// `a` and `z` (shortening measures every pair of a path's corners, group by group).
+    pub fn group_length(&self, a: &[f64], z: &[f64], group: &Group) -> f64 {
+        let p = self.position_dim();
+        // the terms `motion_length` sums, in its order (the zeros of other groups add nothing)
+        let linear = |delta: &dyn Fn(usize) -> f64| {
+            let lin = group
+                .coords
+                .clone()
+                .filter(|&i| i < p)
+                .map(|i| delta(i) * delta(i))
+                .fold(0.0, |s, d| s + d)
+                .sqrt();
+            let ang = if self.kind == SpaceKind::Se2 && group.coords.contains(&2) {
+                delta(2).abs()
+            } else {
+                0.0
+            };
+            lin + self.rotation_scale * ang
+        };
+        match group.kind {
+            GroupKind::Linear => linear(&|i| z[i] - a[i]),
+            GroupKind::Angle => linear(&|i| rotation::wrap_angle(z[i] - a[i])),
+            GroupKind::Quaternion => {
+                let qa = rotation::quat_from_slice(&a[3..7]);
+                let qz = rotation::quat_from_slice(&z[3..7]);
+                let (_, angle) = rotation::relative_axis_angle(&qa, &qz);
+                angle.abs() * self.rotation_scale
+            }
+        }
+    }
+
     /// Points for a nearest-neighbour index whose Euclidean distance is a lower bound of
     /// [`distance`](Self::distance) (a chord is never longer than its arc, and
     /// `√(x² + y²) ≤ x + y`): the configuration itself for R^n;
