@@ -45,7 +45,8 @@ pub fn inner_balls(mesh: &TriMesh) -> Vec<InnerBall> {
     }
     let (lo, hi) = mesh.aabb();
     let step = (hi - lo) / GRID as f64;
-    let mut candidates: Vec<(Point3<f64>, f64)> = Vec::new();
+    let triangles = Triangles::of(mesh);
+    let mut candidates: Vec<(Point3<f64>, f64)> = Vec::with_capacity(GRID * GRID * GRID);
     for i in 0..GRID {
         for j in 0..GRID {
             for k in 0..GRID {
@@ -55,23 +56,24 @@ pub fn inner_balls(mesh: &TriMesh) -> Vec<InnerBall> {
                         j as f64 + 0.5,
                         k as f64 + 0.5,
                     ));
-                if winding_number(mesh, &p) > 0.5 {
-                    candidates.push((p, surface_distance(mesh, &p)));
-                }
+                candidates.push((p, triangles.distance(&p)));
             }
         }
     }
-    // deepest first; ties by position, so the choice does not depend on anything else
+    // farthest from the surface first (a stable sort: ties in grid order); the inside test, an
+    // arc tangent per triangle, only for the few points that could become balls
     candidates.sort_by(|a, b| b.1.total_cmp(&a.1));
     let mut balls: Vec<InnerBall> = Vec::new();
-    let deepest = candidates.first().map_or(0.0, |c| c.1);
+    let mut deepest = None;
     for (p, d) in candidates {
-        if balls.len() == MOST_BALLS || d < LEAST_SHARE * deepest {
+        if balls.len() == MOST_BALLS || deepest.is_some_and(|top| d < LEAST_SHARE * top) {
             break;
         }
-        if balls.iter().any(|b| (b.centre - p).norm() < b.radius) {
+        if balls.iter().any(|b| (b.centre - p).norm() < b.radius) || winding_number(mesh, &p) <= 0.5
+        {
             continue;
         }
+        deepest.get_or_insert(d);
         let radius = d * (1.0 - 1e-6) - 1e-9;
         if radius > 0.0 {
             balls.push(InnerBall { centre: p, radius });
@@ -95,14 +97,44 @@ fn winding_number(mesh: &TriMesh, p: &Point3<f64>) -> f64 {
     total / (4.0 * std::f64::consts::PI)
 }
 
-/// Distance from `p` to the nearest triangle of `mesh`.
-fn surface_distance(mesh: &TriMesh, p: &Point3<f64>) -> f64 {
-    (0..mesh.triangles.len())
-        .map(|t| {
-            let [a, b, c] = mesh.triangle(t);
-            (closest_on_triangle(p, &a, &b, &c) - p).norm()
-        })
-        .fold(f64::INFINITY, f64::min)
+/// Each triangle's corners and a ball about it (centroid, radius), so that a distance query
+/// skips the triangles that cannot be nearer than the nearest so far.
+struct Triangles {
+    corners: Vec<[Point3<f64>; 3]>,
+    balls: Vec<(Point3<f64>, f64)>,
+}
+
+impl Triangles {
+    fn of(mesh: &TriMesh) -> Triangles {
+        let corners: Vec<[Point3<f64>; 3]> = (0..mesh.triangles.len())
+            .map(|t| mesh.triangle(t))
+            .collect();
+        let balls = corners
+            .iter()
+            .map(|[a, b, c]| {
+                let m = Point3::from((a.coords + b.coords + c.coords) / 3.0);
+                let r = [a, b, c]
+                    .iter()
+                    .map(|v| (*v - m).norm())
+                    .fold(0.0, f64::max);
+                (m, r)
+            })
+            .collect();
+        Triangles { corners, balls }
+    }
+
+    /// Distance from `p` to the nearest triangle.
+    fn distance(&self, p: &Point3<f64>) -> f64 {
+        let mut best = f64::INFINITY;
+        for ([a, b, c], (m, r)) in self.corners.iter().zip(&self.balls) {
+            // no point of the triangle is nearer than its ball's surface
+            let reach = (m - p).norm() - r;
+            if reach < best {
+                best = best.min((closest_on_triangle(p, a, b, c) - p).norm());
+            }
+        }
+        best
+    }
 }
 
 /// The point of triangle `abc` closest to `p` (Ericson, *Real-Time Collision Detection*,
