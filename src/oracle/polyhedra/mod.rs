@@ -77,6 +77,7 @@ use crate::space::rotation::quat_from_slice;
 use crate::space::{Change, Motion};
 pub(crate) use body::Body;
 use body::Face;
+pub(crate) use envelope::AngleRange;
 use envelope::{CylBox, FrameBox};
 use nalgebra::{Matrix3, Vector3};
 use predicate::Tolerance;
