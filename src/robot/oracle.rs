@@ -262,30 +262,45 @@ pub struct ArmOracle {
     id: u64,
 }
 
-/// Links and inner balls the sure test places (on the stack): links beyond are left to the
-/// exact test.
-const SURE_LINKS: usize = 32;
-const SURE_BALLS: usize = 128;
-
 /// The sure test's inner balls in the world, each link's placed when first asked for (most
-/// links meet no obstacle), on the stack.
+/// links meet no obstacle), in buffers the thread keeps ([`PLACED`]).
 struct PlacedBalls<'a> {
     inner: &'a [Vec<InnerBall>],
     poses: &'a [Isometry3<f64>],
-    balls: [(Point3<f64>, f64); SURE_BALLS],
-    at: [Option<(u16, u16)>; SURE_LINKS],
-    used: usize,
+    balls: Vec<(Point3<f64>, f64)>,
+    /// Per link, where its balls are in `balls` once placed.
+    at: Vec<Option<(u32, u32)>>,
+}
+
+/// [`PlacedBalls`]' buffers: the balls, and per link where its balls are.
+type PlacedBuffers = (Vec<(Point3<f64>, f64)>, Vec<Option<(u32, u32)>>);
+
+thread_local! {
+    /// [`PlacedBalls`]' buffers, reused: the sure test runs before every static test.
+    static PLACED: std::cell::RefCell<PlacedBuffers> =
+        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
 }
 
 impl<'a> PlacedBalls<'a> {
-    fn new(inner: &'a [Vec<InnerBall>], poses: &'a [Isometry3<f64>]) -> Self {
-        PlacedBalls {
+    /// Runs `f` with the balls of links at `poses`, none placed yet.
+    fn with<R>(
+        inner: &'a [Vec<InnerBall>],
+        poses: &'a [Isometry3<f64>],
+        f: impl FnOnce(&mut PlacedBalls<'a>) -> R,
+    ) -> R {
+        let (mut balls, mut at) = PLACED.with(|p| std::mem::take(&mut *p.borrow_mut()));
+        balls.clear();
+        at.clear();
+        at.resize(inner.len(), None);
+        let mut placed = PlacedBalls {
             inner,
             poses,
-            balls: [(Point3::origin(), 0.0); SURE_BALLS],
-            at: [None; SURE_LINKS],
-            used: 0,
-        }
+            balls,
+            at,
+        };
+        let r = f(&mut placed);
+        PLACED.with(|p| *p.borrow_mut() = (placed.balls, placed.at));
+        r
     }
 
     /// Where link `l`'s balls are in [`Self::balls`] (placed now if they were not).
@@ -293,13 +308,12 @@ impl<'a> PlacedBalls<'a> {
         if let Some((from, to)) = self.at[l] {
             return from as usize..to as usize;
         }
-        let from = self.used;
-        for b in self.inner[l].iter().take(SURE_BALLS - from) {
-            self.balls[self.used] = (self.poses[l] * b.centre, b.radius);
-            self.used += 1;
-        }
-        self.at[l] = Some((from as u16, self.used as u16));
-        from..self.used
+        let from = self.balls.len();
+        let pose = &self.poses[l];
+        self.balls
+            .extend(self.inner[l].iter().map(|b| (pose * b.centre, b.radius)));
+        self.at[l] = Some((from as u32, self.balls.len() as u32));
+        from..self.balls.len()
     }
 }
 
@@ -665,37 +679,38 @@ impl ArmOracle {
     /// shape, or two links' inner balls overlapping. `true` only where [`Self::collides`]'
     /// exact test finds a collision too.
     fn surely_collides_at(&self, poses: &[Isometry3<f64>], balls: &[Option<Ball>]) -> bool {
-        let links = balls.len().min(SURE_LINKS);
-        let mut placed = PlacedBalls::new(&self.inner, poses);
-        for (l, ball) in balls.iter().enumerate().take(links) {
-            let Some(ball) = ball else { continue };
-            if self.inner[l].is_empty() {
-                continue;
-            }
-            for ((_, ob), solid) in self.environment.iter().zip(&self.solids) {
-                // the link's own ball holds its inner balls: if it misses the true shape, so
-                // do they (one placement instead of one per inner ball)
-                let near = |s: &&Solid| ball.meets(ob) && s.meets(&ball.centre.into(), ball.radius);
-                if let Some(solid) = solid.as_ref().filter(near) {
-                    let mine = placed.of(l);
-                    if placed.balls[mine].iter().any(|(c, r)| solid.meets(c, *r)) {
-                        return true;
+        PlacedBalls::with(&self.inner, poses, |placed| {
+            for (l, ball) in balls.iter().enumerate() {
+                let Some(ball) = ball else { continue };
+                if self.inner[l].is_empty() {
+                    continue;
+                }
+                for ((_, ob), solid) in self.environment.iter().zip(&self.solids) {
+                    // the link's own ball holds its inner balls: if it misses the true shape,
+                    // so do they (one placement instead of one per inner ball)
+                    let near =
+                        |s: &&Solid| ball.meets(ob) && s.meets(&ball.centre.into(), ball.radius);
+                    if let Some(solid) = solid.as_ref().filter(near) {
+                        let mine = placed.of(l);
+                        if placed.balls[mine].iter().any(|(c, r)| solid.meets(c, *r)) {
+                            return true;
+                        }
                     }
                 }
             }
-        }
-        self.arm.self_pairs.iter().any(|&(a, b)| {
-            if a >= links || b >= links || self.inner[a].is_empty() || self.inner[b].is_empty() {
-                return false;
-            }
-            if !matches!((&balls[a], &balls[b]), (Some(x), Some(y)) if x.meets(y)) {
-                return false;
-            }
-            let (ra, rb) = (placed.of(a), placed.of(b));
-            placed.balls[ra].iter().any(|(ca, ra)| {
-                placed.balls[rb.clone()]
-                    .iter()
-                    .any(|(cb, rb)| (ca - cb).norm_squared() < (ra + rb) * (ra + rb))
+            self.arm.self_pairs.iter().any(|&(a, b)| {
+                if self.inner[a].is_empty() || self.inner[b].is_empty() {
+                    return false;
+                }
+                if !matches!((&balls[a], &balls[b]), (Some(x), Some(y)) if x.meets(y)) {
+                    return false;
+                }
+                let (ra, rb) = (placed.of(a), placed.of(b));
+                placed.balls[ra].iter().any(|(ca, ra)| {
+                    placed.balls[rb.clone()]
+                        .iter()
+                        .any(|(cb, rb)| (ca - cb).norm_squared() < (ra + rb) * (ra + rb))
+                })
             })
         })
     }
