@@ -1187,18 +1187,23 @@ mod tests {
     use nalgebra::{Unit, UnitQuaternion};
     use rand::{Rng, SeedableRng};
 
-    /// The swept-ball cull never rules out a pair whose balls meet somewhere along the arc
-    /// (sampled finely), and rules out most pairs that never come near.
-    #[test]
-    fn arc_cull_is_conservative() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
-        let mut v = || {
+    /// Vectors with coordinates uniform in `[-1, 1)`, from a seeded stream.
+    fn random_vectors(seed: u64) -> impl FnMut() -> Vector3<f64> {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        move || {
             Vector3::new(
                 rng.random_range(-1.0..1.0),
                 rng.random_range(-1.0..1.0),
                 rng.random_range(-1.0..1.0),
             )
-        };
+        }
+    }
+
+    /// The swept-ball cull never rules out a pair whose balls meet somewhere along the arc
+    /// (sampled finely), and rules out most pairs that never come near.
+    #[test]
+    fn arc_cull_is_conservative() {
+        let mut v = random_vectors(3);
         let (mut culled, mut meets) = (0, 0);
         for _ in 0..3000 {
             let axis = Unit::new_normalize(v());
@@ -1235,14 +1240,7 @@ mod tests {
     /// that stay away ruled out.
     #[test]
     fn obstacle_box_cull_is_conservative() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
-        let mut v = || {
-            Vector3::new(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            )
-        };
+        let mut v = random_vectors(4);
         let margin = 1e-3;
         let (mut culled, mut meets) = (0, 0);
         for k in 0..3000 {
