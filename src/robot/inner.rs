@@ -3,13 +3,15 @@
 //! The exact static test ([`super::ArmOracle::collides`]) shows a configuration free only
 //! after every close pair of bodies has been shown apart, and finds a collision only when a
 //! face pair meets: on the Panda in MotionBenchMaker's box a colliding configuration cost
-//! 27–44 µs against 9–10 µs for a free one (`ARM_MOVES=states cargo bench --bench arm`,
+//! 24–44 µs against 5–10 µs for a free one (`ARM_MOVES=states cargo bench --bench arm`,
 //! 2026-12-05), and shortening asks mostly about corners inside an obstacle. A ball that lies
 //! inside a link and reaches into an obstacle's true shape (box, cylinder, sphere: each inside
 //! the polytope that stands for it) proves the collision in a few flops, and two links whose
 //! inner balls overlap collide too. The test only ever answers "collides" where the exact
 //! test does (the true shapes lie inside the polytopes the exact test uses), so verdicts do
-//! not change; where it finds nothing, the exact test decides.
+//! not change; where it finds nothing, the exact test decides. At 40 000 uniform
+//! configurations of box 1 it found 7 494 of the 10 915 collisions at about 1 µs each, and a
+//! colliding configuration's static test fell from 25 to 9 µs on average.
 //!
 //! The balls are found once per link mesh (closed meshes only: "inside" needs a solid): grid
 //! points inside the mesh (winding number), each with its distance to the surface, the deepest
