@@ -8,28 +8,18 @@
 
 use serde::Deserialize;
 use std::collections::{BTreeSet, HashMap};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use viaroad::robot::arm::GroupChoice;
-use viaroad::robot::{Arm, ArmChecker, ArmOptions, Contact};
+use viaroad::robot::{Arm, ArmChecker, Contact};
 use viaroad::scene::moveit::{
     load_motion_plan_request, load_planning_scene, ObjectShape, PlanningScene,
 };
 
-fn arms_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms")
-}
+mod common;
+use common::arms::arms_dir;
 
 fn panda() -> Arm {
-    let dir = arms_dir().join("panda");
-    Arm::load(
-        &dir.join("panda.urdf"),
-        Some(&dir.join("panda.srdf")),
-        &ArmOptions {
-            group: GroupChoice::Srdf("panda_arm".into()),
-            ..ArmOptions::default()
-        },
-    )
-    .unwrap()
+    common::arms::panda(GroupChoice::Srdf("panda_arm".into()))
 }
 
 /// The arm put into a scene, and the checker of both.

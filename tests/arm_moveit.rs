@@ -8,25 +8,15 @@ use std::path::{Path, PathBuf};
 use viaroad::bench::mbm::{problem_scene, Problem};
 use viaroad::oracle::CallCounts;
 use viaroad::robot::arm::GroupChoice;
-use viaroad::robot::{Arm, ArmChecker, ArmOptions};
+use viaroad::robot::ArmChecker;
 use viaroad::scene::arm::ArmRobot;
 use viaroad::scene::moveit::{
     parse_motion_plan_request, parse_planning_scene, CollisionObject, START_BOUNDS_ERROR,
 };
 use viaroad::scene::Robot;
 
-fn panda(group: GroupChoice) -> Arm {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda");
-    Arm::load(
-        &dir.join("panda.urdf"),
-        Some(&dir.join("panda.srdf")),
-        &ArmOptions {
-            group,
-            ..ArmOptions::default()
-        },
-    )
-    .unwrap()
-}
+mod common;
+use common::arms::panda;
 
 /// The Panda's ready pose.
 const HOME: [f64; 7] = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785];

@@ -8,23 +8,16 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::path::{Path, PathBuf};
 use viaroad::oracle::CallCounts;
+use viaroad::robot::arm::GroupChoice;
 use viaroad::robot::{Arm, ArmChecker, ArmOptions, ArmOracle};
 use viaroad::scene::moveit::load_planning_scene;
 
-fn arms_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms")
-}
+mod common;
+use common::arms::{arms_dir, panda};
 
 fn setup(scene: &str) -> (Arm, ArmChecker, ArmOracle) {
-    let dir = arms_dir().join("panda");
-    let mut arm = Arm::load(
-        &dir.join("panda.urdf"),
-        Some(&dir.join("panda.srdf")),
-        &ArmOptions::default(),
-    )
-    .unwrap();
+    let mut arm = panda(GroupChoice::FirstSrdfGroup);
     let s = load_planning_scene(&arms_dir().join(scene)).unwrap();
     s.apply_to(&mut arm).unwrap();
     let checker = ArmChecker::new(&arm, &s.objects).unwrap();

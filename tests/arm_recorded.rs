@@ -13,9 +13,10 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use viaroad::oracle::CallCounts;
-use viaroad::robot::{Arm, ArmChecker, ArmOptions, ArmOracle};
+use viaroad::robot::arm::GroupChoice;
+use viaroad::robot::{ArmChecker, ArmOracle};
 use viaroad::scene::moveit::load_planning_scene;
 
 const FAMILIES: [&str; 7] = [
@@ -31,21 +32,14 @@ const FAMILIES: [&str; 7] = [
 /// Moves per family.
 const MOVES: usize = 30;
 
-fn arms_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms")
-}
+mod common;
+use common::arms::{arms_dir, panda};
 
 /// One line per move: the move, then the three answers (floats in Rust's round-trip format).
 fn answers() -> String {
     let mut out = String::new();
     for (s, family) in FAMILIES.iter().enumerate() {
-        let dir = arms_dir().join("panda");
-        let mut arm = Arm::load(
-            &dir.join("panda.urdf"),
-            Some(&dir.join("panda.srdf")),
-            &ArmOptions::default(),
-        )
-        .unwrap();
+        let mut arm = panda(GroupChoice::FirstSrdfGroup);
         let scene =
             load_planning_scene(&arms_dir().join(format!("mbm/{family}/scene0003.yaml"))).unwrap();
         scene.apply_to(&mut arm).unwrap();

@@ -8,24 +8,17 @@ use parry3d_f64::query::{intersection_test, PointQuery};
 use parry3d_f64::shape::{Ball, Cuboid, Cylinder, TriMesh, TriMeshFlags};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::path::{Path, PathBuf};
 use viaroad::oracle::CallCounts;
+use viaroad::robot::arm::GroupChoice;
 use viaroad::robot::inner::Solid;
-use viaroad::robot::{Arm, ArmChecker, ArmOptions, ArmOracle, Primitive};
+use viaroad::robot::{Arm, ArmChecker, ArmOracle, Primitive};
 use viaroad::scene::moveit::load_planning_scene;
 
-fn arms_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms")
-}
+mod common;
+use common::arms::arms_dir;
 
 fn panda() -> Arm {
-    let dir = arms_dir().join("panda");
-    Arm::load(
-        &dir.join("panda.urdf"),
-        Some(&dir.join("panda.srdf")),
-        &ArmOptions::default(),
-    )
-    .unwrap()
+    common::arms::panda(GroupChoice::FirstSrdfGroup)
 }
 
 /// Every inner ball lies inside its link's mesh, by parry's solid point test and distance:

@@ -38,6 +38,7 @@ pub fn check_disc_path(
     Ok(())
 }
 
+pub mod arms;
 pub mod cli;
 pub mod rigid;
 pub mod rigid2d;
