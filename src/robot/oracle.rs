@@ -404,12 +404,13 @@ impl ArmOracle {
                     })?,
                     ObjectShape::Mesh(m) => m.clone(),
                 };
-                let world = placed(&local, &(at * pose));
+                let in_world = at * pose;
+                let world = placed(&local, &in_world);
                 let ball = Ball::of(&world);
                 environment.push((world, ball));
-                env_boxes.push(ObstacleBox::of(&local, &(at * pose)));
+                env_boxes.push(ObstacleBox::of(&local, &in_world));
                 solids.push(match shape {
-                    ObjectShape::Primitive(p) => Solid::of(p, &(at * pose)),
+                    ObjectShape::Primitive(p) => Solid::of(p, &in_world),
                     ObjectShape::Mesh(_) => None,
                 });
             }
