@@ -20,6 +20,7 @@
 //! assert!(!Deadline::after(Duration::MAX).expired());
 //! ```
 
+use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -119,6 +120,40 @@ impl Deadline {
     pub fn is_limited(&self) -> bool {
         self.at.is_some() || self.cancel.is_some() || self.also.is_some()
     }
+}
+
+thread_local! {
+    /// The deadline long oracle calls on this thread poll ([`watching`]).
+    static WATCHED: RefCell<Option<Deadline>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` with `deadline` watched on this thread: an oracle call inside it that takes long
+/// (an exact sweep of a whole joint range among many faces: up to 20 ms on MotionBenchMaker's
+/// cage) polls the deadline as it goes and gives up with
+/// [`crate::oracle::OracleError::Interrupted`] once it has passed, instead of finishing an
+/// answer nobody waits for. Checking before every call bounds an overrun by one call; this
+/// bounds it by a few hundred primitive pairs. Only callers that treat that error as their
+/// deadline stop watch (the via-point search), and `f` must not wait on other rayon work (a
+/// job stolen meanwhile would run watched too). Nested, the innermost limited deadline is
+/// watched; an unlimited one leaves the outer one watched.
+pub fn watching<R>(deadline: &Deadline, f: impl FnOnce() -> R) -> R {
+    if !deadline.is_limited() {
+        return f();
+    }
+    struct Restore(Option<Deadline>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let previous = self.0.take();
+            WATCHED.with(|w| *w.borrow_mut() = previous);
+        }
+    }
+    let _restore = Restore(WATCHED.with(|w| w.replace(Some(deadline.clone()))));
+    f()
+}
+
+/// Whether the deadline watched on this thread ([`watching`]) has passed; `false` when none is.
+pub fn watched_expired() -> bool {
+    WATCHED.with(|w| w.borrow().as_ref().is_some_and(Deadline::expired))
 }
 
 /// What [`race`] ran.

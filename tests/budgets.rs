@@ -24,6 +24,9 @@ struct Tripwire {
     motions: AtomicU64,
     trip_at: u64,
     flag: Arc<AtomicBool>,
+    /// The call that trips the wire gives up as a long call does at a watched deadline
+    /// ([`viaroad::deadline::watching`]) instead of answering.
+    gives_up: bool,
 }
 
 impl Tripwire {
@@ -33,7 +36,13 @@ impl Tripwire {
             motions: AtomicU64::new(0),
             trip_at,
             flag: Arc::new(AtomicBool::new(false)),
+            gives_up: false,
         }
+    }
+
+    fn giving_up(mut self) -> Self {
+        self.gives_up = true;
+        self
     }
 
     fn count(&self) {
@@ -58,6 +67,9 @@ impl CollisionOracle for Tripwire {
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
         self.count();
+        if self.gives_up && self.flag.load(Ordering::SeqCst) {
+            return Err(OracleError::Interrupted);
+        }
         self.inner.intervals(motion, counts)
     }
 
@@ -132,6 +144,67 @@ fn the_viapoint_search_stops_within_one_call_of_its_deadline() {
         )
         .unwrap();
     assert_eq!((c.outcome, wire.motions()), (Outcome::Interrupted, 0));
+}
+
+/// A call that gives up at the watched deadline ends the search as its deadline does: no
+/// path, an interrupted outcome, not an error, and what it certified before is still free.
+#[test]
+fn a_call_giving_up_at_the_deadline_ends_the_search_as_the_deadline_does() {
+    let scene = disc_scene(4, 120, 0.05);
+    let method = ViaPoint::new(ViaPointOptions {
+        max_calls: None,
+        ..ViaPointOptions::default()
+    });
+    let (s, g, unlimited) = hard_pair(&scene, &method);
+    assert!(unlimited > 40, "the test needs a long search");
+    let wire = Tripwire::new(scene.oracle(), 20).giving_up();
+    let c = method
+        .connect_within(&scene.space, &wire, &s, &g, &Deadline::none())
+        .unwrap();
+    assert_eq!(c.outcome, Outcome::Interrupted);
+    assert!(c.path.is_empty());
+    assert_eq!(wire.motions(), 20, "asked {} motions", wire.motions());
+    let d = discs(&scene);
+    for &(i, j) in &c.discoveries.free_segments {
+        let (p, q) = (
+            &c.discoveries.configs[i as usize],
+            &c.discoveries.configs[j as usize],
+        );
+        assert!(segment_free(p, q, &d), "{p:?} → {q:?}");
+    }
+}
+
+/// An exact sweep of a whole joint range among the cage's faces gives up when the deadline
+/// watched on its thread has passed, and keeps nothing of it: asked again unwatched, the arm
+/// scene's oracle (which keeps its answers) answers as a fresh one does.
+#[test]
+fn a_long_joint_move_gives_up_at_a_watched_deadline_and_keeps_nothing() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-cage-1.toml");
+    let scene = viaroad::scene::Scene::load(&path).unwrap();
+    let groups = LocalSpec::roadmap_default().build().groups(&scene.space);
+    let goal = scene.queries[0].goal.clone();
+    // joint 1 from its lower limit to its upper one, the arm reaching into the cage: the whole
+    // arm swept through the cage's walls
+    let (mut a, mut z) = (goal.clone(), goal);
+    (a[0], z[0]) = (scene.space.lower()[0], scene.space.upper()[0]);
+    let motion = scene.space.group_motion(&a, &z, &groups[0]);
+    let oracle = scene.oracle();
+    let past = Deadline::after(Duration::ZERO);
+    let mut counts = CallCounts::default();
+    let given_up = viaroad::deadline::watching(&past, || oracle.intervals(&motion, &mut counts));
+    assert!(
+        matches!(given_up, Err(OracleError::Interrupted)),
+        "{given_up:?}"
+    );
+    let again = oracle.intervals(&motion, &mut counts).unwrap();
+    let fresh = scene.oracle().intervals(&motion, &mut counts).unwrap();
+    assert_eq!(again, fresh);
+    assert!(!fresh.is_empty(), "the sweep meets the cage");
+    // an unlimited deadline is never watched: the call answers
+    let whole =
+        viaroad::deadline::watching(&Deadline::none(), || oracle.intervals(&motion, &mut counts));
+    assert_eq!(whole.unwrap(), fresh);
 }
 
 #[test]

@@ -34,6 +34,10 @@ pub enum OracleError {
     /// translation and rotation asked of an exact polyhedral oracle).
     #[error("unsupported motion: {0}")]
     Unsupported(String),
+    /// The deadline watched on this thread ([`crate::deadline::watching`]) passed during the
+    /// call: there is no answer, and the caller stops as at its deadline.
+    #[error("interrupted: the deadline passed during an oracle call")]
+    Interrupted,
 }
 
 /// Counts of oracle work: the seed's cost measure (CHS A.1.3) and more.

@@ -68,6 +68,10 @@ pub enum RobotError {
         /// What is wrong.
         message: String,
     },
+    /// An oracle call gave up at the deadline watched on its thread
+    /// ([`crate::deadline::watching`]).
+    #[error("interrupted: the deadline passed during a joint move")]
+    Interrupted,
 }
 
 /// Parses a finite number, refusing magnitudes beyond [`crate::limits::MAX_COORDINATE`]

@@ -108,6 +108,18 @@ impl Ball {
     }
 }
 
+/// A polyhedra oracle's error inside a joint move, as the robot's: an unsupported motion is
+/// a bad joint move; an interrupted one stays interrupted ([`crate::deadline::watching`]).
+fn joint_move_error(e: OracleError) -> RobotError {
+    match e {
+        OracleError::Unsupported(message) => RobotError::Config {
+            what: "joint move".into(),
+            message,
+        },
+        OracleError::Interrupted => RobotError::Interrupted,
+    }
+}
+
 /// An obstacle polytope's axis-aligned box in the obstacle's own frame (a primitive's or a
 /// mesh's frame, where a box or a shelf board is its own box), with the map from the world
 /// into that frame: where the ball of a moving link, swept by a move, stays off it, the link
@@ -889,10 +901,6 @@ impl ArmOracle {
         finish: impl FnOnce(&Gathered<'_>) -> R,
     ) -> Result<R, RobotError> {
         let p = self.prepare(q, joint, delta, counts)?;
-        let unsupported = |OracleError::Unsupported(m)| RobotError::Config {
-            what: "joint move".into(),
-            message: m,
-        };
         Polyhedra::gather(mode, |g| {
             let p = match p {
                 Ok(p) => p,
@@ -931,7 +939,7 @@ impl ArmOracle {
                         g.slide(o, &se3(rel), [d.x, d.y, d.z], window, counts)
                     }
                 }
-                .map_err(unsupported)
+                .map_err(joint_move_error)
             };
             self.each_oracle(&p, |o, rel, into, sign, window| {
                 ask(o, &rel, &into, sign, window, g, counts)?;
@@ -1057,10 +1065,6 @@ impl ArmOracle {
             Ok(p) => p,
             Err(whole) => return Ok(whole),
         };
-        let unsupported = |OracleError::Unsupported(m)| RobotError::Config {
-            what: "joint move".into(),
-            message: m,
-        };
         let (pivot_w, axis_w) = p.pivot_axis();
         let mut answer = IntervalList::new();
         self.each_oracle(&p, |o, rel, into, sign, _| {
@@ -1092,7 +1096,7 @@ impl ArmOracle {
                     )
                 }
             }
-            .map_err(unsupported)?;
+            .map_err(joint_move_error)?;
             answer = answer.union(&r);
             Ok(true)
         })?;
@@ -1114,10 +1118,6 @@ impl ArmOracle {
             Ok(p) => p,
             Err(whole) => return Ok(whole),
         };
-        let unsupported = |m: String| RobotError::Config {
-            what: "joint move".into(),
-            message: m,
-        };
         let Prepared {
             poses,
             balls,
@@ -1138,8 +1138,7 @@ impl ArmOracle {
         let to_frame = frame.inverse();
         let mut answer = IntervalList::new();
         let solve = |o: &Polyhedra, motion: &Motion, counts: &mut CallCounts| {
-            o.intervals(motion, counts)
-                .map_err(|OracleError::Unsupported(m)| unsupported(m))
+            o.intervals(motion, counts).map_err(joint_move_error)
         };
         for l in (0..balls.len()).filter(|&l| distal[l]) {
             let (Some((mesh, _)), Some(ball)) = (&self.link_meshes[l], &balls[l]) else {

@@ -358,7 +358,10 @@ impl ArmCollision {
     }
 
     fn unsupported(e: RobotError) -> OracleError {
-        OracleError::Unsupported(e.to_string())
+        match e {
+            RobotError::Interrupted => OracleError::Interrupted,
+            e => OracleError::Unsupported(e.to_string()),
+        }
     }
 
     /// What a motion asks of the arm: a static check, or one joint moving from a

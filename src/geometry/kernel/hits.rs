@@ -28,7 +28,15 @@ pub(crate) struct Hits {
     clip: bool,
     /// Bumped by every piece added: a sweep re-narrows a window only when this changed.
     generation: u64,
+    /// Pairs since the watched deadline was last polled ([`Hits::interrupted`]).
+    polls: u32,
+    /// The watched deadline passed during the sweep: the pieces are incomplete.
+    interrupted: bool,
 }
+
+/// Primitive pairs between two polls of the watched deadline: a poll costs a clock read, a
+/// pair up to a microsecond.
+const PAIRS_PER_POLL: u32 = 64;
 
 impl Hits {
     /// Collects every piece.
@@ -46,6 +54,8 @@ impl Hits {
             prefix: false,
             clip: false,
             generation: 0,
+            polls: 0,
+            interrupted: false,
         }
     }
 
@@ -57,6 +67,28 @@ impl Hits {
         self.prefix = false;
         self.clip = false;
         self.generation = 0;
+        self.polls = 0;
+        self.interrupted = false;
+    }
+
+    /// Whether the sweep must stop because the deadline watched on this thread
+    /// ([`crate::deadline::watching`]) has passed; polled every [`PAIRS_PER_POLL`] calls, and
+    /// once true, true until the next reset.
+    #[inline]
+    pub fn interrupted(&mut self) -> bool {
+        if !self.interrupted {
+            self.polls += 1;
+            if self.polls >= PAIRS_PER_POLL {
+                self.polls = 0;
+                self.interrupted = crate::deadline::watched_expired();
+            }
+        }
+        self.interrupted
+    }
+
+    /// Whether a sweep into this set stopped at the watched deadline.
+    pub fn was_interrupted(&self) -> bool {
+        self.interrupted
     }
 
     /// Switches the narrowing of windows ([`Hits::uncovered`]) on or off for this sweep.

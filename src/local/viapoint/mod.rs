@@ -62,7 +62,8 @@ impl LocalMethod for ViaPoint {
         let o = &self.options;
         let plain = o.search == Search::DepthFirst && matches!(o.depth, Depth::Deepen { .. });
         let mut s = search::Search::new(space, oracle, o, &groups, a, z, plain, deadline, buffers);
-        let result = Self::run(&mut s, o, a, z);
+        // a long call gives up at the deadline too, and the search stops as at its deadline
+        let result = crate::deadline::watching(deadline, || Self::run(&mut s, o, a, z));
         let buffers = s.into_buffers();
         SCRATCH.with(|c| c.replace((groups, buffers)));
         result
@@ -104,9 +105,16 @@ impl ViaPoint {
                         root = s.new_root();
                     }
                     s.limit_hit = false;
-                    if s.depth_first(root, k)? {
-                        solved = true;
-                        break;
+                    match s.depth_first(root, k) {
+                        Ok(true) => {
+                            solved = true;
+                            break;
+                        }
+                        Err(OracleError::Interrupted) => {
+                            s.interrupted = true;
+                            break;
+                        }
+                        r => r.map(|_| ())?,
                     }
                     if !s.limit_hit || s.budget_hit || s.dead(root) {
                         break;
@@ -116,7 +124,13 @@ impl ViaPoint {
             Search::BreadthFirst => {
                 for level in 0..=o.depth.max() {
                     last_limit = level;
-                    s.expand(root, level)?;
+                    match s.expand(root, level) {
+                        Err(OracleError::Interrupted) => {
+                            s.interrupted = true;
+                            break;
+                        }
+                        r => r?,
+                    }
                     if s.shortest(root, level).is_some() {
                         solved = true;
                         break;

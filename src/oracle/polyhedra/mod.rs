@@ -490,7 +490,10 @@ impl Polyhedra {
                 }
             }
             Kind::Translation(dir) => {
-                translation::sweep(self, &pose, &dir, range, sink, caches, counts)
+                translation::sweep(self, &pose, &dir, range, sink, caches, counts);
+                if sink.was_interrupted() {
+                    return Err(OracleError::Interrupted);
+                }
             }
             Kind::Rotation { axis, angle } => {
                 if !range.is_bounded() {
@@ -525,6 +528,9 @@ impl Polyhedra {
                     }
                 }
                 rotation::sweep(self, &pose, &axis, one, local, caches, counts);
+                if local.was_interrupted() {
+                    return Err(OracleError::Interrupted);
+                }
                 let turns = ((p1 - p0) / TAU).ceil().max(1.0) as usize;
                 for k in 0..turns {
                     let shift = k as f64 * TAU;

@@ -291,6 +291,9 @@ pub(crate) fn sweep(
                     sink: &mut Hits,
                     counts: &mut CallCounts|
      -> bool {
+        if sink.interrupted() {
+            return false;
+        }
         let rc = robot.corners(r);
         let mut rbox = None;
         let pair_window = if ph.enveloping {

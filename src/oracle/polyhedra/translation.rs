@@ -175,6 +175,9 @@ pub(crate) fn sweep(
                     sink: &mut Hits,
                     counts: &mut CallCounts|
      -> bool {
+        if sink.interrupted() {
+            return false;
+        }
         let rc = robot.corners(r);
         let pair_window = if ph.enveloping {
             let rbox = robot_boxes.get_or_insert_with(r as usize, || frame.box_of(&rc));
