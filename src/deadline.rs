@@ -4,7 +4,8 @@
 //! A planner's time budget is a promise. Checking the clock only between learning rounds let
 //! one round on a big mesh (dozens of deep via-point searches, seconds each) overrun a 30-s
 //! budget by minutes; checking it before every intersect call bounds the overrun by the cost
-//! of one call. A deadline also carries an optional cancel flag, so that Ctrl-C or a caller
+//! of one call, and the search *watches* it during a call too ([`watching`]): a long exact
+//! sweep gives up part-way. A deadline also carries an optional cancel flag, so that Ctrl-C or a caller
 //! on another thread stops the same checks, and the flags of the races it is in: [`race`]
 //! runs two planners for one answer, the first to answer stopping the other.
 //!
