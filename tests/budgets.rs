@@ -103,8 +103,9 @@ fn hard_pair(scene: &viaroad::scene::Scene, method: &ViaPoint) -> (Vec<f64>, Vec
         .unwrap()
 }
 
-#[test]
-fn the_viapoint_search_stops_within_one_call_of_its_deadline() {
+/// A cluttered disc scene, the via-point planner without a call budget, and the query it
+/// needs the most calls for (more than 40).
+fn long_search() -> (viaroad::scene::Scene, ViaPoint, Vec<f64>, Vec<f64>) {
     let scene = disc_scene(4, 120, 0.05);
     let method = ViaPoint::new(ViaPointOptions {
         max_calls: None,
@@ -115,6 +116,24 @@ fn the_viapoint_search_stops_within_one_call_of_its_deadline() {
         unlimited > 40,
         "the test needs a long search, got {unlimited} calls"
     );
+    (scene, method, s, g)
+}
+
+/// What a stopped search certified before the stop is free.
+fn assert_discoveries_free(scene: &viaroad::scene::Scene, c: &viaroad::local::Connection) {
+    let d = discs(scene);
+    for &(i, j) in &c.discoveries.free_segments {
+        let (p, q) = (
+            &c.discoveries.configs[i as usize],
+            &c.discoveries.configs[j as usize],
+        );
+        assert!(segment_free(p, q, &d), "{p:?} → {q:?}");
+    }
+}
+
+#[test]
+fn the_viapoint_search_stops_within_one_call_of_its_deadline() {
+    let (scene, method, s, g) = long_search();
     let wire = Tripwire::new(scene.oracle(), 20);
     let c = method
         .connect_within(&scene.space, &wire, &s, &g, &wire.deadline())
@@ -123,15 +142,7 @@ fn the_viapoint_search_stops_within_one_call_of_its_deadline() {
     assert!(c.path.is_empty());
     assert_eq!(wire.motions(), 20, "asked {} motions", wire.motions());
     assert_eq!(c.counts.intersect_calls(), 20);
-    // what it certified before the stop is still free
-    let d = discs(&scene);
-    for &(i, j) in &c.discoveries.free_segments {
-        let (p, q) = (
-            &c.discoveries.configs[i as usize],
-            &c.discoveries.configs[j as usize],
-        );
-        assert!(segment_free(p, q, &d), "{p:?} → {q:?}");
-    }
+    assert_discoveries_free(&scene, &c);
     // a deadline already past asks nothing
     let wire = Tripwire::new(scene.oracle(), 1);
     let c = method
@@ -150,13 +161,7 @@ fn the_viapoint_search_stops_within_one_call_of_its_deadline() {
 /// path, an interrupted outcome, not an error, and what it certified before is still free.
 #[test]
 fn a_call_giving_up_at_the_deadline_ends_the_search_as_the_deadline_does() {
-    let scene = disc_scene(4, 120, 0.05);
-    let method = ViaPoint::new(ViaPointOptions {
-        max_calls: None,
-        ..ViaPointOptions::default()
-    });
-    let (s, g, unlimited) = hard_pair(&scene, &method);
-    assert!(unlimited > 40, "the test needs a long search");
+    let (scene, method, s, g) = long_search();
     let wire = Tripwire::new(scene.oracle(), 20).giving_up();
     let c = method
         .connect_within(&scene.space, &wire, &s, &g, &Deadline::none())
@@ -164,14 +169,7 @@ fn a_call_giving_up_at_the_deadline_ends_the_search_as_the_deadline_does() {
     assert_eq!(c.outcome, Outcome::Interrupted);
     assert!(c.path.is_empty());
     assert_eq!(wire.motions(), 20, "asked {} motions", wire.motions());
-    let d = discs(&scene);
-    for &(i, j) in &c.discoveries.free_segments {
-        let (p, q) = (
-            &c.discoveries.configs[i as usize],
-            &c.discoveries.configs[j as usize],
-        );
-        assert!(segment_free(p, q, &d), "{p:?} → {q:?}");
-    }
+    assert_discoveries_free(&scene, &c);
 }
 
 /// An exact sweep of a whole joint range among the cage's faces gives up when the deadline
