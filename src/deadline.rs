@@ -5,9 +5,9 @@
 //! one round on a big mesh (dozens of deep via-point searches, seconds each) overrun a 30-s
 //! budget by minutes; checking it before every intersect call bounds the overrun by the cost
 //! of one call, and the search *watches* it during a call too ([`watching`]): a long exact
-//! sweep gives up part-way. A deadline also carries an optional cancel flag, so that Ctrl-C or a caller
-//! on another thread stops the same checks, and the flags of the races it is in: [`race`]
-//! runs two planners for one answer, the first to answer stopping the other.
+//! sweep gives up part-way. A deadline also carries an optional cancel flag, so that Ctrl-C or
+//! a caller on another thread stops the same checks, and the flags of the races it is in:
+//! [`race`] runs two planners for one answer, the first to answer stopping the other.
 //!
 //! ```
 //! use std::time::Duration;
@@ -237,6 +237,33 @@ pub fn race<A: Send, B: Send>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn watching_nests_and_restores_the_outer_deadline() {
+        assert!(!watched_expired(), "nothing watched");
+        let past = Deadline::after(Duration::ZERO);
+        let later = Deadline::after(Duration::from_secs(3600));
+        watching(&past, || {
+            assert!(watched_expired());
+            watching(&later, || {
+                assert!(!watched_expired(), "the innermost is watched")
+            });
+            watching(&Deadline::none(), || {
+                assert!(
+                    watched_expired(),
+                    "an unlimited one leaves the outer watched"
+                )
+            });
+            assert!(watched_expired(), "the outer is watched again");
+        });
+        assert!(!watched_expired(), "nothing watched after");
+        let flag = Arc::new(AtomicBool::new(false));
+        watching(&Deadline::none().with_cancel(flag.clone()), || {
+            assert!(!watched_expired());
+            flag.store(true, Ordering::Relaxed);
+            assert!(watched_expired(), "a cancel flag stops a watched call too");
+        });
+    }
 
     #[test]
     fn within_takes_the_earlier_and_keeps_the_flag() {

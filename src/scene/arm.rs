@@ -309,7 +309,7 @@ impl ArmCollision {
             |kept, key| kept.free(key).and_then(q.from_free),
             ask,
         )
-        .map_err(Self::unsupported)
+        .map_err(Self::oracle_error)
     }
 
     /// Whether configuration `q` collides: the kept answer, or the arm oracle's, kept.
@@ -357,7 +357,9 @@ impl ArmCollision {
         Ok(a)
     }
 
-    fn unsupported(e: RobotError) -> OracleError {
+    /// The arm oracle's error as the scene oracle's: interrupted stays interrupted
+    /// ([`crate::deadline::watching`]), anything else is a motion the arm cannot answer.
+    fn oracle_error(e: RobotError) -> OracleError {
         match e {
             RobotError::Interrupted => OracleError::Interrupted,
             e => OracleError::Unsupported(e.to_string()),
@@ -410,7 +412,7 @@ impl ArmCollision {
         let range = motion.range;
         match Self::resolve(motion)? {
             Move::Static(q) => {
-                let hit = self.static_hit(&q, counts).map_err(Self::unsupported)?;
+                let hit = self.static_hit(&q, counts).map_err(Self::oracle_error)?;
                 Ok(if hit {
                     IntervalList::single(range)
                 } else {
@@ -490,7 +492,7 @@ impl CollisionOracle for ArmCollision {
             Ok(Move::Static(q)) => self
                 .static_hit(&q, &mut own)
                 .map(|hit| !hit)
-                .map_err(Self::unsupported),
+                .map_err(Self::oracle_error),
             Err(e) => Err(e),
         };
         counts.pairs_tested += own.pairs_tested;
@@ -527,7 +529,7 @@ impl CollisionOracle for ArmCollision {
             Ok(Move::Static(q)) => self
                 .static_hit(&q, &mut own)
                 .map(|hit| hit.then_some(range.lo))
-                .map_err(Self::unsupported),
+                .map_err(Self::oracle_error),
             Err(e) => Err(e),
         };
         counts.pairs_tested += own.pairs_tested;

@@ -13,8 +13,9 @@
 //! Departures from the seed, each documented where it happens: the valuation's `d` is the
 //! distance of the via point from the borderline's base point (equal to the distance from the
 //! blocked motion for perpendicular borderlines); a turn that is free all the way round offers
-//! quarter and half turns as via points; an optional call budget stops runaway searches, and a deadline
-//! ([`Deadline`]) is checked before every oracle call.
+//! quarter and half turns as via points; an optional call budget stops runaway searches, and a
+//! deadline ([`Deadline`]) is checked before every oracle call and watched during one (a long
+//! exact sweep gives up, [`crate::deadline::watching`]).
 
 mod borderline;
 mod directions;
