@@ -365,18 +365,13 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         c.as_ref().is_ok_and(|c| c.is_connected())
     };
     // the trees searching until `search`, a path they found shortened until `whole`
+    let planning = Planning {
+        scene: &scene,
+        oracle: oracle.as_ref(),
+        groups: &groups,
+    };
     let trees_seeded = |search: &Deadline, whole: &Deadline, seed: u64| {
-        tree_stage(
-            &scene,
-            oracle.as_ref(),
-            &groups,
-            &start,
-            &goal,
-            &o.tree,
-            seed,
-            search,
-            whole,
-        )
+        tree_stage(&planning, (&start, &goal), &o.tree, seed, search, whole)
     };
     let trees = |d: &Deadline| trees_seeded(d, d, o.seed);
     let trees_first = o
@@ -398,37 +393,35 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
             }
             (raced.first, raced.second)
         }
-        (None, Some(share)) => {
-            // the direct path alone, then the trees for their share of the time, then the
-            // via-point search, then the trees afresh (another random stream) for the rest
+        // the direct path alone, then the trees for their share of the time, then the
+        // via-point search, then the trees afresh (another random stream) for the rest
+        (None, Some(share)) => 'stages: {
             let path = direct_connection(&scene.space, oracle.as_ref(), &groups, &start, &goal);
             let path_s = began.elapsed().as_secs_f64();
             let blocked = matches!(&path, Ok(c) if !c.is_connected());
             if !blocked || deadline.expired() {
-                ((path, path_s), None)
-            } else {
-                let slice = deadline.within(Some(o.time.mul_f64(share)));
-                let first = trees_seeded(&slice, &deadline, o.seed);
-                if trees_found(&first) || first.is_err() || deadline.expired() {
-                    ((path, path_s), Some(first))
-                } else {
-                    if let Ok(c) = &path {
-                        counts += c.counts;
-                    }
-                    let searching = Instant::now();
-                    let (searched, _) = via_points(&deadline, &deadline);
-                    let direct_s = path_s + searching.elapsed().as_secs_f64();
-                    let grown =
-                        if matches!(&searched, Ok(c) if c.is_connected()) || deadline.expired() {
-                            first
-                        } else {
-                            let seed = crate::roadmap::tree::stream_seed(o.seed, 1);
-                            let again = trees_seeded(&deadline, &deadline, seed);
-                            first.and_then(|f| again.map(|a| a.after(f)))
-                        };
-                    ((searched, direct_s), Some(grown))
-                }
+                break 'stages ((path, path_s), None);
             }
+            let slice = deadline.within(Some(o.time.mul_f64(share)));
+            let first = trees_seeded(&slice, &deadline, o.seed);
+            if trees_found(&first) || first.is_err() || deadline.expired() {
+                break 'stages ((path, path_s), Some(first));
+            }
+            if let Ok(c) = &path {
+                counts += c.counts;
+            }
+            let searching = Instant::now();
+            let (searched, _) = via_points(&deadline, &deadline);
+            let direct_s = path_s + searching.elapsed().as_secs_f64();
+            if matches!(&searched, Ok(c) if c.is_connected()) || deadline.expired() {
+                break 'stages ((searched, direct_s), Some(first));
+            }
+            let seed = crate::roadmap::tree::stream_seed(o.seed, 1);
+            let again = trees_seeded(&deadline, &deadline, seed);
+            (
+                (searched, direct_s),
+                Some(first.and_then(|f| again.map(|a| a.after(f)))),
+            )
         }
         (None, None) => (via_points(&deadline, &deadline), None),
     };
@@ -580,18 +573,26 @@ fn trees_found(stage: &Result<TreeStage, TreeError>) -> bool {
     stage.as_ref().is_ok_and(|t| t.path.is_some())
 }
 
+/// What every stage of one problem plans in: the scene, the oracle the stages share (its kept
+/// answers serve them all) and the local method's DOF groups.
+#[derive(Clone, Copy)]
+pub struct Planning<'a> {
+    /// The problem's scene.
+    pub scene: &'a Scene,
+    /// The oracle every stage asks.
+    pub oracle: &'a dyn CollisionOracle,
+    /// The DOF groups single-group motions move (one per joint for an arm).
+    pub groups: &'a [crate::space::Group],
+}
+
 /// Two trees from `start` and `goal` ([`rrt_connect`]) growing until `search`, their path
 /// shortened by greedy shortcut passes until `whole` (a slice of a problem's time bounds the
 /// search, not the finishing of what it found): the visibility-graph `shorten` of the other
 /// stages checks long multi-joint pairs of a tree path's hundreds of corners for seconds (cage
 /// 4: 8 s over a 5 s budget), so it is not run here.
-#[allow(clippy::too_many_arguments)]
 pub fn tree_stage(
-    scene: &Scene,
-    oracle: &dyn CollisionOracle,
-    groups: &[crate::space::Group],
-    start: &Config,
-    goal: &Config,
+    p: &Planning,
+    (start, goal): (&Config, &Config),
     tree: &TreeParams,
     seed: u64,
     search: &Deadline,
@@ -599,28 +600,26 @@ pub fn tree_stage(
 ) -> Result<TreeStage, TreeError> {
     let growing = Instant::now();
     let found = rrt_connect(
-        &scene.space,
-        oracle,
-        groups,
+        &p.scene.space,
+        p.oracle,
+        p.groups,
         start,
         goal,
         tree,
         seed,
         search,
     )?;
-    Ok(shortened(scene, oracle, groups, found, growing, whole))
+    Ok(shortened(p, found, growing, whole))
 }
 
 /// The trees' outcome `found` (grown since `growing`) as a [`TreeStage`], its path shortened
 /// by greedy shortcut passes within `deadline` ([`tree_stage`]).
-fn shortened(
-    scene: &Scene,
-    oracle: &dyn CollisionOracle,
-    groups: &[crate::space::Group],
-    found: TreeOutcome,
-    growing: Instant,
-    deadline: &Deadline,
-) -> TreeStage {
+fn shortened(p: &Planning, found: TreeOutcome, growing: Instant, deadline: &Deadline) -> TreeStage {
+    let Planning {
+        scene,
+        oracle,
+        groups,
+    } = *p;
     let mut stage = TreeStage {
         nodes: found.nodes[0] + found.nodes[1],
         counts: found.counts,
@@ -884,6 +883,11 @@ pub fn run_workcell(
     let oracle = scene.oracle();
     let method = LocalSpec::roadmap_default().build();
     let groups = method.groups(&scene.space);
+    let planning = Planning {
+        scene: &scene,
+        oracle: oracle.as_ref(),
+        groups: &groups,
+    };
     let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref()).learn(
         &LearnParams::default(),
         &o.budget,
@@ -955,29 +959,12 @@ pub fn run_workcell(
             let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
             let grow_trees = |tree: &TreeParams, d: &Deadline| {
                 if !o.trees_from_roadmap {
-                    return tree_stage(
-                        &scene,
-                        oracle.as_ref(),
-                        &groups,
-                        &s,
-                        &g,
-                        tree,
-                        o.seed,
-                        d,
-                        d,
-                    );
+                    return tree_stage(&planning, (&s, &g), tree, o.seed, d, d);
                 }
                 let growing = Instant::now();
                 let found = RoadmapTrees::new(&roadmap, oracle.as_ref(), &groups)
                     .connect(&s, &g, tree, o.seed, d)?;
-                Ok(shortened(
-                    &scene,
-                    oracle.as_ref(),
-                    &groups,
-                    found,
-                    growing,
-                    d,
-                ))
+                Ok(shortened(&planning, found, growing, d))
             };
             let (answer, head_start, raced) = match (&o.trees, o.race) {
                 (Some(tree), Some(head_start)) => {
