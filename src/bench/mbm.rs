@@ -364,12 +364,12 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
     let connects = |(c, _): &(Result<Connection, OracleError>, f64)| {
         c.as_ref().is_ok_and(|c| c.is_connected())
     };
-    // the trees searching until `search`, a path they found shortened until `whole`
     let planning = Planning {
         scene: &scene,
         oracle: oracle.as_ref(),
         groups: &groups,
     };
+    // the trees searching until `search`, a path they found shortened until `whole`
     let trees_seeded = |search: &Deadline, whole: &Deadline, seed: u64| {
         tree_stage(&planning, (&start, &goal), &o.tree, seed, search, whole)
     };
