@@ -35,6 +35,7 @@ pub mod interval;
 pub mod limits;
 pub mod local;
 pub mod oracle;
+pub mod portfolio;
 pub mod render;
 pub mod roadmap;
 pub mod robot;

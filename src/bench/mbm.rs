@@ -14,21 +14,20 @@
 //! until they meet ([`Planner::Roadmap`], as `solve --roadmap`, OMPL PRM's `solve`), until the
 //! time is up; with [`MbmOptions::race`] the via-point planner and the trees run at once; with
 //! [`MbmOptions::trees_first`] (`bench mbm`'s default) the direct path, then the trees for a
-//! share of the time, then the via-point search, then the trees again. The
+//! share of the time, then the via-point search, then the trees again (the stages are
+//! [`crate::portfolio`]'s, which `viaroad solve` runs on an arm scene too). The
 //! returned path is shortened and then re-checked by the independent
 //! [`ArmChecker`] at 1/10 of OMPL's default resolution. "Valid" is the checker's verdict on the
 //! start and goal (exact shapes); the exact oracle uses circumscribed shapes, so it may refuse
 //! an end the checker accepts ("valid, refused by the oracle").
 
 use crate::deadline::{race, Deadline};
-use crate::local::{
-    direct_connection, path_length, shorten_known, Connection, KnownPieces, LocalSpec,
-};
-use crate::oracle::{CallCounts, CollisionOracle, OracleError};
+use crate::local::{path_length, LocalSpec};
+use crate::oracle::CollisionOracle;
+use crate::portfolio::{shortened, trees_found, Portfolio, Stage};
+pub use crate::portfolio::{tree_stage, Planning, TreeStage};
 use crate::roadmap::rooted::RoadmapTrees;
-use crate::roadmap::tree::{
-    rrt_connect, shortcut_passes, Rooted, TreeError, TreeOutcome, TreeParams,
-};
+use crate::roadmap::tree::{Rooted, TreeParams};
 use crate::roadmap::{
     Budget, LearnParams, Learner, QueryOptions, QueryOutcome, QueryPlanner, QueryResult, Roadmap,
 };
@@ -99,6 +98,20 @@ pub struct MbmOptions {
     /// (≈ 1–3 ms each), so it waits for the problems the trees do not solve soon (a goal deep
     /// in a narrow shelf); `None`: the via-point planner first, the trees after it.
     pub trees_first: Option<f64>,
+}
+
+impl MbmOptions {
+    /// The stages before a grown roadmap ([`Planner::Roadmap`]: the via-point planner alone).
+    pub fn portfolio(&self) -> Portfolio {
+        let trees = self.planner == Planner::Tree;
+        Portfolio {
+            direct_calls: self.direct_calls,
+            tree: trees.then(|| self.tree.clone()),
+            trees_first: self.trees_first,
+            race: self.race,
+            seed: self.seed,
+        }
+    }
 }
 
 /// The stage after the via-point planner alone.
@@ -347,137 +360,23 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
     r.oracle_valid = true;
     let began = Instant::now();
     let deadline = Deadline::none().within(Some(o.time));
-    let mut counts = CallCounts::default();
-    // the via-point planner alone, a bounded search
-    let direct = LocalSpec::default()
-        .budgeted(o.direct_calls)
-        .unwrap_or_default();
-    let method = direct.build();
+    let method = LocalSpec::default().build();
     let groups = method.groups(&scene.space);
-    let mut path: Option<(Vec<Config>, Vec<Config>)> = None;
-    // the via-point planner's answer and when it came (its stage time, racing or not)
-    // (the path it finds is shortened after the race, within the problem's deadline)
-    let via_points = |d: &Deadline, _: &Deadline| {
-        let c = method.connect_within(&scene.space, oracle.as_ref(), &start, &goal, d);
-        (c, began.elapsed().as_secs_f64())
-    };
-    let connects = |(c, _): &(Result<Connection, OracleError>, f64)| {
-        c.as_ref().is_ok_and(|c| c.is_connected())
-    };
     let planning = Planning {
         scene: &scene,
         oracle: oracle.as_ref(),
         groups: &groups,
     };
-    // the trees searching until `search`, a path they found shortened until `whole`
-    let trees_seeded = |search: &Deadline, whole: &Deadline, seed: u64| {
-        tree_stage(&planning, (&start, &goal), &o.tree, seed, search, whole)
-    };
-    let trees = |d: &Deadline| trees_seeded(d, d, o.seed);
-    let trees_first = o
-        .trees_first
-        .filter(|_| o.planner == Planner::Tree && o.direct_calls > 0);
-    let (connected, raced) = match (o.race.filter(|_| o.planner == Planner::Tree), trees_first) {
-        (Some(head_start), _) => {
-            let raced = race(
-                &deadline,
-                head_start,
-                via_points,
-                connects,
-                trees,
-                trees_found,
-            );
-            // the head start's calls count too
-            if let Some((Ok(c), _)) = &raced.head_start {
-                counts += c.counts;
-            }
-            (raced.first, raced.second)
-        }
-        // the direct path alone, then the trees for their share of the time, then the
-        // via-point search, then the trees afresh (another random stream) for the rest
-        (None, Some(share)) => 'stages: {
-            let path = direct_connection(&scene.space, oracle.as_ref(), &groups, &start, &goal);
-            let path_s = began.elapsed().as_secs_f64();
-            let blocked = matches!(&path, Ok(c) if !c.is_connected());
-            if !blocked || deadline.expired() {
-                break 'stages ((path, path_s), None);
-            }
-            let slice = deadline.within(Some(o.time.mul_f64(share)));
-            let first = trees_seeded(&slice, &deadline, o.seed);
-            if trees_found(&first) || first.is_err() || deadline.expired() {
-                break 'stages ((path, path_s), Some(first));
-            }
-            if let Ok(c) = &path {
-                counts += c.counts;
-            }
-            let searching = Instant::now();
-            let (searched, _) = via_points(&deadline, &deadline);
-            let direct_s = path_s + searching.elapsed().as_secs_f64();
-            if matches!(&searched, Ok(c) if c.is_connected()) || deadline.expired() {
-                break 'stages ((searched, direct_s), Some(first));
-            }
-            let seed = crate::roadmap::tree::stream_seed(o.seed, 1);
-            let again = trees_seeded(&deadline, &deadline, seed);
-            (
-                (searched, direct_s),
-                Some(first.and_then(|f| again.map(|a| a.after(f)))),
-            )
-        }
-        (None, None) => (via_points(&deadline, &deadline), None),
-    };
-    let (connected, direct_s) = connected;
-    r.direct_s = direct_s;
-    match connected {
-        Ok(c) => {
-            counts += c.counts;
-            if c.is_connected() {
-                let shortening = Instant::now();
-                // within the problem's time, as every stage (the shortest path over the pairs
-                // found free when it ends)
-                let mut known = KnownPieces::new();
-                known.certify_path(&scene.space, &groups, &c.path);
-                let short = shorten_known(
-                    &scene.space,
-                    oracle.as_ref(),
-                    &groups,
-                    &c.path,
-                    &mut known,
-                    &mut counts,
-                    &deadline,
-                );
-                r.shorten_s = shortening.elapsed().as_secs_f64();
-                match short {
-                    Ok(s) => path = Some((c.path, s)),
-                    Err(e) => r.error = format!("shortening: {e}"),
-                }
-                r.stage = "direct".into();
-            }
-        }
-        Err(e) => r.error = format!("local method: {e}"),
-    }
-    let raced = raced.or_else(|| {
-        (path.is_none() && !deadline.expired() && o.planner == Planner::Tree)
-            .then(|| trees(&deadline))
-    });
-    if let Some(found) = raced {
-        match found {
-            Ok(found) => {
-                r.nodes = found.nodes;
-                counts += found.counts;
-                r.grow_s = found.grow_s;
-                if path.is_none() {
-                    r.shorten_s = found.shorten_s;
-                    if let Some(e) = found.shortening_error {
-                        r.error = e;
-                    }
-                    if found.path.is_some() {
-                        path = found.path;
-                        r.stage = "tree".into();
-                    }
-                }
-            }
-            Err(e) => r.error = format!("trees: {e}"),
-        }
+    let answer = o.portfolio().plan(&planning, (&start, &goal), &deadline);
+    let mut counts = answer.counts;
+    let mut path = answer.path;
+    r.direct_s = answer.direct_s;
+    r.grow_s = answer.grow_s;
+    r.shorten_s = answer.shorten_s;
+    r.nodes = answer.nodes;
+    r.stage = answer.stage.map_or("", Stage::name).into();
+    if let Some(e) = answer.error {
+        r.error = e.to_string();
     }
     if path.is_none() && !deadline.expired() && o.planner == Planner::Roadmap {
         let growing = Instant::now();
@@ -537,115 +436,6 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         r.path = short;
     }
     r
-}
-
-/// What [`tree_stage`] found.
-pub struct TreeStage {
-    /// Nodes of both trees.
-    pub nodes: usize,
-    /// Oracle work of the trees and the shortcuts.
-    pub counts: CallCounts,
-    /// The raw tree path and its shortcut version, if the trees met.
-    pub path: Option<(Vec<Config>, Vec<Config>)>,
-    /// Why shortcutting stopped early (the path shortened so far is kept).
-    pub shortening_error: Option<String>,
-    /// Growing the trees, seconds.
-    pub grow_s: f64,
-    /// Shortcutting their path, seconds.
-    pub shorten_s: f64,
-    /// The trees as they ended ([`TreeOutcome::trees`]).
-    pub trees: Option<Box<[Rooted; 2]>>,
-}
-
-impl TreeStage {
-    /// This stage after an `earlier` one that found nothing: the work of both (nodes, calls,
-    /// growing time), this one's trees and path.
-    pub fn after(mut self, earlier: TreeStage) -> TreeStage {
-        self.nodes += earlier.nodes;
-        self.counts += earlier.counts;
-        self.grow_s += earlier.grow_s;
-        self
-    }
-}
-
-/// Whether the trees of a [`tree_stage`] found a path (a side of a [`race`] that answered).
-fn trees_found(stage: &Result<TreeStage, TreeError>) -> bool {
-    stage.as_ref().is_ok_and(|t| t.path.is_some())
-}
-
-/// What every stage of one problem plans in: the scene, the oracle the stages share (its kept
-/// answers serve them all) and the local method's DOF groups.
-#[derive(Clone, Copy)]
-pub struct Planning<'a> {
-    /// The problem's scene.
-    pub scene: &'a Scene,
-    /// The oracle every stage asks.
-    pub oracle: &'a dyn CollisionOracle,
-    /// The DOF groups single-group motions move (one per joint for an arm).
-    pub groups: &'a [crate::space::Group],
-}
-
-/// Two trees from `start` and `goal` ([`rrt_connect`]) growing until `search`, their path
-/// shortened by greedy shortcut passes until `whole` (a slice of a problem's time bounds the
-/// search, not the finishing of what it found): the visibility-graph `shorten` of the other
-/// stages checks long multi-joint pairs of a tree path's hundreds of corners for seconds (cage
-/// 4: 8 s over a 5 s budget), so it is not run here.
-pub fn tree_stage(
-    p: &Planning,
-    (start, goal): (&Config, &Config),
-    tree: &TreeParams,
-    seed: u64,
-    search: &Deadline,
-    whole: &Deadline,
-) -> Result<TreeStage, TreeError> {
-    let growing = Instant::now();
-    let found = rrt_connect(
-        &p.scene.space,
-        p.oracle,
-        p.groups,
-        start,
-        goal,
-        tree,
-        seed,
-        search,
-    )?;
-    Ok(shortened(p, found, growing, whole))
-}
-
-/// The trees' outcome `found` (grown since `growing`) as a [`TreeStage`], its path shortened
-/// by greedy shortcut passes within `deadline` ([`tree_stage`]).
-fn shortened(p: &Planning, found: TreeOutcome, growing: Instant, deadline: &Deadline) -> TreeStage {
-    let Planning {
-        scene,
-        oracle,
-        groups,
-    } = *p;
-    let mut stage = TreeStage {
-        nodes: found.nodes[0] + found.nodes[1],
-        counts: found.counts,
-        path: None,
-        shortening_error: None,
-        grow_s: growing.elapsed().as_secs_f64(),
-        shorten_s: 0.0,
-        trees: found.trees,
-    };
-    if let Some(raw) = found.path {
-        let shortening = Instant::now();
-        let (short, error) = shortcut_passes(
-            &scene.space,
-            oracle,
-            groups,
-            &raw,
-            SHORTCUT_WINDOW,
-            &mut stage.counts,
-            deadline,
-        );
-        // what was shortened before an error is certified free corner to corner
-        stage.shortening_error = error.map(|e| format!("shortening: {e}"));
-        stage.shorten_s = shortening.elapsed().as_secs_f64();
-        stage.path = Some((raw, short));
-    }
-    stage
 }
 
 /// Mean, standard deviation and percentiles of a sample (VAMP's `evaluate_mbm` columns).

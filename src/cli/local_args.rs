@@ -27,6 +27,11 @@ pub struct LocalArgs {
 }
 
 impl LocalArgs {
+    /// Whether any of the flags was given (else the command picks its own default method).
+    pub fn given(&self) -> bool {
+        self.local.is_some() || self.beta.is_some() || self.via.is_some() || self.depth.is_some()
+    }
+
     /// The spec the flags name; `default` when `--local` is not given.
     pub fn spec_or(&self, default: LocalSpec) -> anyhow::Result<LocalSpec> {
         let mut spec: LocalSpec = match &self.local {

@@ -13,6 +13,7 @@ mod limits;
 mod local_args;
 mod output;
 mod path_out;
+mod portfolio;
 mod probe;
 mod query;
 mod render;

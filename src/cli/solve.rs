@@ -1,4 +1,5 @@
-//! `viaroad solve`: a scene's queries answered by the local method alone.
+//! `viaroad solve`: a scene's queries answered by the local method alone (or a single-query
+//! planner: `--roadmap`, `--tree`, `--portfolio`, the default for arm scenes).
 
 use super::local_args::LocalArgs;
 use anyhow::Context;
@@ -35,8 +36,8 @@ pub struct SolveArgs {
     /// then answer through it. Without it the local method alone connects start and goal.
     #[arg(long, group = "single_query")]
     pub roadmap: bool,
-    /// Most nodes of the grown roadmap (`--roadmap`) or of both trees (`--tree`): a budget
-    /// that gives the same answer on any machine. With `--nodes` and no `--time` there is no
+    /// Most nodes of the grown roadmap (`--roadmap`) or of both trees (`--tree`; each stage of
+    /// trees with `--portfolio`): a budget that gives the same answer on any machine. With `--nodes` and no `--time` there is no
     /// time limit.
     #[arg(long, requires = "single_query")]
     pub nodes: Option<usize>,
@@ -95,7 +96,15 @@ pub struct SolveArgs {
     /// `whole`, `prefix` with `--tree-centre` or `--tree-coarse` (which need it).
     #[arg(long, value_name = "MODE", requires = "tree")]
     pub tree_stairs: Option<viaroad::roadmap::tree::Stairs>,
-    /// Seed of the grown roadmap (`--roadmap`) or of the two trees (`--tree`).
+    /// The stages `viaroad bench mbm` runs, one after the other (`viaroad::portfolio`): the
+    /// direct path, two trees for a fifth of the time (as `--tree`, first-hit prefixes), the
+    /// via-point planner (300 oracle calls), the trees afresh for the rest; the path found
+    /// shortened. The default for arm scenes unless the local method is chosen (`--local`,
+    /// `--beta`, `--via`, `--depth`). Default time 60 s, like `--tree`.
+    #[arg(long, group = "single_query", conflicts_with_all = ["local", "beta", "via", "depth", "global", "oracle"])]
+    pub portfolio: bool,
+    /// Seed of the grown roadmap (`--roadmap`), of the two trees (`--tree`) or of the
+    /// portfolio's trees.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
@@ -170,6 +179,12 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         Some(o) => anyhow::bail!("--oracle {o}: expected `exact` (the default) or `minkowski`"),
     }
     let scene = Scene::load(&a.scene)?;
+    // an arm is planned by the benchmark's stages unless its local method is asked for: the
+    // via-point planner alone exhausts its depth in the cage, where the trees answer
+    let arm = matches!(scene.robot, viaroad::scene::Robot::Arm(_));
+    if a.portfolio || (arm && !a.local.given()) {
+        return super::portfolio::run_portfolio(&a, &scene);
+    }
     let spec = a.local.spec_or(LocalSpec::default())?;
     let time = super::limits::optional_seconds("--time", a.time)?;
     let oracle = scene.oracle();

@@ -847,7 +847,7 @@ pub fn rrt_connect_rooted(
 
 /// The random stream of portfolio stream `k` (stream 0: `seed` itself, so one stream is the
 /// run without streams).
-pub(crate) fn stream_seed(seed: u64, k: usize) -> u64 {
+pub fn stream_seed(seed: u64, k: usize) -> u64 {
     if k == 0 {
         return seed;
     }
