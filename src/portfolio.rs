@@ -321,12 +321,7 @@ pub fn tree_stage(
 
 /// The trees' outcome `found` (grown since `growing`) as a [`TreeStage`], its path shortened
 /// by greedy shortcut passes within `deadline` ([`tree_stage`]).
-pub fn shortened(
-    p: &Planning,
-    found: TreeOutcome,
-    growing: Instant,
-    deadline: &Deadline,
-) -> TreeStage {
+fn shortened(p: &Planning, found: TreeOutcome, growing: Instant, deadline: &Deadline) -> TreeStage {
     let mut stage = TreeStage {
         nodes: found.nodes[0] + found.nodes[1],
         counts: found.counts,

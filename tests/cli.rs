@@ -475,6 +475,12 @@ fn query_grows_trees_out_of_the_roadmap() {
     let o = viaroad(&["query", &rm, "--scene", CLUTTERED, "--trees", "maybe"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--trees"), "{}", stderr(&o));
+    for bad in ["soon", "-1", "NaN"] {
+        let race = format!("--race={bad}");
+        let o = viaroad(&["query", &rm, "--scene", CLUTTERED, &race]);
+        assert_eq!(o.status.code(), Some(2), "--race {bad}");
+        assert!(stderr(&o).contains("--race"), "{}", stderr(&o));
+    }
     std::fs::remove_dir_all(&d).unwrap();
 }
 

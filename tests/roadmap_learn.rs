@@ -284,6 +284,7 @@ fn extreme_parameters_are_harmless() {
             trees: None,
             max_calls: Some(u64::MAX),
             return_trees: false,
+            race: None,
         });
     let (s, g) = random_queries(&scene, 1, 4).remove(0);
     assert!(planner.query(&s, &g).is_ok());

@@ -485,6 +485,10 @@ impl Roadmap {
         shortening(&mut options, shorten)?;
         options.time = query_time(time)?;
         options.grow = grow;
+        // an arm grows trees out of the roadmap, racing its search, as `viaroad query` does
+        if grow {
+            options = options.with_arm_trees(self.roadmap.space());
+        }
         Ok(planner.with_options(options))
     }
 }
@@ -631,7 +635,8 @@ impl Roadmap {
     /// Answers one query (`start`, `goal`: sequences or 1-d arrays). `shorten` is `"fast"`,
     /// `"exact"` or `"off"` as in `viaroad query`; `time` the seconds it may take (where the
     /// roadmap cannot join start and goal, it grows a copy of the roadmap for the rest of it
-    /// if `grow`), `None` for no limit and no growing. Raises `QueryError` for a start or goal
+    /// if `grow`; for an arm, two trees out of it, racing its search after 2 ms, as
+    /// `viaroad query`), `None` for no limit and no growing. Raises `QueryError` for a start or goal
     /// of the wrong length, outside the bounds or in collision. Releases the interpreter.
     #[pyo3(signature = (start, goal, *, shorten = "fast", time = Some(QueryOptions::DEFAULT_TIME.as_secs_f64()), grow = true))]
     fn query(

@@ -20,6 +20,7 @@ ROOT = Path(__file__).resolve().parents[2]
 DISCS = ROOT / "scenes" / "discs-cluttered.toml"
 DISCS_MAP = ROOT / "roadmaps" / "discs-cluttered.bin"
 PLANAR = ROOT / "scenes" / "ompl" / "2D" / "BugTrap_planar.cfg"
+ARM = ROOT / "scenes" / "arms" / "panda-box-1.toml"
 CLI = ROOT / "target" / "release" / "viaroad"
 
 
@@ -309,3 +310,22 @@ def test_the_checks_here_refuse_colliding_paths(discs):
     a, b = blocked[0]
     with pytest.raises(AssertionError):
         check_planar_path(planar, [a, np.r_[b[:2], a[2]]], a, np.r_[b[:2], a[2]])
+
+
+def test_an_arm_query_grows_trees_out_of_the_roadmap():
+    """A Panda goal inside MotionBenchMaker's box, which a 40-node roadmap does not reach: the
+    query races trees out of the roadmap, as `viaroad query` does for arms (the paths are
+    certified by the independent arm checker in the Rust tests; here each segment moves one
+    joint and every corner is free)."""
+    scene = viaroad.Scene.load(ARM)
+    assert scene.dof == 7
+    rm = viaroad.Roadmap.build(scene, nodes=40, seed=1)
+    s, g = scene.queries()[0]
+    r = rm.query(s, g, time=30.0)
+    assert r.solved and r.outcome == "trees", r.outcome
+    for path in (r.path, r.shortened):
+        assert list(path[0]) == list(s) and list(path[-1]) == list(g)
+        for a, b in zip(path, path[1:]):
+            assert sum(x != y for x, y in zip(a, b)) <= 1
+        assert all(scene.is_free(q) for q in path)
+    assert r.length <= r.raw_length + 1e-9

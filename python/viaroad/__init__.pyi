@@ -62,7 +62,7 @@ class QueryResult:
 
     solved: bool
     outcome: str
-    """`direct`, `roadmap`, `grown`, `not_attached`, `disconnected`, `timed_out` or `error`."""
+    """`direct`, `roadmap`, `grown`, `trees`, `not_attached`, `disconnected`, `timed_out`, `out_of_calls` or `error`."""
     path: npt.NDArray[np.float64]
     """The path as found, (k, dof)."""
     shortened: npt.NDArray[np.float64]
@@ -110,7 +110,8 @@ class Roadmap:
         time: Optional[float] = 10.0,
         grow: bool = True,
     ) -> QueryResult:
-        """Answers one query; `QueryError` for an invalid start or goal. Releases the GIL."""
+        """Answers one query; `QueryError` for an invalid start or goal. An arm grows trees out of
+        the roadmap, racing its search, where `grow` (as `viaroad query`). Releases the GIL."""
     def query_many(
         self,
         starts: ArrayLike2,

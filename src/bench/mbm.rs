@@ -24,9 +24,8 @@
 use crate::deadline::{race, Deadline};
 use crate::local::{path_length, LocalSpec};
 use crate::oracle::CollisionOracle;
-use crate::portfolio::{shortened, trees_found, Portfolio, Stage};
 pub use crate::portfolio::{tree_stage, Planning, TreeStage};
-use crate::roadmap::rooted::RoadmapTrees;
+use crate::portfolio::{trees_found, Portfolio, Stage};
 use crate::roadmap::tree::{Rooted, TreeParams};
 use crate::roadmap::{
     Budget, LearnParams, Learner, QueryOptions, QueryOutcome, QueryPlanner, QueryResult, Roadmap,
@@ -649,7 +648,7 @@ pub struct WorkcellOptions {
     /// ends rather than growing trees of its own.
     pub keep_trees: bool,
     /// With `trees`: each end that a free direct path attaches to one of its nearest roadmap
-    /// nodes grows its tree out of that node's whole component ([`RoadmapTrees`]), so that
+    /// nodes grows its tree out of that node's whole component (`RoadmapTrees`), so that
     /// the other end's tree need only reach the roadmap; in turn (no `race`) the query grows
     /// them itself after attaching ([`QueryOptions::trees`], as `viaroad query` does).
     /// `false`: both trees grow from the bare ends, as a single query's would, after the
@@ -705,7 +704,10 @@ pub fn run_workcell(
     // in turn with trees out of the roadmap, the query grows them itself after attaching
     // (`QueryOptions::trees`, as `viaroad query` does); in turn from the bare ends, the
     // roadmap's query gets half the time and the trees the rest
-    let in_query = o.race.is_none() && o.trees_from_roadmap;
+    // racing or in turn, trees out of the roadmap are the query's own (`QueryOptions::trees`,
+    // `QueryOptions::race`, as `viaroad query` grows them); trees from the bare ends are
+    // grown here, beside the query or after its half of the time
+    let in_query = o.trees_from_roadmap;
     let roadmap_time = if o.trees.is_some() && o.race.is_none() && !in_query {
         o.query_time / 2
     } else {
@@ -714,6 +716,7 @@ pub fn run_workcell(
     let options = QueryOptions {
         time: Some(roadmap_time),
         trees: o.trees.clone().filter(|_| in_query),
+        race: o.race.filter(|_| in_query),
         return_trees: o.keep_trees,
         ..QueryOptions::default()
     };
@@ -748,16 +751,10 @@ pub fn run_workcell(
             };
             let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
             let grow_trees = |tree: &TreeParams, d: &Deadline| {
-                if !o.trees_from_roadmap {
-                    return tree_stage(&planning, (&s, &g), tree, o.seed, d, d);
-                }
-                let growing = Instant::now();
-                let found = RoadmapTrees::new(&roadmap, oracle.as_ref(), &groups)
-                    .connect(&s, &g, tree, o.seed, d)?;
-                Ok(shortened(&planning, found, growing, d))
+                tree_stage(&planning, (&s, &g), tree, o.seed, d, d)
             };
             let (answer, head_start, raced) = match (&o.trees, o.race) {
-                (Some(tree), Some(head_start)) => {
+                (Some(tree), Some(head_start)) if !in_query => {
                     let raced = race(
                         &deadline,
                         head_start,
@@ -768,7 +765,7 @@ pub fn run_workcell(
                     );
                     (raced.first, raced.head_start.flatten(), raced.second)
                 }
-                _ => (ask_roadmap(&deadline, &deadline), None, None),
+                _ => (planner.query_within(&s, &g, &deadline).ok(), None, None),
             };
             let mut calls: u64 = [&head_start, &answer]
                 .into_iter()

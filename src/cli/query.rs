@@ -7,10 +7,10 @@ use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
 use std::sync::Mutex;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
-use viaroad::roadmap::tree::{Prefix, TreeParams};
+use viaroad::roadmap::tree::TreeParams;
 use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::{ompl_cfg, Scene};
 use viaroad::space::Config;
@@ -75,11 +75,18 @@ pub struct QueryArgs {
     /// Where the roadmap cannot join start and goal, grow two trees out of it for the rest of
     /// the time instead of a copy of it: each end that a free direct path attaches to one of
     /// its nearest nodes brings that node's component along as its tree, and the other end's
-    /// tree need only reach the roadmap (sliding single-joint stairs, first-hit calls, as
+    /// tree need only reach the roadmap (whole single-joint stairs, first-hit calls, as
     /// `bench mbm --planner tree`). `auto` (default): on for arms, whose goals in a box or a
     /// cage a grown copy does not reach; `on`; `off`.
     #[arg(long, value_name = "MODE", value_enum, default_value_t = Trees::Auto)]
     pub trees: Trees,
+    /// Where trees grow (`--trees`): ask the roadmap alone for MS milliseconds, then ask it
+    /// again beside the trees on the thread pool, the first to answer stopping the other,
+    /// instead of growing the trees only after attaching failed; `off`: in turn; `auto`
+    /// (default): 2 ms for arms, in turn for every other space. The Panda's cage workcell:
+    /// query p50 92 ms in turn, 16–18 ms racing (`QueryOptions::race`).
+    #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
+    pub race: HeadStart,
     /// Feed every path found back into the roadmap before the next query (its corners become
     /// nodes, its single-group pieces edges: `Roadmap::with_path`), answering the queries one
     /// after another in their order, and save the grown roadmap to FILE (it may be the roadmap
@@ -306,6 +313,47 @@ fn answer_line(
     }
 }
 
+/// The roadmap's head start before it races the trees (`query --race MS|off|auto`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HeadStart {
+    /// [`QueryOptions::DEFAULT_HEAD_START`] for arms, in turn otherwise.
+    Auto,
+    /// In turn.
+    Off,
+    /// This head start.
+    After(Duration),
+}
+
+impl HeadStart {
+    /// The head start in `space` (`QueryOptions::race`).
+    pub fn race(self, space: &viaroad::space::Space) -> Option<Duration> {
+        match self {
+            HeadStart::Auto => QueryOptions::default().with_arm_trees(space).race,
+            HeadStart::Off => None,
+            HeadStart::After(d) => Some(d),
+        }
+    }
+}
+
+impl std::str::FromStr for HeadStart {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => return Ok(HeadStart::Auto),
+            "off" => return Ok(HeadStart::Off),
+            _ => {}
+        }
+        match s.parse::<f64>() {
+            Ok(ms) if ms.is_finite() && (0.0..=1e6).contains(&ms) => {
+                Ok(HeadStart::After(Duration::from_secs_f64(ms / 1e3)))
+            }
+            _ => Err(format!(
+                "{s:?}: expected milliseconds from 0 to 1e6, `off` or `auto`"
+            )),
+        }
+    }
+}
+
 /// Whether a query grows trees out of the roadmap (`query --trees`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Trees {
@@ -328,14 +376,7 @@ impl Trees {
             Trees::On => true,
             Trees::Off => false,
         };
-        on.then(|| TreeParams {
-            prefix: if joints {
-                Prefix::FirstHit
-            } else {
-                Prefix::Intervals
-            },
-            ..TreeParams::default()
-        })
+        on.then(|| TreeParams::for_space(space))
     }
 }
 
@@ -376,6 +417,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     defaults.time = time;
     defaults.grow = !a.no_grow;
     defaults.trees = a.trees.params(&scene.space);
+    defaults.race = a.race.race(&scene.space);
     defaults.return_trees = a.keep_trees;
     if let Some(n) = a.direct_calls {
         defaults.direct_calls = n;

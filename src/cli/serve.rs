@@ -57,6 +57,10 @@ pub struct ServeArgs {
     /// copy of it (as `query --trees`): `auto` (default: on for arms), `on`, `off`.
     #[arg(long, value_name = "MODE", value_enum, default_value_t = super::query::Trees::Auto)]
     pub trees: super::query::Trees,
+    /// Where trees grow: the roadmap's head start before it races them (as `query --race`);
+    /// `off`: in turn; `auto` (default): 2 ms for arms, in turn otherwise.
+    #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
+    pub race: super::query::HeadStart,
     /// Re-check every solved answer's path (the shortened one it returns) with the scene's
     /// independent checker, as `query --check` does, outside the query's time (`query_ms`):
     /// each reply says `"certified": true|false` (and `"check_error"`).
@@ -433,6 +437,7 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         options.time = Some(time);
         options.grow = !a.no_grow;
         options.trees = a.trees.params(&scene.space);
+        options.race = a.race.race(&scene.space);
         match s {
             Shortening::Fast => {}
             Shortening::Exact => options.exact_shortening_limit = usize::MAX,

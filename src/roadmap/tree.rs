@@ -196,6 +196,20 @@ impl Default for TreeParams {
 }
 
 impl TreeParams {
+    /// The defaults for `space`: one first-collision call per stair for arms (the sweep of a
+    /// joint stops at the first hit, `joint_move_first_hit`), one interval call otherwise.
+    pub fn for_space(space: &Space) -> TreeParams {
+        let joints = matches!(space.kind(), crate::space::SpaceKind::Joints { .. });
+        TreeParams {
+            prefix: if joints {
+                Prefix::FirstHit
+            } else {
+                Prefix::Intervals
+            },
+            ..TreeParams::default()
+        }
+    }
+
     /// Checks the shares are positive and finite.
     pub fn validate(&self) -> Result<(), String> {
         for (name, v) in [("range", self.range), ("stair", self.stair)] {

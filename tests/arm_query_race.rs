@@ -1,0 +1,97 @@
+//! A roadmap query that races trees out of the roadmap (`QueryOptions::race`, the default of
+//! `viaroad query` and `serve` for arms): its answer is certified by the independent
+//! [`viaroad::robot::ArmChecker`], without a time limit it is the same on every run (both sides
+//! run to their own budgets, the roadmap's answer preferred), and an end in collision is refused
+//! before any tree grows.
+
+use std::path::Path;
+use std::time::Duration;
+use viaroad::bench::mbm::{check_step, checker};
+use viaroad::local::LocalSpec;
+use viaroad::oracle::CallCounts;
+use viaroad::roadmap::tree::TreeParams;
+use viaroad::roadmap::{
+    Budget, LearnParams, Learner, QueryError, QueryOptions, QueryOutcome, QueryPlanner,
+};
+use viaroad::scene::Scene;
+
+#[test]
+fn a_racing_query_is_certified_reproducible_and_refuses_an_end_in_collision() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-box-1.toml");
+    let scene = Scene::load(&path).unwrap();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(40), 1, &mut |_| {})
+        .unwrap();
+    let roadmap = learnt.roadmap;
+    let trees = TreeParams {
+        max_nodes: Some(3000),
+        ..TreeParams::for_space(&scene.space)
+    };
+    let options = QueryOptions {
+        trees: Some(trees),
+        race: Some(Duration::ZERO),
+        max_calls: Some(2000),
+        landmarks: 0,
+        ..QueryOptions::default()
+    };
+    assert_eq!(
+        QueryOptions::default().with_arm_trees(&scene.space).race,
+        Some(QueryOptions::DEFAULT_HEAD_START)
+    );
+    // a fresh oracle for the queries: the learner's keeps its answers, so that a query asking
+    // it tests fewer pairs than one asking a fresh one
+    let asked = scene.oracle();
+    let planner = QueryPlanner::new(&roadmap, asked.as_ref())
+        .unwrap()
+        .with_options(options);
+    let q = &scene.checked_queries().unwrap()[0];
+    let a = planner.query(&q.start, &q.goal).unwrap();
+    // the 40-node roadmap does not reach into the box (tests/arm_workcell.rs): the trees answer
+    assert_eq!(a.outcome, QueryOutcome::Trees, "{:?}", a.outcome);
+    assert!(a.grown_nodes > 0 && a.path.len() >= 2);
+    assert!(a.length <= a.raw_length + 1e-9);
+    let check = checker(&scene).unwrap();
+    for p in [&a.raw_path, &a.path] {
+        assert_eq!((p.first(), p.last()), (Some(&q.start), Some(&q.goal)));
+        let report = check.check_path(p, check_step(&check)).unwrap();
+        assert!(report.valid, "{report:?}");
+    }
+    // the roadmap's calls are counted with the trees'
+    assert!(a.counts.intersect_calls() > 0);
+    // asked again of another fresh oracle (the first one now keeps this query's answers)
+    let fresh = scene.oracle();
+    let again = QueryPlanner::new(&roadmap, fresh.as_ref())
+        .unwrap()
+        .with_options(planner.options().clone());
+    let b = again.query(&q.start, &q.goal).unwrap();
+    // everything but the primitive pairs tested, which the thread's warm caches of the exact
+    // sweep lower (the calls are the same)
+    let same = |r: &viaroad::roadmap::QueryResult| {
+        (
+            r.outcome,
+            r.raw_path.clone(),
+            r.path.clone(),
+            r.counts.intersect_calls(),
+            r.counts.state_checks,
+            r.grown_nodes,
+        )
+    };
+    assert_eq!(same(&b), same(&a), "no time limit: the same answer again");
+    // an end in collision: a typed error, whichever end
+    let inside = (0..200)
+        .map(|k| {
+            let mut c = q.goal.clone();
+            c[1] += 0.01 * k as f64;
+            c
+        })
+        .find(|c| scene.space.check(c).is_ok() && oracle.collides(c, &mut CallCounts::default()))
+        .expect("bending joint 2 down runs the arm into the box");
+    for (s, g) in [(&inside, &q.goal), (&q.start, &inside)] {
+        match planner.query(s, g) {
+            Err(QueryError::InCollision { .. }) => {}
+            other => panic!("expected InCollision, got {other:?}"),
+        }
+    }
+}
