@@ -1,47 +1,21 @@
 //! One query of an arm planned by the portfolio (`viaroad::portfolio`, the stages `bench mbm`
 //! runs), as `viaroad solve` plans an arm scene by default: the path is certified by the
-//! independent [`ArmChecker`] (parry, exact primitives, no code shared with the exact oracle) at
+//! independent `ArmChecker` (parry, exact primitives, no code shared with the exact oracle) at
 //! 1/10 of OMPL's default resolution, a node budget gives the same path on every run, and the
 //! cage, where the via-point planner alone gives up, is answered.
 
 mod common;
 
 use common::cli::{stdout, viaroad};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use viaroad::deadline::Deadline;
 use viaroad::local::LocalSpec;
 use viaroad::portfolio::{Planning, Portfolio, Stage};
-use viaroad::robot::ArmChecker;
-use viaroad::scene::{Robot, Scene};
+use viaroad::scene::Scene;
 use viaroad::space::Config;
 
 fn arms(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("scenes/arms")
-        .join(p)
-}
-
-/// Start to goal, one joint per segment, free under the independent checker.
-fn certify(scene: &Scene, path: &[Config]) {
-    let q = &scene.checked_queries().unwrap()[0];
-    assert_eq!(path.first(), Some(&q.start));
-    assert_eq!(path.last(), Some(&q.goal));
-    for w in path.windows(2) {
-        let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
-        assert!(moving <= 1, "a segment moves {moving} joints: {w:?}");
-    }
-    let Robot::Arm(a) = &scene.robot else {
-        panic!("not an arm scene")
-    };
-    let c = ArmChecker::new(&a.arm, &a.objects).unwrap();
-    let report = c
-        .check_path(path, 0.001 * c.arm().group.max_extent())
-        .unwrap();
-    assert!(
-        report.valid,
-        "{}: the checker refuses {report:?}",
-        scene.name
-    );
+    common::arms::arms_dir().join(p)
 }
 
 /// The portfolio's answer on `scene`'s query with at most `nodes` per stage of trees and no
@@ -81,8 +55,8 @@ fn the_portfolio_answers_the_cage_where_the_via_point_planner_alone_gives_up() {
     let a = plan(&scene, &budgeted(20_000));
     assert_eq!(a.stage, Some(Stage::Tree));
     let (raw, short) = a.path.clone().expect("cage 1 not solved");
-    certify(&scene, &raw);
-    certify(&scene, &short);
+    common::arms::certify(&scene, &raw);
+    common::arms::certify(&scene, &short);
     assert!(short.len() < raw.len());
     assert!(a.counts.intersect_calls() > alone.counts.intersect_calls());
     let b = plan(&scene, &budgeted(20_000));
@@ -104,7 +78,7 @@ fn solve_plans_an_arm_scene_by_the_portfolio_unless_the_local_method_is_named() 
     assert!(v["stage"] == "tree" || v["stage"] == "direct", "{v}");
     let short: Vec<Config> = serde_json::from_value(v["shortened"].clone()).unwrap();
     let scene = Scene::load(&arms("panda-box-1.toml")).unwrap();
-    certify(&scene, &short);
+    common::arms::certify(&scene, &short);
     assert!(v["length"].as_f64().unwrap() <= v["raw_length"].as_f64().unwrap());
     // the local method alone when named: its own output, no stages
     let o = viaroad(&["solve", scene_path, "--local", "straight", "--json"]);

@@ -1,6 +1,6 @@
 //! Two trees for an arm (issue 10, `roadmap::tree` with whole stairs, and sliding ones): on shipped Panda
 //! problems the tree path and its shortcut are chains of single-joint motions that the
-//! independent [`ArmChecker`] (parry, exact primitives, no code shared with the exact oracle)
+//! independent `ArmChecker` (parry, exact primitives, no code shared with the exact oracle)
 //! certifies at 1/10 of OMPL's default resolution, and the same seed and node budget give the
 //! same path. Cage 1 is the problem neither the via-point planner nor the roadmap solves: its
 //! way in is free only as a fine single-joint staircase.
@@ -11,8 +11,7 @@ use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::oracle::CallCounts;
 use viaroad::roadmap::tree::{shortcut, Prefix, Stairs, TreeOutcome, TreeParams};
-use viaroad::robot::ArmChecker;
-use viaroad::scene::{Robot, Scene};
+use viaroad::scene::Scene;
 use viaroad::space::Config;
 
 fn arms(p: &str) -> PathBuf {
@@ -34,30 +33,6 @@ fn params(max_nodes: usize) -> TreeParams {
 
 fn grow(scene: &Scene, seed: u64) -> TreeOutcome {
     common::tree::grow(scene, &params(4000), seed)
-}
-
-/// Start to goal, one joint per segment, free under the independent checker.
-fn certify(scene: &Scene, path: &[Config]) {
-    let q = &scene.checked_queries().unwrap()[0];
-    assert_eq!(path.first(), Some(&q.start));
-    assert_eq!(path.last(), Some(&q.goal));
-    for w in path.windows(2) {
-        let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
-        assert!(moving <= 1, "a segment moves {moving} joints: {w:?}");
-    }
-    let Robot::Arm(a) = &scene.robot else {
-        panic!("not an arm scene")
-    };
-    let c = ArmChecker::new(&a.arm, &a.objects).unwrap();
-    let report = c
-        .check_path(path, 0.001 * c.arm().group.max_extent())
-        .unwrap();
-    assert!(
-        report.valid,
-        "{}: the checker refuses the path: {report:?}",
-        scene.name
-    );
-    assert!(report.samples > path.len());
 }
 
 fn shortcut_of(scene: &Scene, path: &[Config]) -> Vec<Config> {
@@ -104,7 +79,7 @@ fn sliding_tree_path_is_certified() {
         ..params(4000)
     };
     let out = common::tree::grow(&scene, &p, 1);
-    certify(
+    common::arms::certify(
         &scene,
         &out.path.expect("box 1 not solved within 4000 nodes"),
     );
@@ -116,10 +91,10 @@ fn cage_tree_path_is_certified() {
     // whole stairs count every corner as a node: about 17 000 of them on the way into the cage
     let out = common::tree::grow(&scene, &params(20_000), 1);
     let path = out.path.expect("cage 1 not solved within 20 000 nodes");
-    certify(&scene, &path);
+    common::arms::certify(&scene, &path);
     let short = shortcut_of(&scene, &path);
     assert!(short.len() <= path.len());
-    certify(&scene, &short);
+    common::arms::certify(&scene, &short);
 }
 
 #[test]
@@ -131,6 +106,6 @@ fn box_tree_path_is_certified_and_the_same_seed_gives_the_same_path() {
     assert_eq!(a.path, b.path);
     assert_eq!(a.nodes, b.nodes);
     assert_eq!(a.counts.intersect_calls(), b.counts.intersect_calls());
-    certify(&scene, &path);
-    certify(&scene, &shortcut_of(&scene, &path));
+    common::arms::certify(&scene, &path);
+    common::arms::certify(&scene, &shortcut_of(&scene, &path));
 }

@@ -2,7 +2,7 @@
 //! `bench mbm` runs ([`viaroad::portfolio`]): the direct path, two trees for a fifth of the
 //! time, the via-point planner, the trees afresh.
 
-use super::solve::SolveArgs;
+use super::solve::{SingleQuery, SolveArgs};
 use serde_json::json;
 use std::time::Instant;
 use viaroad::deadline::Deadline;
@@ -12,18 +12,6 @@ use viaroad::scene::Scene;
 
 /// Runs `solve --portfolio` on the loaded `scene`.
 pub fn run_portfolio(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
-    let time = match (a.time, a.nodes) {
-        (None, Some(_)) => None,
-        (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
-    };
-    if let Some(n) = a.nodes {
-        super::limits::count_in_range(
-            "--nodes",
-            n,
-            viaroad::limits::MAX_NODES,
-            "trees that large do not fit in memory",
-        )?;
-    }
     let mut portfolio = Portfolio {
         seed: a.seed,
         ..Portfolio::default()
@@ -32,17 +20,11 @@ pub fn run_portfolio(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
         tree.max_nodes = a.nodes;
         tree.validate().map_err(anyhow::Error::msg)?;
     }
-    let queries = scene.checked_queries()?;
-    if queries.is_empty() {
-        anyhow::bail!("{} has no [[query]]", a.scene.display());
-    }
-    for w in &scene.warnings {
-        eprintln!("warning: {w}");
-    }
-    let mut path_out = match &a.path_out {
-        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
-        None => None,
-    };
+    let SingleQuery {
+        time,
+        queries,
+        mut path_out,
+    } = SingleQuery::prepare(a, scene, "trees that large do not fit in memory")?;
     let oracle = scene.oracle();
     let groups = LocalSpec::default().build().groups(&scene.space);
     let planning = Planning {

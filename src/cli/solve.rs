@@ -254,33 +254,57 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// What every single-query planner of `solve` (`--roadmap`, `--tree`, `--portfolio`) needs
+/// before its first query: the time of each query (60 s by default; none with `--nodes` alone),
+/// `--nodes` checked (`too_big` says why there is a limit), the scene's checked queries (at least
+/// one), its warnings printed, and the `--path-out` files.
+pub struct SingleQuery {
+    /// The time each query may take.
+    pub time: Option<std::time::Duration>,
+    /// The scene's queries, checked.
+    pub queries: Vec<viaroad::scene::Query>,
+    /// Where solved paths are written.
+    pub path_out: Option<super::path_out::PathOut>,
+}
+
+impl SingleQuery {
+    /// The set-up of `a`'s single-query planner on `scene`.
+    pub fn prepare(a: &SolveArgs, scene: &Scene, too_big: &str) -> anyhow::Result<SingleQuery> {
+        let time = match (a.time, a.nodes) {
+            (None, Some(_)) => None,
+            (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
+        };
+        if let Some(n) = a.nodes {
+            super::limits::count_in_range("--nodes", n, viaroad::limits::MAX_NODES, too_big)?;
+        }
+        let queries = scene.checked_queries()?;
+        if queries.is_empty() {
+            anyhow::bail!("{} has no [[query]]", a.scene.display());
+        }
+        for w in &scene.warnings {
+            eprintln!("warning: {w}");
+        }
+        let path_out = match &a.path_out {
+            Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
+            None => None,
+        };
+        Ok(SingleQuery {
+            time,
+            queries,
+            path_out,
+        })
+    }
+}
+
 /// `solve --roadmap`: each query answered by a roadmap grown from its start and goal.
 fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
     let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
-    let time = match (a.time, a.nodes) {
-        (None, Some(_)) => None,
-        (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
-    };
-    if let Some(n) = a.nodes {
-        super::limits::count_in_range(
-            "--nodes",
-            n,
-            viaroad::limits::MAX_NODES,
-            "a roadmap that large does not fit in memory",
-        )?;
-    }
-    let queries = scene.checked_queries()?;
-    if queries.is_empty() {
-        anyhow::bail!("{} has no [[query]]", a.scene.display());
-    }
-    for w in &scene.warnings {
-        eprintln!("warning: {w}");
-    }
-    let mut path_out = match &a.path_out {
-        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
-        None => None,
-    };
+    let SingleQuery {
+        time,
+        queries,
+        mut path_out,
+    } = SingleQuery::prepare(&a, &scene, "a roadmap that large does not fit in memory")?;
     let oracle = scene.oracle();
     let method = spec.build();
     let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
@@ -370,18 +394,6 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
 fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
     use viaroad::roadmap::tree::{rrt_connect, shortcut, TreeParams};
     let scene = Scene::load(&a.scene)?;
-    let time = match (a.time, a.nodes) {
-        (None, Some(_)) => None,
-        (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
-    };
-    if let Some(n) = a.nodes {
-        super::limits::count_in_range(
-            "--nodes",
-            n,
-            viaroad::limits::MAX_NODES,
-            "trees that large do not fit in memory",
-        )?;
-    }
     use viaroad::roadmap::tree::Stairs;
     let stairs = a
         .tree_stairs
@@ -404,17 +416,12 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         stairs,
     };
     params.validate().map_err(anyhow::Error::msg)?;
-    let queries = scene.checked_queries()?;
-    if queries.is_empty() {
-        anyhow::bail!("{} has no [[query]]", a.scene.display());
-    }
-    for w in &scene.warnings {
-        eprintln!("warning: {w}");
-    }
-    let mut path_out = match &a.path_out {
-        Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
-        None => None,
-    };
+    // checked before the path files are prepared (which removes those of earlier runs)
+    let SingleQuery {
+        time,
+        queries,
+        mut path_out,
+    } = SingleQuery::prepare(&a, &scene, "trees that large do not fit in memory")?;
     let oracle = scene.oracle();
     let groups = scene.space.groups(false);
     for (i, q) in queries.iter().enumerate() {

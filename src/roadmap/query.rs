@@ -420,6 +420,20 @@ impl QueryResult {
         Some(c.path)
     }
 
+    /// The answer's paths as found (`raw`) and as returned (`path`), with their lengths.
+    fn set_paths(
+        &mut self,
+        space: &crate::space::Space,
+        groups: &[Group],
+        raw: Vec<Config>,
+        path: Vec<Config>,
+    ) {
+        self.raw_length = path_length(space, groups, &raw);
+        self.length = path_length(space, groups, &path);
+        self.raw_path = raw;
+        self.path = path;
+    }
+
     /// Whether a path was found.
     pub fn is_solved(&self) -> bool {
         matches!(
@@ -1202,10 +1216,7 @@ impl<'a> QueryPlanner<'a> {
         } else {
             raw.clone()
         };
-        result.raw_length = path_length(space, &self.groups, &raw);
-        result.length = path_length(space, &self.groups, &path);
-        result.raw_path = raw;
-        result.path = path;
+        result.set_paths(space, &self.groups, raw, path);
         Ok(result)
     }
 

@@ -2,7 +2,9 @@
 
 use std::path::{Path, PathBuf};
 use viaroad::robot::arm::GroupChoice;
-use viaroad::robot::{Arm, ArmOptions};
+use viaroad::robot::{Arm, ArmChecker, ArmOptions};
+use viaroad::scene::{Robot, Scene};
+use viaroad::space::Config;
 
 /// `scenes/arms`: the Panda (`panda/`) and the first problems of each family (`mbm/`).
 pub fn arms_dir() -> PathBuf {
@@ -21,4 +23,30 @@ pub fn panda(group: GroupChoice) -> Arm {
         },
     )
     .unwrap()
+}
+
+/// `path` answers `scene`'s first query: from its start to its goal, one joint per segment, and
+/// free under the independent [`ArmChecker`] (parry, exact primitives, no code shared with the
+/// exact oracle) at 1/10 of OMPL's default resolution.
+pub fn certify(scene: &Scene, path: &[Config]) {
+    let q = &scene.checked_queries().unwrap()[0];
+    assert_eq!(path.first(), Some(&q.start));
+    assert_eq!(path.last(), Some(&q.goal));
+    for w in path.windows(2) {
+        let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
+        assert!(moving <= 1, "a segment moves {moving} joints: {w:?}");
+    }
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm scene")
+    };
+    let c = ArmChecker::new(&a.arm, &a.objects).unwrap();
+    let report = c
+        .check_path(path, 0.001 * c.arm().group.max_extent())
+        .unwrap();
+    assert!(
+        report.valid,
+        "{}: the checker refuses the path: {report:?}",
+        scene.name
+    );
+    assert!(report.samples > path.len());
 }

@@ -4,7 +4,6 @@
 use super::QueryOptions;
 use super::{query_seed, Endpoint, QueryError, QueryOutcome, QueryPlanner, QueryResult};
 use crate::deadline::{race, Deadline, Raced};
-use crate::local::path_length;
 use crate::oracle::CallCounts;
 use crate::roadmap::rooted::RoadmapTrees;
 use crate::roadmap::tree::{shortcut_passes, TreeParams, TreeStop, SHORTCUT_WINDOW};
@@ -122,10 +121,7 @@ impl QueryPlanner<'_> {
         } else {
             raw.clone()
         };
-        result.raw_length = path_length(space, &self.groups, &raw);
-        result.length = path_length(space, &self.groups, &path);
-        result.raw_path = raw;
-        result.path = path;
+        result.set_paths(space, &self.groups, raw, path);
         Ok(result)
     }
 }
