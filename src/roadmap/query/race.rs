@@ -65,14 +65,18 @@ impl QueryPlanner<'_> {
                 t.counts += others;
                 Ok(t)
             }
-            // neither answered: the roadmap's outcome (or error) with the trees' work
-            (first, second) => first.map(|mut a| {
-                if let Some(Ok(t)) = &second {
-                    others += t.counts;
+            // neither answered: the roadmap's outcome with the trees' work, or the error of
+            // either side (as the trees in turn report theirs)
+            (first, second) => {
+                let mut a = first?;
+                match second {
+                    Some(Ok(t)) => others += t.counts,
+                    Some(Err(e)) => return Err(e),
+                    None => {}
                 }
                 a.counts += others;
-                a
-            }),
+                Ok(a)
+            }
         }
     }
 
