@@ -2,18 +2,20 @@
 //! `viaroad query` and `serve` for arms): its answer is certified by the independent
 //! [`viaroad::robot::ArmChecker`], without a time limit it is the same on every run (both sides
 //! run to their own budgets, the roadmap's answer preferred), and an end in collision is refused
-//! before any tree grows.
+//! before any tree grows; an error of the trees is reported when the roadmap gives no answer.
 
 use std::path::Path;
 use std::time::Duration;
 use viaroad::bench::mbm::{check_step, checker};
+use viaroad::interval::IntervalList;
 use viaroad::local::LocalSpec;
-use viaroad::oracle::CallCounts;
-use viaroad::roadmap::tree::TreeParams;
+use viaroad::oracle::{CallCounts, CollisionOracle, OracleError};
+use viaroad::roadmap::tree::{Stairs, TreeParams};
 use viaroad::roadmap::{
     Budget, LearnParams, Learner, QueryError, QueryOptions, QueryOutcome, QueryPlanner,
 };
 use viaroad::scene::Scene;
+use viaroad::space::Motion;
 
 #[test]
 fn a_racing_query_is_certified_reproducible_and_refuses_an_end_in_collision() {
@@ -93,5 +95,75 @@ fn a_racing_query_is_certified_reproducible_and_refuses_an_end_in_collision() {
             Err(QueryError::InCollision { .. }) => {}
             other => panic!("expected InCollision, got {other:?}"),
         }
+    }
+}
+
+/// The scene's oracle refusing first-hit questions, which only the trees ask (first-hit
+/// prefixes of partial stairs): the trees fail, the roadmap's search does not.
+struct NoFirstHit(Box<dyn CollisionOracle>);
+
+impl CollisionOracle for NoFirstHit {
+    fn intervals(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<IntervalList, OracleError> {
+        self.0.intervals(motion, counts)
+    }
+
+    fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
+        self.0.collides(q, counts)
+    }
+
+    fn surely_collides(&self, q: &[f64]) -> Option<bool> {
+        self.0.surely_collides(q)
+    }
+
+    fn motion_is_free(
+        &self,
+        motion: &Motion,
+        counts: &mut CallCounts,
+    ) -> Result<bool, OracleError> {
+        self.0.motion_is_free(motion, counts)
+    }
+
+    fn first_collision(
+        &self,
+        _motion: &Motion,
+        _counts: &mut CallCounts,
+    ) -> Result<Option<f64>, OracleError> {
+        Err(OracleError::Unsupported("first hits refused".into()))
+    }
+}
+
+#[test]
+fn the_trees_error_is_reported_when_the_roadmap_gives_no_answer() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-box-1.toml");
+    let scene = Scene::load(&path).unwrap();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let roadmap = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(40), 1, &mut |_| {})
+        .unwrap()
+        .roadmap;
+    let refusing = NoFirstHit(scene.oracle());
+    let planner = QueryPlanner::new(&roadmap, &refusing)
+        .unwrap()
+        .with_options(QueryOptions {
+            trees: Some(TreeParams {
+                stairs: Stairs::Prefix,
+                ..TreeParams::for_space(&scene.space)
+            }),
+            race: Some(Duration::ZERO),
+            max_calls: Some(300),
+            landmarks: 0,
+            ..QueryOptions::default()
+        });
+    let q = &scene.checked_queries().unwrap()[0];
+    match planner.query(&q.start, &q.goal) {
+        Err(QueryError::Oracle(OracleError::Unsupported(m))) => {
+            assert!(m.contains("first hits refused"), "{m}")
+        }
+        other => panic!("expected the trees' error, got {other:?}"),
     }
 }
