@@ -37,8 +37,8 @@ pub struct SolveArgs {
     #[arg(long, group = "single_query")]
     pub roadmap: bool,
     /// Most nodes of the grown roadmap (`--roadmap`) or of both trees (`--tree`; each stage of
-    /// trees with `--portfolio`): a budget that gives the same answer on any machine. With `--nodes` and no `--time` there is no
-    /// time limit.
+    /// trees with `--portfolio`): a budget that gives the same answer on any machine. With
+    /// `--nodes` and no `--time` there is no time limit.
     #[arg(long, requires = "single_query")]
     pub nodes: Option<usize>,
     /// Single-query trees (OMPL's RRTConnect `solve`): two trees grown from start and goal
