@@ -12,21 +12,29 @@ use viaroad::local::LocalSpec;
 use viaroad::oracle::{CallCounts, CollisionOracle, OracleError};
 use viaroad::roadmap::tree::{Stairs, TreeParams};
 use viaroad::roadmap::{
-    Budget, LearnParams, Learner, QueryError, QueryOptions, QueryOutcome, QueryPlanner,
+    Budget, LearnParams, Learner, QueryError, QueryOptions, QueryOutcome, QueryPlanner, Roadmap,
 };
 use viaroad::scene::Scene;
 use viaroad::space::Motion;
 
-#[test]
-fn a_racing_query_is_certified_reproducible_and_refuses_an_end_in_collision() {
+/// MotionBenchMaker's box 1 and a 40-node roadmap of it, which does not reach into the box
+/// (tests/arm_workcell.rs): its query is left to the trees.
+fn box_and_roadmap() -> (Scene, Roadmap) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-box-1.toml");
     let scene = Scene::load(&path).unwrap();
     let oracle = scene.oracle();
     let method = LocalSpec::roadmap_default().build();
-    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+    let roadmap = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
         .learn(&LearnParams::default(), &Budget::nodes(40), 1, &mut |_| {})
-        .unwrap();
-    let roadmap = learnt.roadmap;
+        .unwrap()
+        .roadmap;
+    (scene, roadmap)
+}
+
+#[test]
+fn a_racing_query_is_certified_reproducible_and_refuses_an_end_in_collision() {
+    let (scene, roadmap) = box_and_roadmap();
+    let oracle = scene.oracle();
     let trees = TreeParams {
         max_nodes: Some(3000),
         ..TreeParams::for_space(&scene.space)
@@ -138,14 +146,7 @@ impl CollisionOracle for NoFirstHit {
 
 #[test]
 fn the_trees_error_is_reported_when_the_roadmap_gives_no_answer() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-box-1.toml");
-    let scene = Scene::load(&path).unwrap();
-    let oracle = scene.oracle();
-    let method = LocalSpec::roadmap_default().build();
-    let roadmap = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
-        .learn(&LearnParams::default(), &Budget::nodes(40), 1, &mut |_| {})
-        .unwrap()
-        .roadmap;
+    let (scene, roadmap) = box_and_roadmap();
     let refusing = NoFirstHit(scene.oracle());
     let planner = QueryPlanner::new(&roadmap, &refusing)
         .unwrap()
