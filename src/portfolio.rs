@@ -32,6 +32,20 @@ pub struct Planning<'a> {
     pub oracle: &'a dyn CollisionOracle,
     /// The DOF groups single-group motions move (one per joint for an arm).
     pub groups: &'a [Group],
+    /// Shorten with straight motions of several joints at once where they are proved free
+    /// ([`Space::straight_group`](crate::space::Space::straight_group)), not only with
+    /// single-joint staircases (as [`crate::roadmap::QueryOptions::straight_shortcuts`]).
+    pub straight: bool,
+}
+
+impl Planning<'_> {
+    /// The groups shortening checks pairs of corners with ([`Self::straight`]).
+    pub fn shortcut_groups(&self) -> Vec<Group> {
+        match self.scene.space.straight_group().filter(|_| self.straight) {
+            Some(whole) => vec![whole],
+            None => self.groups.to_vec(),
+        }
+    }
 }
 
 /// The stages and their budgets. The default is `viaroad bench mbm`'s.
@@ -211,11 +225,12 @@ impl Portfolio {
                     // within the query's time, as every stage (the shortest path over the
                     // pairs found free when it ends)
                     let mut known = KnownPieces::new();
-                    known.certify_path(&p.scene.space, p.groups, &c.path);
+                    let groups = p.shortcut_groups();
+                    known.certify_path(&p.scene.space, &groups, &c.path);
                     let short = shorten_known(
                         &p.scene.space,
                         p.oracle,
-                        p.groups,
+                        &groups,
                         &c.path,
                         &mut known,
                         &mut a.counts,
@@ -336,7 +351,7 @@ fn shortened(p: &Planning, found: TreeOutcome, growing: Instant, deadline: &Dead
         let (short, error) = shortcut_passes(
             &p.scene.space,
             p.oracle,
-            p.groups,
+            &p.shortcut_groups(),
             &raw,
             SHORTCUT_WINDOW,
             &mut stage.counts,

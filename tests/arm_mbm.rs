@@ -45,6 +45,7 @@ fn raced_or_in_turn_every_answer_is_certified() {
             },
             race,
             trees_first,
+            straight: true,
         };
         for p in &problems {
             let r = run_problem(&robot, p, &options);
@@ -95,6 +96,7 @@ fn trees_first_hand_over_to_the_via_point_search() {
         },
         race: None,
         trees_first: Some(0.2),
+        straight: true,
     };
     let r = run_problem(&robot, p, &options);
     assert!(r.solved && r.stage == "direct", "{r:?}");
@@ -155,7 +157,9 @@ fn paths_out_writes_the_returned_and_the_found_path() {
             (&query.start, &query.goal),
             "{name}"
         );
-        for w in path.windows(2) {
+        // as found, one joint per step; shortened, straight shortcuts of several joints too
+        // (the checker below samples every segment along its straight line either way)
+        for w in path.windows(2).filter(|_| name.ends_with("_raw.path")) {
             let moved = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
             assert_eq!(moved, 1, "{name}: one joint per step: {w:?}");
         }

@@ -28,17 +28,14 @@ fn checker(scene: &Scene) -> ArmChecker {
     ArmChecker::new(&a.arm, &a.objects).unwrap()
 }
 
-/// Re-checks a path: one joint per segment (CHS §1.5), starts and ends where asked, and free
-/// under the independent checker at 1/10 of OMPL's default resolution.
+/// Re-checks a path: starts and ends where asked, and free under the independent checker at
+/// 1/10 of OMPL's default resolution along the straight line of each segment (one joint per
+/// segment, CHS §1.5, or a shortening's straight shortcut of several).
 fn certify(scene: &Scene, path: &[Vec<f64>], start: &[f64], goal: &[f64]) {
     assert!(path.len() >= 2);
     assert_eq!(path.first().unwrap().as_slice(), start);
     let end = path.last().unwrap();
     assert!(scene.space.distance(end, goal) < 1e-9, "{end:?} ≠ {goal:?}");
-    for w in path.windows(2) {
-        let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
-        assert!(moving <= 1, "a segment moves {moving} joints: {w:?}");
-    }
     let c = checker(scene);
     let step = 0.001 * c.arm().group.max_extent();
     let report = c.check_path(path, step).unwrap();

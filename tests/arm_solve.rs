@@ -28,6 +28,7 @@ fn plan(scene: &Scene, portfolio: &Portfolio) -> viaroad::portfolio::Answer {
         scene,
         oracle: oracle.as_ref(),
         groups: &groups,
+        straight: true,
     };
     portfolio.plan(&planning, (&q.start, &q.goal), &Deadline::none())
 }

@@ -54,6 +54,7 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
             keep_answers: false,
             keep_trees: false,
             trees_from_roadmap,
+            straight: true,
         };
         let r = run_workcell(&robot, &problems, &options, &dir.join("box.roadmap")).unwrap();
         assert_eq!(r.requests, 3);
@@ -105,6 +106,7 @@ fn every_edge_a_kept_answer_adds_is_certified() {
         keep_answers: true,
         keep_trees: false,
         trees_from_roadmap: true,
+        straight: true,
     };
     let r = run_workcell(&robot, &problems, &options, &dir.join("table_pick.roadmap")).unwrap();
     assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
@@ -149,6 +151,7 @@ fn kept_trees_add_certified_edges_beyond_the_answer() {
             keep_answers: true,
             keep_trees,
             trees_from_roadmap: true,
+            straight: true,
         };
         let name = format!("box-{keep_trees}.roadmap");
         let r = run_workcell(&robot, &problems, &options, &dir.join(&name)).unwrap();

@@ -285,6 +285,7 @@ fn extreme_parameters_are_harmless() {
             max_calls: Some(u64::MAX),
             return_trees: false,
             race: None,
+            straight_shortcuts: true,
         });
     let (s, g) = random_queries(&scene, 1, 4).remove(0);
     assert!(planner.query(&s, &g).is_ok());

@@ -97,6 +97,9 @@ pub struct MbmOptions {
     /// (≈ 1–3 ms each), so it waits for the problems the trees do not solve soon (a goal deep
     /// in a narrow shelf); `None`: the via-point planner first, the trees after it.
     pub trees_first: Option<f64>,
+    /// Shorten with straight motions of several joints at once where they are proved free
+    /// ([`Planning::straight`]).
+    pub straight: bool,
 }
 
 impl MbmOptions {
@@ -365,6 +368,7 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         scene: &scene,
         oracle: oracle.as_ref(),
         groups: &groups,
+        straight: o.straight,
     };
     let answer = o.portfolio().plan(&planning, (&start, &goal), &deadline);
     let mut counts = answer.counts;
@@ -654,6 +658,9 @@ pub struct WorkcellOptions {
     /// `false`: both trees grow from the bare ends, as a single query's would, after the
     /// roadmap's half of the time or beside it.
     pub trees_from_roadmap: bool,
+    /// Shorten with straight motions of several joints at once where they are proved free
+    /// ([`QueryOptions::straight_shortcuts`], [`Planning::straight`]).
+    pub straight: bool,
 }
 
 /// Learns a roadmap of the family's first scene ([`WorkcellOptions`]), saves it to `save_to`,
@@ -676,6 +683,7 @@ pub fn run_workcell(
         scene: &scene,
         oracle: oracle.as_ref(),
         groups: &groups,
+        straight: o.straight,
     };
     let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref()).learn(
         &LearnParams::default(),
@@ -718,6 +726,7 @@ pub fn run_workcell(
         trees: o.trees.clone().filter(|_| in_query),
         race: o.race.filter(|_| in_query),
         return_trees: o.keep_trees,
+        straight_shortcuts: o.straight,
         ..QueryOptions::default()
     };
     let arm = &check.arm().clone();

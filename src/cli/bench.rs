@@ -302,6 +302,11 @@ pub struct MbmArgs {
     /// `ends`: both trees grow from the bare start and goal, as a single problem's do.
     #[arg(long, value_enum, default_value_t = TreesFrom::Roadmap)]
     pub trees_from: TreesFrom,
+    /// Shorten with single-joint staircases only: no straight motions of several joints at
+    /// once (by default the answers are shortened with them where conservative advancement
+    /// proves them free; `QueryOptions::straight_shortcuts`, `Planning::straight`).
+    #[arg(long)]
+    pub no_straight: bool,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
     #[arg(long)]
     pub out: PathBuf,
@@ -367,6 +372,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             ..viaroad::roadmap::tree::TreeParams::default()
         },
         race,
+        straight: !a.no_straight,
     };
     options.tree.validate().map_err(anyhow::Error::msg)?;
     if a.workcell {
@@ -379,6 +385,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             keep_answers: a.keep_answers,
             keep_trees: a.keep_trees,
             trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
+            straight: !a.no_straight,
         };
         let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
         families.dedup();

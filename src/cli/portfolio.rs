@@ -31,6 +31,7 @@ pub fn run_portfolio(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
         scene,
         oracle: oracle.as_ref(),
         groups: &groups,
+        straight: !a.no_straight,
     };
     for (i, q) in queries.iter().enumerate() {
         let began = Instant::now();

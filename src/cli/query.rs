@@ -87,6 +87,12 @@ pub struct QueryArgs {
     /// query p50 92 ms in turn, 16–18 ms racing (`QueryOptions::race`).
     #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
     pub race: HeadStart,
+    /// Shorten with single-joint staircases only: no straight motions of several joints at
+    /// once (by default an arm's answers are shortened with them where conservative
+    /// advancement proves them free, `QueryOptions::straight_shortcuts`; the Panda's
+    /// workcells: half the path length).
+    #[arg(long)]
+    pub no_straight: bool,
     /// Feed every path found back into the roadmap before the next query (its corners become
     /// nodes, its single-group pieces edges: `Roadmap::with_path`), answering the queries one
     /// after another in their order, and save the grown roadmap to FILE (it may be the roadmap
@@ -418,6 +424,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     defaults.grow = !a.no_grow;
     defaults.trees = a.trees.params(&scene.space);
     defaults.race = a.race.race(&scene.space);
+    defaults.straight_shortcuts = !a.no_straight;
     defaults.return_trees = a.keep_trees;
     if let Some(n) = a.direct_calls {
         defaults.direct_calls = n;

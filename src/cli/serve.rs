@@ -61,6 +61,11 @@ pub struct ServeArgs {
     /// `off`: in turn; `auto` (default): 2 ms for arms, in turn otherwise.
     #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
     pub race: super::query::HeadStart,
+    /// Shorten with single-joint staircases only: no straight motions of several joints at
+    /// once (by default an arm's answers are shortened with them where conservative
+    /// advancement proves them free, as `query --no-straight`).
+    #[arg(long)]
+    pub no_straight: bool,
     /// Re-check every solved answer's path (the shortened one it returns) with the scene's
     /// independent checker, as `query --check` does, outside the query's time (`query_ms`):
     /// each reply says `"certified": true|false` (and `"check_error"`).
@@ -438,6 +443,7 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         options.grow = !a.no_grow;
         options.trees = a.trees.params(&scene.space);
         options.race = a.race.race(&scene.space);
+        options.straight_shortcuts = !a.no_straight;
         match s {
             Shortening::Fast => {}
             Shortening::Exact => options.exact_shortening_limit = usize::MAX,

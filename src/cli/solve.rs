@@ -107,6 +107,10 @@ pub struct SolveArgs {
     /// portfolio's trees.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// The portfolio (`--portfolio`, an arm's default) shortens with single-joint staircases
+    /// only, no straight motions of several joints at once (as `query --no-straight`).
+    #[arg(long)]
+    pub no_straight: bool,
     /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
     /// (`--roadmap`; 0: random bounces only). Default: the learner's.
     #[arg(long, value_name = "SHARE")]

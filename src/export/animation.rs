@@ -2,14 +2,14 @@
 //!
 //! Between two corners of a path the robot moves as the via-point planner moves it: one DOF
 //! group at a time (CHS §1.5), a translation first, then a rotation about an axis fixed in the
-//! world ([`crate::local::direct_pieces`]). A viewer interpolates keyframes linearly
+//! world ([`crate::local::path_pieces`]). A viewer interpolates keyframes linearly
 //! (positions) and by slerp (rotations), so a translation needs only its two ends, and a
 //! rotation is sampled finely enough that every step turns by less than
 //! [`MAX_TURN_PER_KEY`] about the same axis: slerp between two such keys turns about that
 //! axis, so the drawn motion is the checked one. An arm's single-joint moves are sampled the
 //! same way and carried to the links by forward kinematics.
 
-use crate::local::direct_pieces;
+use crate::local::path_pieces;
 use crate::space::{Config, Group, Space, SpaceKind};
 use nalgebra::UnitQuaternion;
 
@@ -31,7 +31,7 @@ pub struct Key {
     pub corner: bool,
 }
 
-/// Keyframes of `path` in `space`, moving one group at a time as [`direct_pieces`] does with
+/// Keyframes of `path` in `space`, moving one group at a time as [`path_pieces`] does with
 /// `groups`; time proportional to the space's distance, [`DURATION`] seconds in all. Returns
 /// the corners alone at equal times if the path has length zero, and nothing for an empty path.
 pub fn keyframes(space: &Space, groups: &[Group], path: &[Config]) -> Vec<Key> {
@@ -41,7 +41,7 @@ pub fn keyframes(space: &Space, groups: &[Group], path: &[Config]) -> Vec<Key> {
     // (motion, length, number of steps) of every piece
     let mut pieces = Vec::new();
     for w in path.windows(2) {
-        for (motion, _end) in direct_pieces(space, groups, 0, &w[0], &w[1]) {
+        for (motion, _end) in path_pieces(space, groups, &w[0], &w[1]) {
             let len = space.motion_length(&motion, 0.0, 1.0);
             let turn = match (&motion.change, space.kind()) {
                 (crate::space::Change::Rotation { angle, .. }, _) => angle.abs(),

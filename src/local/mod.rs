@@ -235,6 +235,30 @@ pub fn direct_pieces(
     pieces
 }
 
+/// The motions joining two consecutive corners `a`, `z` of a path, each with the corner it
+/// ends at: the direct path's pieces ([`direct_pieces`]), except in a joint space, where
+/// corners differing in several joints are joined by one straight motion of them all (a
+/// shortcut certified at once, [`crate::robot::ArmOracle::straight_free`]): every path a
+/// planner returns there moves one joint per pair of corners or goes straight.
+pub fn path_pieces(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> Vec<(Motion, Config)> {
+    if goes_straight(space, groups, a, z) {
+        let whole = space.straight_group().expect("a joint space");
+        return vec![(space.group_motion(a, z, &whole), z.to_vec())];
+    }
+    direct_pieces(space, groups, 0, a, z)
+}
+
+/// Whether consecutive corners `a`, `z` of a path are joined by one straight motion of
+/// several joints ([`path_pieces`]).
+fn goes_straight(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool {
+    space.straight_group().is_some()
+        && groups
+            .iter()
+            .filter(|g| !space.same_in_group(a, z, g))
+            .nth(1)
+            .is_some()
+}
+
 /// Length of the direct path from `a` to `z` (sum over the groups it changes; Manhattan-like
 /// when the groups are single axes).
 ///
@@ -297,7 +321,7 @@ impl KnownPieces {
         for w in path.windows(2) {
             let mut cur = w[0].clone();
             self.corners.insert(Self::corner_key(&cur), true);
-            for (_, next) in direct_pieces(space, groups, 0, &w[0], &w[1]) {
+            for (_, next) in path_pieces(space, groups, &w[0], &w[1]) {
                 self.known.insert(Self::key(&cur, &next), true);
                 self.corners.insert(Self::corner_key(&next), true);
                 cur = next;
@@ -474,10 +498,16 @@ pub fn direct_connection(
     Ok(Connection::from_corners(a, z, corners, counts))
 }
 
-/// Total length of a path of corners joined by direct paths.
+/// Total length of a path of corners joined by direct paths (a straight motion of several
+/// joints by its Euclidean length, [`path_pieces`]).
 pub fn path_length(space: &Space, groups: &[Group], path: &[Config]) -> f64 {
     path.windows(2)
-        .map(|w| direct_length(space, groups, &w[0], &w[1]))
+        .map(|w| match space.straight_group() {
+            Some(whole) if goes_straight(space, groups, &w[0], &w[1]) => {
+                space.group_length(&w[0], &w[1], &whole)
+            }
+            _ => direct_length(space, groups, &w[0], &w[1]),
+        })
         .sum()
 }
 

@@ -165,6 +165,15 @@ pub struct QueryOptions {
     /// The trees' path is shortened by greedy shortcut passes
     /// ([`super::tree::shortcut_passes`]). `None` (the default): in turn.
     pub race: Option<Duration>,
+    /// Shorten an arm's answers with straight motions of several joints at once where
+    /// conservative advancement proves them free ([`crate::robot::ArmOracle::straight_free`],
+    /// [`crate::space::Space::straight_group`]), not only with staircases of single-joint
+    /// moves: the answer then moves several joints per pair of corners where it cuts across
+    /// (every pair of corners is one straight motion, [`crate::local::path_pieces`]). On by
+    /// default; no effect in other spaces (or with continuous joints). The Panda's
+    /// workcells (2026-12-05): half the path length in six of seven families, query p50
+    /// within ±0.3 ms of the staircases' (box 0.76 → 0.45 ms).
+    pub straight_shortcuts: bool,
 }
 
 impl QueryOptions {
@@ -206,6 +215,7 @@ impl Default for QueryOptions {
             max_calls: None,
             return_trees: false,
             race: None,
+            straight_shortcuts: true,
         }
     }
 }
@@ -470,6 +480,9 @@ pub struct QueryPlanner<'a> {
     /// check already.
     quick: Option<Box<dyn LocalMethod>>,
     groups: Vec<Group>,
+    /// The groups shortening checks pairs of corners with: [`Self::groups`], or the straight
+    /// group of all joints ([`QueryOptions::straight_shortcuts`]).
+    shortcut_groups: Vec<Group>,
     options: QueryOptions,
     landmarks: OnceLock<Landmarks>,
 }
@@ -548,16 +561,23 @@ impl<'a> QueryPlanner<'a> {
             local,
             escalation: spec.deeper().map(|s| s.build()),
             quick: spec.budgeted(options.direct_calls).map(|s| s.build()),
+            shortcut_groups: Vec::new(),
             groups,
-            options,
+            options: options.clone(),
             landmarks: OnceLock::new(),
-        })
+        }
+        .with_options(options))
     }
 
     /// The same planner with other options.
     pub fn with_options(mut self, options: QueryOptions) -> Self {
         let spec = &self.roadmap.header().local_spec;
         self.quick = spec.budgeted(options.direct_calls).map(|s| s.build());
+        let straight = self.roadmap.space().straight_group();
+        self.shortcut_groups = match straight.filter(|_| options.straight_shortcuts) {
+            Some(whole) => vec![whole],
+            None => self.groups.clone(),
+        };
         self.options = options;
         self.landmarks = OnceLock::new();
         self
@@ -848,6 +868,7 @@ impl<'a> QueryPlanner<'a> {
             escalation: None,
             quick: None,
             groups: self.groups.clone(),
+            shortcut_groups: self.shortcut_groups.clone(),
             options: QueryOptions {
                 landmarks: 0,
                 ..self.options.clone()
@@ -902,7 +923,7 @@ impl<'a> QueryPlanner<'a> {
         let mut fewer = raw.clone();
         if self.options.shorten {
             let began = Instant::now();
-            known.certify_path(self.space(), &self.groups, &raw);
+            known.certify_path(self.space(), &self.shortcut_groups, &raw);
             fewer = self.greedy_passes(&raw, &mut known, &mut result.counts, shortening)?;
             result.shorten_s += began.elapsed().as_secs_f64();
         }
@@ -1179,13 +1200,13 @@ impl<'a> QueryPlanner<'a> {
             let shortening = Instant::now();
             // the pieces of the raw path are free (roadmap edges and attachments), and the
             // greedy pass's answers are shared with the visibility graph
-            known.certify_path(space, &self.groups, &raw);
+            known.certify_path(space, &self.shortcut_groups, &raw);
             let fewer;
             let corners = if raw.len() > self.greedy_above() {
                 fewer = drop_corners_known(
                     space,
                     self.oracle,
-                    &self.groups,
+                    &self.shortcut_groups,
                     &raw,
                     &mut known,
                     &mut result.counts,
@@ -1204,7 +1225,7 @@ impl<'a> QueryPlanner<'a> {
                 shorten_known(
                     space,
                     self.oracle,
-                    &self.groups,
+                    &self.shortcut_groups,
                     corners,
                     &mut known,
                     &mut result.counts,
@@ -1241,7 +1262,7 @@ impl<'a> QueryPlanner<'a> {
             let next = drop_corners_known(
                 self.space(),
                 self.oracle,
-                &self.groups,
+                &self.shortcut_groups,
                 &fewer,
                 known,
                 counts,

@@ -337,7 +337,13 @@ impl ArmChecker {
             let n = ((len / max_step).ceil() as usize).max(1);
             for k in 1..=n {
                 let t = k as f64 / n as f64;
-                let q: Vec<f64> = a.iter().zip(b).map(|(x, y)| x + t * (y - x)).collect();
+                // the end itself, not `a + 1 · (b − a)`, which rounds off a corner at a joint
+                // limit (out of bounds by an ulp)
+                let q: Vec<f64> = if k == n {
+                    b.clone()
+                } else {
+                    a.iter().zip(b).map(|(x, y)| x + t * (y - x)).collect()
+                };
                 if bad(s, t, &q, &mut report) {
                     return Ok(report);
                 }

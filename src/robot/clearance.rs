@@ -466,6 +466,91 @@ pub(crate) fn apart(
         .is_some_and(|(_, g)| g > margin)
 }
 
+/// How far a multi-joint motion may carry two bodies towards each other, from a moment on:
+/// at most `rate + growth · σ` per unit of `t` after `σ` more of it (the rate at that moment,
+/// and how fast the rate itself may grow).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Speed {
+    pub rate: f64,
+    pub growth: f64,
+}
+
+impl Speed {
+    /// How much of `t` it takes to close a gap `g`: the least `s` with `rate · s + growth ·
+    /// s² / 2 = g` (infinite where nothing moves).
+    fn time_to_close(&self, g: f64) -> f64 {
+        let (a, b) = (self.rate, self.growth);
+        if b > 0.0 {
+            2.0 * g / (a + (a * a + 2.0 * b * g).sqrt())
+        } else if a > 0.0 {
+            g / a
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+/// Whether two bodies stay more than `margin` apart for all `t` in `range` while `at(t)` places
+/// them (world poses of `a` and of `b`) and says how fast they may approach each other from
+/// there ([`Speed`]; `fastest` bounds the rate over the whole motion): separating planes
+/// from both ends in turn, each proving the pair apart until the bodies could have crossed
+/// its gap (a multi-joint motion, [`super::oracle`]'s straight motions). `false` when a plane
+/// cannot be found (the hulls come within `margin`) or `max_steps` planes do not meet in the
+/// middle (near contact the steps shrink): not proved, which is not a collision found.
+pub(crate) fn apart_along(
+    a: &Cloud,
+    b: &Cloud,
+    at: &mut dyn FnMut(f64) -> (Isometry3<f64>, Isometry3<f64>, Speed),
+    range: Interval,
+    fastest: f64,
+    margin: f64,
+    max_steps: usize,
+) -> bool {
+    let mut simplex = VoronoiSimplex::new();
+    let (ca, cb) = (Climb::new(a), Climb::new(b));
+    // how far in `t` the pair is proved apart from `t` on, either way (0: not at all)
+    let mut step = |t: f64, rest: f64, dir: &mut Option<Vector3<f64>>| -> f64 {
+        let (pa, pb, speed) = at(t);
+        let pos12 = pa.inv_mul(&pb);
+        let enough = fastest * rest + 2.0 * margin;
+        let Some((n, g)) = gap(&pos12, &ca, &cb, *dir, enough, &mut simplex) else {
+            return 0.0;
+        };
+        *dir = Some(n);
+        let g = g - margin;
+        if g <= 0.0 {
+            return 0.0;
+        }
+        let by_whole = if fastest > 0.0 {
+            g / fastest
+        } else {
+            f64::INFINITY
+        };
+        by_whole.max(speed.time_to_close(g))
+    };
+    let (mut lo, mut hi) = (range.lo, range.hi);
+    let (mut from_lo, mut from_hi) = (None, None);
+    for i in 0..max_steps {
+        let s = if i % 2 == 0 {
+            step(lo, hi - lo, &mut from_lo)
+        } else {
+            step(hi, hi - lo, &mut from_hi)
+        };
+        if s <= 0.0 {
+            return false;
+        }
+        if i % 2 == 0 {
+            lo += s;
+        } else {
+            hi -= s;
+        }
+        if lo >= hi {
+            return true;
+        }
+    }
+    false
+}
+
 /// The part of `[0, 1]` in which the pair may come within `margin` of each other during `mv`
 /// (`None`: apart by more than `margin` throughout), proved from both ends by separating
 /// planes. `reach`: a bound on the moving body's distances from the move's axis

@@ -73,6 +73,8 @@ use nalgebra::{Isometry3, Point3, Vector3};
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
+mod straight;
+
 /// A ball that holds a polytope.
 #[derive(Clone, Copy, Debug)]
 struct Ball {
@@ -140,6 +142,13 @@ impl ObstacleBox {
             lo: lo.coords,
             hi: hi.coords,
         }
+    }
+
+    /// Whether ball `m` reaches into the box.
+    fn meets_ball(&self, m: &Ball) -> bool {
+        let c = self.into * Point3::from(m.centre);
+        let nearest = c.coords.sup(&self.lo).inf(&self.hi);
+        (c.coords - nearest).norm() <= m.radius
     }
 
     /// Whether ball `m` moved by `mv` can come within `margin` of the box: the box of the arc
@@ -272,6 +281,9 @@ pub struct ArmOracle {
     /// This oracle's key in the thread's memo of static link tests ([`STATIC_MEMO`]): unique
     /// per construction, so that no other oracle's answers are ever read.
     id: u64,
+    /// Per link, how fast its points may move per unit of each joint's rate
+    /// ([`ArmOracle::straight_free`]).
+    reach: straight::Reach,
 }
 
 /// The sure test's inner balls in the world, each link's placed when first asked for (most
@@ -517,8 +529,10 @@ impl ArmOracle {
                 balls
             })
             .collect();
+        let reach = straight::reach_of(&arm.model, &link_meshes);
         Ok(ArmOracle {
             arm: arm.clone(),
+            reach,
             inner,
             solids,
             sure_test: true,

@@ -241,13 +241,19 @@ struct Answers {
     /// home pose, each query checks it again, and a static check near contact (a grasp pose
     /// beside its object) costs several single-joint moves.
     states: FastMap<Vec<u64>, bool>,
+    /// Straight motions of several joints by the bits of both ends: proved free or not.
+    straight: FastMap<Vec<u64>, bool>,
 }
 
 impl Answers {
     const CAPACITY: usize = 1 << 14;
 
     fn len(&self) -> usize {
-        self.intervals.len() + self.free.len() + self.first_hit.len() + self.states.len()
+        self.intervals.len()
+            + self.free.len()
+            + self.first_hit.len()
+            + self.states.len()
+            + self.straight.len()
     }
 
     /// Whether the move is free, as far as any kept answer about it says: the three questions
@@ -376,12 +382,26 @@ impl ArmCollision {
         };
         let mut moving = delta.iter().enumerate().filter(|(_, d)| **d != 0.0);
         let first = moving.next();
-        if moving.next().is_some() {
-            return Err(OracleError::Unsupported(
-                "an arm motion moves one joint at a time (CHS §1.5)".into(),
-            ));
-        }
         let range = motion.range;
+        if moving.next().is_some() {
+            if !(range.lo.is_finite() && range.hi.is_finite()) {
+                return Err(OracleError::Unsupported(
+                    "an unbounded motion of several joints".into(),
+                ));
+            }
+            let at = |t: f64| -> Vec<f64> {
+                motion
+                    .origin
+                    .iter()
+                    .zip(delta)
+                    .map(|(q, d)| q + t * d)
+                    .collect()
+            };
+            return Ok(Move::Straight {
+                q0: at(range.lo),
+                q1: at(range.hi),
+            });
+        }
         let Some((j, &d)) = first else {
             return Ok(Move::Static(motion.origin.clone()));
         };
@@ -419,6 +439,7 @@ impl ArmCollision {
                     IntervalList::new()
                 })
             }
+            Move::Straight { .. } => Err(only_yes_no()),
             Move::Joint { q0, joint, amount } => {
                 let hits = self.kept(
                     Question {
@@ -454,6 +475,18 @@ enum Move {
         joint: usize,
         amount: f64,
     },
+    /// Several joints move at once, straight from `q0` to `q1`: certified free or not
+    /// ([`ArmOracle::straight_free`]), no intervals.
+    Straight { q0: Vec<f64>, q1: Vec<f64> },
+}
+
+/// What the arm answers of a motion of several joints: only whether it is proved free.
+fn only_yes_no() -> OracleError {
+    OracleError::Unsupported(
+        "an arm motion of several joints at once is only certified free or not (CHS §1.5: \
+         intervals are asked one joint at a time)"
+            .into(),
+    )
 }
 
 impl CollisionOracle for ArmCollision {
@@ -493,6 +526,16 @@ impl CollisionOracle for ArmCollision {
                 .static_hit(&q, &mut own)
                 .map(|hit| !hit)
                 .map_err(Self::oracle_error),
+            Ok(Move::Straight { q0, q1 }) => {
+                let key = q0.iter().chain(&q1).map(|v| v.to_bits()).collect();
+                self.remember(
+                    |a| &mut a.straight,
+                    key,
+                    |_, _| None,
+                    || self.oracle.straight_free(&q0, &q1, &mut own),
+                )
+                .map_err(Self::oracle_error)
+            }
             Err(e) => Err(e),
         };
         counts.pairs_tested += own.pairs_tested;
@@ -530,6 +573,7 @@ impl CollisionOracle for ArmCollision {
                 .static_hit(&q, &mut own)
                 .map(|hit| hit.then_some(range.lo))
                 .map_err(Self::oracle_error),
+            Ok(Move::Straight { .. }) => Err(only_yes_no()),
             Err(e) => Err(e),
         };
         counts.pairs_tested += own.pairs_tested;

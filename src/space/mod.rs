@@ -453,6 +453,20 @@ impl Space {
         groups
     }
 
+    /// One group of every joint of a joint space without continuous joints: its direct path
+    /// is the straight motion of all joints at once, which an arm's oracle only certifies free
+    /// or not ([`crate::robot::ArmOracle::straight_free`]) — what shortcuts across a staircase
+    /// ask. `None` for other spaces, and where a joint wraps (a straight motion would not).
+    pub fn straight_group(&self) -> Option<Group> {
+        match self.kind {
+            SpaceKind::Joints { dof, continuous } if continuous == 0 && dof > 1 => Some(Group {
+                kind: GroupKind::Linear,
+                coords: 0..dof,
+            }),
+            _ => None,
+        }
+    }
+
     /// [`groups`](Self::groups) written into `groups` (overwriting it, keeping its
     /// allocation): the planners ask for them on every connection.
     pub fn groups_into(&self, split_axes: bool, groups: &mut Vec<Group>) {

@@ -25,17 +25,14 @@ pub fn panda(group: GroupChoice) -> Arm {
     .unwrap()
 }
 
-/// `path` answers `scene`'s first query: from its start to its goal, one joint per segment, and
-/// free under the independent [`ArmChecker`] (parry, exact primitives, no code shared with the
-/// exact oracle) at 1/10 of OMPL's default resolution.
+/// `path` answers `scene`'s first query: from its start to its goal, and free under the
+/// independent [`ArmChecker`] (parry, exact primitives, no code shared with the exact oracle) at
+/// 1/10 of OMPL's default resolution, each segment checked along the straight line between its
+/// ends (one joint moving, or several where shortening took a straight shortcut).
 pub fn certify(scene: &Scene, path: &[Config]) {
     let q = &scene.checked_queries().unwrap()[0];
     assert_eq!(path.first(), Some(&q.start));
     assert_eq!(path.last(), Some(&q.goal));
-    for w in path.windows(2) {
-        let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
-        assert!(moving <= 1, "a segment moves {moving} joints: {w:?}");
-    }
     let Robot::Arm(a) = &scene.robot else {
         panic!("not an arm scene")
     };

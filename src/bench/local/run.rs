@@ -5,7 +5,7 @@ use super::machine;
 use super::queries::QuerySet;
 use super::spec::RunJob;
 use super::BenchError;
-use crate::local::direct_pieces;
+use crate::local::path_pieces;
 use crate::local::LocalMethod;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::{
@@ -221,7 +221,7 @@ pub fn path_is_free(
         return Ok(!oracle.collides(&path[0], &mut counts));
     }
     for w in path.windows(2) {
-        for (motion, _) in direct_pieces(space, groups, 0, &w[0], &w[1]) {
+        for (motion, _) in path_pieces(space, groups, &w[0], &w[1]) {
             if !oracle.motion_is_free(&motion, &mut counts)? {
                 return Ok(false);
             }

@@ -7,7 +7,7 @@
 use super::super::graph::Roadmap;
 use super::super::tree::Rooted;
 use super::work::Work;
-use crate::local::direct_pieces;
+use crate::local::{direct_pieces, path_pieces};
 use crate::space::Config;
 
 impl Roadmap {
@@ -143,9 +143,11 @@ fn keep_given(work: &mut Work, tree: &Rooted, i: u32, node_of: &mut [Option<u32>
     from
 }
 
-/// [`keep_segment`] from the node `from` at `a`.
+/// [`keep_segment`] from the node `from` at `a`. The motion joining two corners of a kept
+/// path is the path's own ([`path_pieces`]: in a joint space a straight shortcut of several
+/// joints is one edge, not the staircase between its ends).
 fn keep_segment_from(work: &mut Work, mut from: u32, a: &[f64], z: &[f64]) -> u32 {
-    for (_, corner) in direct_pieces(work.space, &work.groups, 0, a, z) {
+    for (_, corner) in path_pieces(work.space, &work.groups, a, z) {
         let to = work.add_node(&corner);
         work.add_edge(from, to, &[]);
         from = to;

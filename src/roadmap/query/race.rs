@@ -111,7 +111,7 @@ impl QueryPlanner<'_> {
             let (short, error) = shortcut_passes(
                 space,
                 self.oracle,
-                &self.groups,
+                &self.shortcut_groups,
                 &raw,
                 SHORTCUT_WINDOW,
                 &mut result.counts,

@@ -1,0 +1,129 @@
+//! Straight motions of several joints at once (`ArmOracle::straight_free`, conservative
+//! advancement): every motion the oracle proves free is free under the independent
+//! [`ArmChecker`] (parry, exact primitives, sampled at 1/10 of OMPL's resolution), the proof
+//! is not vacuous (short motions in the open are proved, motions through the box are not),
+//! and a query's answer shortened with them is certified and shorter than with staircases
+//! alone.
+
+mod common;
+
+use common::arms::certify;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::path::Path;
+use viaroad::local::{path_length, LocalSpec};
+use viaroad::oracle::CallCounts;
+use viaroad::roadmap::tree::TreeParams;
+use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner};
+use viaroad::robot::ArmChecker;
+use viaroad::scene::{Robot, Scene};
+
+fn box_scene() -> Scene {
+    Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-box-1.toml"))
+        .unwrap()
+}
+
+#[test]
+fn a_straight_motion_proved_free_is_free_under_the_independent_checker() {
+    let scene = box_scene();
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm scene")
+    };
+    let oracle = a.arm_oracle();
+    let checker = ArmChecker::new(&a.arm, &a.objects).unwrap();
+    let step = 0.001 * checker.arm().group.max_extent();
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let (mut proved, mut refused, mut blocked_refused) = (0, 0, 0);
+    let mut counts = CallCounts::default();
+    // free and within the checker's joint limits
+    let free = |q: &[f64]| {
+        let at = [q.to_vec(), q.to_vec()];
+        checker.check_path(&at, step).unwrap().valid
+    };
+    while proved + refused < 240 {
+        let q0 = scene.space.sample_uniform(&mut rng);
+        if !free(&q0) {
+            continue;
+        }
+        // motions of every length: a few hundredths of a radian to across the space
+        let reach = [0.05, 0.2, 0.8, 3.0][(proved + refused) % 4];
+        let q1: Vec<f64> = q0
+            .iter()
+            .enumerate()
+            .map(|(i, x)| {
+                let (lo, hi) = (scene.space.lower()[i], scene.space.upper()[i]);
+                (x + rng.random_range(-reach..=reach)).clamp(lo, hi)
+            })
+            .collect();
+        if !free(&q1) {
+            continue;
+        }
+        let path = [q0.clone(), q1.clone()];
+        let report = checker.check_path(&path, step).unwrap();
+        let valid = report.valid;
+        if oracle.straight_free(&q0, &q1, &mut counts).unwrap() {
+            assert!(
+                valid,
+                "proved free, the checker refuses it: {path:?} {report:?}"
+            );
+            proved += 1;
+        } else {
+            refused += 1;
+            blocked_refused += usize::from(!valid);
+        }
+    }
+    assert!(proved >= 40, "only {proved} of 240 motions proved free");
+    assert!(
+        blocked_refused >= 10,
+        "only {blocked_refused} blocked motions met"
+    );
+    assert_eq!(counts.segment_calls, 240);
+}
+
+#[test]
+fn an_answer_shortened_with_straight_motions_is_certified_and_shorter() {
+    let scene = box_scene();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let roadmap = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(60), 1, &mut |_| {})
+        .unwrap()
+        .roadmap;
+    let groups = method.groups(&scene.space);
+    let q = &scene.checked_queries().unwrap()[0];
+    let answer = |straight: bool| {
+        let options = QueryOptions {
+            straight_shortcuts: straight,
+            trees: Some(TreeParams {
+                max_nodes: Some(3000),
+                ..TreeParams::for_space(&scene.space)
+            }),
+            max_calls: Some(20_000),
+            landmarks: 0,
+            ..QueryOptions::default()
+        };
+        let asked = scene.oracle();
+        let planner = QueryPlanner::new(&roadmap, asked.as_ref())
+            .unwrap()
+            .with_options(options);
+        let a = planner.query(&q.start, &q.goal).unwrap();
+        assert!(a.is_solved(), "{:?}", a.outcome);
+        certify(&scene, &a.path);
+        a.path
+    };
+    let stairs = answer(false);
+    let straight = answer(true);
+    let moving = |p: &[Vec<f64>]| {
+        p.windows(2)
+            .map(|w| w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count())
+            .max()
+            .unwrap_or(0)
+    };
+    assert_eq!(moving(&stairs), 1, "staircases move one joint at a time");
+    assert!(moving(&straight) > 1, "no straight shortcut taken");
+    let (ls, lt) = (
+        path_length(&scene.space, &groups, &stairs),
+        path_length(&scene.space, &groups, &straight),
+    );
+    assert!(lt < ls, "straight {lt} is not shorter than staircases {ls}");
+}
