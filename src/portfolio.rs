@@ -13,7 +13,7 @@
 
 use crate::deadline::{race, Deadline};
 use crate::local::{direct_connection, shorten_known, Connection, KnownPieces, LocalSpec};
-use crate::oracle::{CallCounts, CollisionOracle, OracleError};
+use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::roadmap::tree::{
     rrt_connect, shortcut_passes, stream_seed, Prefix, Rooted, Stairs, TreeError, TreeOutcome,
     TreeParams, SHORTCUT_WINDOW,
@@ -187,7 +187,7 @@ impl Portfolio {
             // the direct path alone, then the trees for their share of the time, then the
             // via-point search, then the trees afresh (another random stream) for the rest
             (Some(tree), None, Some(share)) => 'stages: {
-                let path = direct_connection(&p.scene.space, p.oracle, p.groups, start, goal);
+                let path = straight_or_direct(p, start, goal);
                 let path_s = began.elapsed().as_secs_f64();
                 let blocked = matches!(&path, Ok(c) if !c.is_connected());
                 if !blocked || deadline.expired() {
@@ -332,6 +332,38 @@ pub fn tree_stage(
         search,
     )?;
     Ok(shortened(p, found, growing, whole))
+}
+
+/// The straight motion of several joints from `start` to `goal` where it is proved free
+/// ([`Planning::straight`]: one call, nothing to shorten), else the direct path.
+fn straight_or_direct(
+    p: &Planning,
+    start: &[f64],
+    goal: &[f64],
+) -> Result<Connection, OracleError> {
+    let space = &p.scene.space;
+    let several = p
+        .groups
+        .iter()
+        .filter(|g| !space.same_in_group(start, goal, g))
+        .count()
+        > 1;
+    if let (Some(whole), true, true) = (space.straight_group(), p.straight, several) {
+        let mut counts = CallCounts::default();
+        let motion = space.group_motion(start, goal, &whole);
+        if p.oracle.check_motion(&motion, &mut counts)? {
+            return Ok(Connection::from_corners(
+                start,
+                goal,
+                Some(vec![goal.to_vec()]),
+                counts,
+            ));
+        }
+        let mut c = direct_connection(space, p.oracle, p.groups, start, goal)?;
+        c.counts += counts;
+        return Ok(c);
+    }
+    direct_connection(space, p.oracle, p.groups, start, goal)
 }
 
 /// The trees' outcome `found` (grown since `growing`) as a [`TreeStage`], its path shortened

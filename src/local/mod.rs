@@ -502,13 +502,17 @@ pub fn direct_connection(
 /// joints by its Euclidean length, [`path_pieces`]).
 pub fn path_length(space: &Space, groups: &[Group], path: &[Config]) -> f64 {
     path.windows(2)
-        .map(|w| match space.straight_group() {
-            Some(whole) if goes_straight(space, groups, &w[0], &w[1]) => {
-                space.group_length(&w[0], &w[1], &whole)
-            }
-            _ => direct_length(space, groups, &w[0], &w[1]),
-        })
+        .map(|w| segment_length(space, groups, &w[0], &w[1]))
         .sum()
+}
+
+/// Length of the motion joining two consecutive corners of a path ([`path_pieces`]): the
+/// direct path's, or a straight shortcut's Euclidean length.
+pub fn segment_length(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> f64 {
+    match space.straight_group() {
+        Some(whole) if goes_straight(space, groups, a, z) => space.group_length(a, z, &whole),
+        _ => direct_length(space, groups, a, z),
+    }
 }
 
 #[cfg(test)]

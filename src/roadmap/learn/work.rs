@@ -5,7 +5,7 @@ use super::super::graph::{Edge, Roadmap};
 use super::super::nn::NearestNeighbours;
 use super::super::params::LearnParams;
 use crate::fast_hash::{FastMap, FastSet};
-use crate::local::{direct_length, path_length};
+use crate::local::{path_length, segment_length};
 use crate::oracle::CallCounts;
 use crate::space::{Config, Group, Space};
 use petgraph::unionfind::UnionFind;
@@ -118,11 +118,13 @@ impl<'s> Work<'s> {
                     .iter()
                     .filter(|g| !self.space.same_in_group(self.node(a), self.node(b), g))
                     .count()
-                    <= 1,
-            "a single-segment edge must change one DOF group (LocalMethod contract)"
+                    <= 1
+                || self.space.straight_group().is_some(),
+            "a single-segment edge must change one DOF group (LocalMethod contract), or be a \
+             kept straight shortcut of several joints (crate::local::path_pieces)"
         );
         let length = if corners.is_empty() {
-            direct_length(self.space, &self.groups, self.node(a), self.node(b))
+            segment_length(self.space, &self.groups, self.node(a), self.node(b))
         } else {
             let mut path = Vec::with_capacity(corners.len() + 2);
             path.push(self.node(a).to_vec());
