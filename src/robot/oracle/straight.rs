@@ -8,9 +8,12 @@
 //! prismatic joint slides it by `|Δ_k|`). `R_kl` needs no configuration: rotations keep lengths,
 //! so the link's origin lies at most the joint offsets below `k` (and the prismatic travels)
 //! away from `k`'s origin, on its axis, and its vertices at most their largest norm from its
-//! origin. Two bodies a separating plane shows `g` apart stay apart while their points, moving
-//! relative to each other, cover less than `g` ([`clearance::apart_along`]); for two links only
-//! the joints between them and their deepest common link move one relative to the other.
+//! origin. At each plane the bound is tightened to the moment's geometry: the distance of the
+//! link's ball from each joint's axis then, growing at most as fast as the joints after it move
+//! the link (so the step solves a quadratic, [`clearance::Speed`]). Two bodies a separating
+//! plane shows `g` apart stay apart while their points, moving relative to each other, cover
+//! less than `g` ([`clearance::apart_along`]); for two links only the joints between them and
+//! their deepest common link move one relative to the other.
 //! Every link–obstacle and non-exempt link–link pair whose balls, grown by the motion's bound,
 //! meet is proved apart from both ends plane after plane, or the motion is not certified. Near
 //! contact the planes' steps shrink and the proof gives up: a motion it does not prove is
@@ -183,6 +186,46 @@ impl ArmOracle {
             }
             out
         };
+        // how fast link `l`'s points may move at the poses of a moment, by the joints between
+        // it and the root that are not also `except`'s (the common ones carry both links
+        // alike): each joint's rate times the distance of the link's ball from its axis then,
+        // which grows at most as fast as the joints after it move the link (their bounds)
+        let tight = |l: usize, except: Option<usize>, poses: &[Isometry3<f64>]| -> Speed {
+            let mut speed = Speed {
+                rate: 0.0,
+                growth: 0.0,
+            };
+            let Some((_, own)) = &self.link_meshes[l] else {
+                return speed;
+            };
+            let shared =
+                |k: usize| except.is_some_and(|o| self.reach[o].iter().any(|(m, _)| *m == k));
+            let centre = poses[l] * nalgebra::Point3::from(own.centre);
+            // the joints after the one at hand, by their bounds
+            let mut drift = 0.0;
+            for &(k, f) in self.reach[l].iter().rev() {
+                if shared(k) {
+                    // the chains share a prefix: every joint before this one is shared too
+                    break;
+                }
+                if rate[k] != 0.0 {
+                    let joint = &model.urdf.joints[k];
+                    if matches!(joint.kind, JointKind::Prismatic { .. }) {
+                        speed.rate += rate[k] * f;
+                    } else {
+                        // the axis at this moment, through the joint's child frame
+                        let frame = &poses[model.joint_links[k].1];
+                        let axis = frame.rotation * joint.axis.into_inner();
+                        let off = centre - nalgebra::Point3::from(frame.translation.vector);
+                        let from_axis = (off.cross(&axis).norm() + own.radius) * (1.0 + 1e-9);
+                        speed.rate += rate[k] * from_axis.min(f);
+                        speed.growth += rate[k] * drift;
+                    }
+                }
+                drift += rate[k] * f;
+            }
+            speed
+        };
         for &(a, b) in &self.arm.self_pairs {
             let near = |p: usize| match (&balls[p][a], &balls[p][b]) {
                 (Some(ba), Some(bb)) => ba.meets(bb),
@@ -202,13 +245,14 @@ impl ArmOracle {
             counts.pairs_tested += 1;
             let relative = speed(a, Some(b)) + speed(b, Some(a));
             let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
-            let fixed = Speed {
-                rate: relative,
-                growth: 0.0,
-            };
             let mut at = |t: f64| {
                 place(t, &mut poses);
-                (poses[a], poses[b], fixed)
+                let (sa, sb) = (tight(a, Some(b), &poses), tight(b, Some(a), &poses));
+                let speed = Speed {
+                    rate: sa.rate + sb.rate,
+                    growth: sa.growth + sb.growth,
+                };
+                (poses[a], poses[b], speed)
             };
             for w in windows {
                 if !clearance::apart_along(ca, cb, &mut at, w, relative, margin, MAX_PLANES) {
@@ -217,9 +261,9 @@ impl ArmOracle {
             }
         }
         for l in 0..self.link_meshes.len() {
-            let Some((_, own)) = &self.link_meshes[l] else {
+            if self.link_meshes[l].is_none() {
                 continue;
-            };
+            }
             let near_any = (0..self.environment.len()).any(|i| {
                 (0..n).any(|p| {
                     balls[p][l]
@@ -235,39 +279,9 @@ impl ArmOracle {
             };
             let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
             let fastest = speed(l, None);
-            // per joint below the link: how fast the link's points may drift from its axis
-            // (the joints after it on the chain, by their bounds)
-            let chain = &self.reach[l];
-            let mut drift = vec![0.0; chain.len()];
-            for i in (0..chain.len().saturating_sub(1)).rev() {
-                let (k, f) = chain[i + 1];
-                drift[i] = drift[i + 1] + rate[k] * f;
-            }
             let mut at = |t: f64| {
                 place(t, &mut poses);
-                let centre = poses[l] * nalgebra::Point3::from(own.centre);
-                let mut speed = Speed {
-                    rate: 0.0,
-                    growth: 0.0,
-                };
-                for (i, &(k, f)) in chain.iter().enumerate() {
-                    if rate[k] == 0.0 {
-                        continue;
-                    }
-                    let joint = &model.urdf.joints[k];
-                    if matches!(joint.kind, JointKind::Prismatic { .. }) {
-                        speed.rate += rate[k] * f;
-                        continue;
-                    }
-                    // the axis at `t`, through the joint's child frame
-                    let frame = &poses[model.joint_links[k].1];
-                    let axis = frame.rotation * joint.axis.into_inner();
-                    let off = centre - nalgebra::Point3::from(frame.translation.vector);
-                    let from_axis = (off.cross(&axis).norm() + own.radius) * (1.0 + 1e-9);
-                    speed.rate += rate[k] * from_axis.min(f);
-                    speed.growth += rate[k] * drift[i];
-                }
-                (poses[l], Isometry3::identity(), speed)
+                (poses[l], Isometry3::identity(), tight(l, None, &poses))
             };
             for (i, (_, ob)) in self.environment.iter().enumerate() {
                 let near = |p: usize| {
