@@ -12,8 +12,10 @@
 //! `viaroad solve` plans an arm scene's queries so, and `viaroad bench mbm` every problem.
 
 use crate::deadline::{race, Deadline};
-use crate::local::{direct_connection, shorten_known, Connection, KnownPieces, LocalSpec};
-use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
+use crate::local::{
+    direct_connection, shorten_known, straight_connection, Connection, KnownPieces, LocalSpec,
+};
+use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::tree::{
     rrt_connect, shortcut_passes, stream_seed, Prefix, Rooted, Stairs, TreeError, TreeOutcome,
     TreeParams, SHORTCUT_WINDOW,
@@ -342,28 +344,18 @@ fn straight_or_direct(
     goal: &[f64],
 ) -> Result<Connection, OracleError> {
     let space = &p.scene.space;
-    let several = p
-        .groups
-        .iter()
-        .filter(|g| !space.same_in_group(start, goal, g))
-        .count()
-        > 1;
-    if let (Some(whole), true, true) = (space.straight_group(), p.straight, several) {
-        let mut counts = CallCounts::default();
-        let motion = space.group_motion(start, goal, &whole);
-        if p.oracle.check_motion(&motion, &mut counts)? {
-            return Ok(Connection::from_corners(
-                start,
-                goal,
-                Some(vec![goal.to_vec()]),
-                counts,
-            ));
+    let mut counts = CallCounts::default();
+    if p.straight {
+        if let Some(mut c) =
+            straight_connection(space, p.oracle, p.groups, start, goal, &mut counts)?
+        {
+            c.counts = counts;
+            return Ok(c);
         }
-        let mut c = direct_connection(space, p.oracle, p.groups, start, goal)?;
-        c.counts += counts;
-        return Ok(c);
     }
-    direct_connection(space, p.oracle, p.groups, start, goal)
+    let mut c = direct_connection(space, p.oracle, p.groups, start, goal)?;
+    c.counts += counts;
+    Ok(c)
 }
 
 /// The trees' outcome `found` (grown since `growing`) as a [`TreeStage`], its path shortened

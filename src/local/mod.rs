@@ -248,6 +248,28 @@ pub fn path_pieces(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> Vec
     direct_pieces(space, groups, 0, a, z)
 }
 
+/// The straight motion of several joints from `a` to `z` as a connection (corners `[z]`), where
+/// the space has a straight group ([`Space::straight_group`]), `a` and `z` differ in more than
+/// one of `groups`, and the oracle proves it free (one counted yes/no call, into `counts`).
+/// `None` otherwise: not asked, or not proved — the caller tries the direct path.
+pub fn straight_connection(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    a: &[f64],
+    z: &[f64],
+    counts: &mut CallCounts,
+) -> Result<Option<Connection>, OracleError> {
+    let Some(whole) = space
+        .straight_group()
+        .filter(|_| goes_straight(space, groups, a, z))
+    else {
+        return Ok(None);
+    };
+    let free = oracle.check_motion(&space.group_motion(a, z, &whole), counts)?;
+    Ok(free.then(|| Connection::from_corners(a, z, Some(vec![z.to_vec()]), CallCounts::default())))
+}
+
 /// Whether consecutive corners `a`, `z` of a path are joined by one straight motion of
 /// several joints ([`path_pieces`]).
 fn goes_straight(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool {

@@ -33,7 +33,7 @@ use super::tree::{Rooted, TreeError, TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::{
     direct_connection, direct_pieces, drop_corners_known, path_length, shorten_known,
-    surely_blocked, Connection, KnownPieces, LocalMethod, LocalSpec, Outcome,
+    straight_connection, surely_blocked, Connection, KnownPieces, LocalMethod, LocalSpec, Outcome,
 };
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
 use crate::space::{Config, Group, SpaceError};
@@ -1011,27 +1011,21 @@ impl<'a> QueryPlanner<'a> {
         result: &mut QueryResult,
         deadline: &Deadline,
     ) -> Result<Option<Connection>, QueryError> {
-        let [whole] = self.shortcut_groups.as_slice() else {
-            return Ok(None);
-        };
-        let space = self.space();
-        let several = self
-            .groups
-            .iter()
-            .filter(|g| !space.same_in_group(a, z, g))
-            .count()
-            > 1;
-        if whole.coords.len() < 2
-            || !several
+        if !self.options.straight_shortcuts
             || deadline.expired()
             || self.calls_left(result) == Some(0)
         {
             return Ok(None);
         }
-        let motion = space.group_motion(a, z, whole);
-        let free = self.oracle.check_motion(&motion, &mut result.counts)?;
-        Ok(free
-            .then(|| Connection::from_corners(a, z, Some(vec![z.to_vec()]), CallCounts::default())))
+        let (space, groups) = (self.space(), &self.groups);
+        Ok(straight_connection(
+            space,
+            self.oracle,
+            groups,
+            a,
+            z,
+            &mut result.counts,
+        )?)
     }
 
     /// The intersect calls the query may still spend ([`QueryOptions::max_calls`]; `None`: no

@@ -264,20 +264,6 @@ impl ArmOracle {
             if self.link_meshes[l].is_none() {
                 continue;
             }
-            let near_any = (0..self.environment.len()).any(|i| {
-                (0..n).any(|p| {
-                    balls[p][l]
-                        .as_ref()
-                        .is_some_and(|b| b.meets(&self.environment[i].1))
-                })
-            });
-            if !near_any {
-                continue;
-            }
-            let (Some(cl), Some(o)) = (l_cloud(&self.link_clouds, l), &self.env_oracles[l]) else {
-                return Ok(false);
-            };
-            let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
             let fastest = speed(l, None);
             let mut at = |t: f64| {
                 place(t, &mut poses);
@@ -293,9 +279,14 @@ impl ArmOracle {
                 if windows.is_empty() {
                     continue;
                 }
-                let Some(ce) = self.env_clouds[i].as_ref() else {
+                let (Some(cl), Some(o), Some(ce)) = (
+                    l_cloud(&self.link_clouds, l),
+                    &self.env_oracles[l],
+                    self.env_clouds[i].as_ref(),
+                ) else {
                     return Ok(false);
                 };
+                let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
                 counts.pairs_tested += 1;
                 for w in windows {
                     if !clearance::apart_along(cl, ce, &mut at, w, fastest, margin, MAX_PLANES) {
