@@ -14,6 +14,16 @@
 //! plane shows `g` apart stay apart while their points, moving relative to each other, cover
 //! less than `g` ([`clearance::apart_along`]); for two links only the joints between them and
 //! their deepest common link move one relative to the other.
+//!
+//! Those bounds add every joint's worst case. Toward one plane a link moves far slower: at a
+//! moment its points approach along the normal `n` at most `|n · v| + r |n × ω|` (`v`, `ω`:
+//! the velocity of its ball's centre and its angular velocity, from the joints' axes then;
+//! `r`: the ball's radius), and that rate changes no faster than the points' acceleration,
+//! bounded over the whole motion by `Σ_k |Δ_k| R_kl (|Δ_k| + 2 Σ_{j<k} |Δ_j|)`
+//! ([`ArmOracle::moving`], [`clearance::Along`]). Each plane steps by the better of the two.
+//! In the Panda's cage workcell the proofs near the bars took half the planes, and the query
+//! p50 fell from 1.3–2.3 ms to 0.4–0.5 ms (2026-12-05).
+//!
 //! Every link–obstacle and non-exempt link–link pair whose balls, grown by the motion's bound,
 //! meet is proved apart from both ends plane after plane, or the motion is not certified. Near
 //! contact the planes' steps shrink and the proof gives up: a motion it does not prove is
@@ -112,17 +122,8 @@ impl ArmOracle {
         self.arm.check_config(q1, "configuration")?;
         counts.segment_calls += 1;
         let model = &self.arm.model;
-        let joints = &self.arm.group.joints;
-        // each joint's rate: the group's own, a mimic joint's from its master's
-        let mut rate = vec![0.0; model.urdf.joints.len()];
-        for (g, &k) in joints.iter().enumerate() {
-            rate[k] = (q1[g] - q0[g]).abs();
-        }
-        for (k, master) in model.mimic_master.iter().enumerate() {
-            if let (Some(m), Some(mimic)) = (master, &model.urdf.joints[k].mimic) {
-                rate[k] = mimic.multiplier.abs() * rate[*m];
-            }
-        }
+        let delta = self.joint_deltas(q0, q1);
+        let rate: Vec<f64> = delta.iter().map(|d| d.abs()).collect();
         let speed = |l: usize, except: Option<usize>| -> f64 {
             self.reach[l]
                 .iter()
@@ -194,6 +195,7 @@ impl ArmOracle {
             let mut speed = Speed {
                 rate: 0.0,
                 growth: 0.0,
+                along: None,
             };
             let Some((_, own)) = &self.link_meshes[l] else {
                 return speed;
@@ -248,9 +250,17 @@ impl ArmOracle {
             let mut at = |t: f64| {
                 place(t, &mut poses);
                 let (sa, sb) = (tight(a, Some(b), &poses), tight(b, Some(a), &poses));
+                let along = self
+                    .moving(a, Some(b), &delta, &poses)
+                    .zip(self.moving(b, Some(a), &delta, &poses))
+                    .map(|((ma, xa), (mb, xb))| clearance::Along {
+                        bodies: [ma, mb],
+                        accel: xa + xb,
+                    });
                 let speed = Speed {
                     rate: sa.rate + sb.rate,
                     growth: sa.growth + sb.growth,
+                    along,
                 };
                 (poses[a], poses[b], speed)
             };
@@ -267,7 +277,14 @@ impl ArmOracle {
             let fastest = speed(l, None);
             let mut at = |t: f64| {
                 place(t, &mut poses);
-                (poses[l], Isometry3::identity(), tight(l, None, &poses))
+                let mut speed = tight(l, None, &poses);
+                speed.along =
+                    self.moving(l, None, &delta, &poses)
+                        .map(|(m, accel)| clearance::Along {
+                            bodies: [m, clearance::Moving::default()],
+                            accel,
+                        });
+                (poses[l], Isometry3::identity(), speed)
             };
             for (i, (_, ob)) in self.environment.iter().enumerate() {
                 let near = |p: usize| {
@@ -296,5 +313,204 @@ impl ArmOracle {
             }
         }
         Ok(true)
+    }
+
+    /// How far each joint of the robot turns or slides along the straight motion from `q0` to
+    /// `q1` (signed): the group's own, a mimic joint's from its master's, 0 for the others.
+    fn joint_deltas(&self, q0: &[f64], q1: &[f64]) -> Vec<f64> {
+        let model = &self.arm.model;
+        let mut delta = vec![0.0; model.urdf.joints.len()];
+        for (g, &k) in self.arm.group.joints.iter().enumerate() {
+            delta[k] = q1[g] - q0[g];
+        }
+        for (k, master) in model.mimic_master.iter().enumerate() {
+            if let (Some(m), Some(mimic)) = (master, &model.urdf.joints[k].mimic) {
+                delta[k] = mimic.multiplier * delta[*m];
+            }
+        }
+        delta
+    }
+
+    /// How link `l` moves at the link poses `poses` of a straight motion whose joints change by
+    /// `delta` ([`Self::joint_deltas`]), by the joints between it and the root that are not also
+    /// `except`'s (the links' deepest common link carries both alike: the velocities are
+    /// relative to it, in world axes), and a bound on its points' acceleration (relative to
+    /// that link) over the whole motion: `|∂²p/∂q_j∂q_k|` is at most `p`'s distance from the
+    /// later joint's axis, at most `R_kl` ([`Reach`]), so `Σ_k |Δ_k| R_kl (|Δ_k| + 2 Σ_{j<k}
+    /// |Δ_j|)` bounds it. `None` for a link without geometry or one a prismatic joint moves.
+    fn moving(
+        &self,
+        l: usize,
+        except: Option<usize>,
+        delta: &[f64],
+        poses: &[Isometry3<f64>],
+    ) -> Option<(clearance::Moving, f64)> {
+        let model = &self.arm.model;
+        let (_, own) = self.link_meshes[l].as_ref()?;
+        let centre = poses[l] * nalgebra::Point3::from(own.centre);
+        let mut m = clearance::Moving {
+            // a relative margin for the rounding of the sums
+            radius: own.radius * (1.0 + 1e-9) + 1e-12,
+            ..clearance::Moving::default()
+        };
+        let (mut before, mut accel) = (0.0, 0.0);
+        for &(k, f) in &self.reach[l] {
+            if delta[k] == 0.0 || except.is_some_and(|o| self.reach[o].iter().any(|(j, _)| *j == k))
+            {
+                continue;
+            }
+            if matches!(model.urdf.joints[k].kind, JointKind::Prismatic { .. }) {
+                return None;
+            }
+            let frame = &poses[model.joint_links[k].1];
+            let axis = frame.rotation * model.urdf.joints[k].axis.into_inner();
+            let off = centre - nalgebra::Point3::from(frame.translation.vector);
+            m.spin += axis * delta[k];
+            m.velocity += axis.cross(&off) * delta[k];
+            let rate = delta[k].abs();
+            before += rate;
+            accel += rate * f * (2.0 * before - rate);
+        }
+        Some((m, accel * (1.0 + 1e-9)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robot::{Arm, ArmOptions};
+    use nalgebra::{Point3, Vector3};
+    use rand::{Rng, SeedableRng};
+    use std::path::Path;
+
+    fn panda() -> Arm {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda");
+        Arm::load(
+            &dir.join("panda.urdf"),
+            Some(&dir.join("panda.srdf")),
+            &ArmOptions::default(),
+        )
+        .unwrap()
+    }
+
+    /// The bound along a plane's normal ([`ArmOracle::moving`], [`clearance::Along`]) holds for
+    /// every vertex of a link, between random moments of random straight motions, along random
+    /// normals and along the vertex's own displacement (where it is tightest), for a link alone
+    /// (relative to the world) and for a link relative to the deepest link it shares with
+    /// another (a self pair's frame); and it is not vacuous: it is often far below the sum of
+    /// the joints' worst cases.
+    #[test]
+    fn the_bound_along_a_normal_holds_for_every_vertex() {
+        let arm = panda();
+        let oracle = ArmOracle::new(&arm, &[]).unwrap();
+        let model = &arm.model;
+        let g = &arm.group;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let unit = |rng: &mut rand_chacha::ChaCha8Rng| {
+            Vector3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+            .normalize()
+        };
+        let poses_at = |q0: &[f64], q1: &[f64], t: f64| {
+            let q: Vec<f64> = q0.iter().zip(q1).map(|(a, b)| a + t * (b - a)).collect();
+            arm.link_poses(&q)
+        };
+        let (mut checked, mut tighter) = (0, 0);
+        for trial in 0..400 {
+            let q0: Vec<f64> = (0..g.dof())
+                .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+                .collect();
+            let q1: Vec<f64> = (0..g.dof())
+                .map(|i| rng.random_range(g.lower[i]..=g.upper[i]))
+                .collect();
+            let delta = oracle.joint_deltas(&q0, &q1);
+            // a link alone, or a self pair's first link relative to the pair's common link
+            let (l, except, common) = if trial % 2 == 0 {
+                let l = rng.random_range(0..oracle.link_meshes.len());
+                (l, None, None)
+            } else {
+                let (a, b) = arm.self_pairs[rng.random_range(0..arm.self_pairs.len())];
+                let (ca, cb) = (model.chain_to(a), model.chain_to(b));
+                let shared = ca.iter().zip(&cb).take_while(|(x, y)| x == y).count();
+                let common = shared.checked_sub(1).map(|i| model.joint_links[ca[i]].1);
+                (a, Some(b), common)
+            };
+            let Some((mesh, _)) = &oracle.link_meshes[l] else {
+                continue;
+            };
+            let t0 = rng.random_range(0.0..=1.0);
+            let sigma = rng.random_range(-0.4..=0.4);
+            let (p0, p1) = (poses_at(&q0, &q1, t0), poses_at(&q0, &q1, t0 + sigma));
+            let (m, accel) = oracle.moving(l, except, &delta, &p0).unwrap();
+            // where a vertex is, in the frame that stands still (the world, or the common link)
+            let frame =
+                |poses: &[Isometry3<f64>]| common.map_or(Isometry3::identity(), |c| poses[c]);
+            let place =
+                |poses: &[Isometry3<f64>], v: &Point3<f64>| frame(poses).inverse() * (poses[l] * v);
+            // the velocities are the motion's own (central differences), the acceleration bound
+            // holds for every vertex (second differences)
+            let h = 1e-5;
+            let (pm, pp) = (poses_at(&q0, &q1, t0 - h), poses_at(&q0, &q1, t0 + h));
+            let (_, ball) = oracle.link_meshes[l].as_ref().unwrap();
+            let c = Point3::from(ball.centre);
+            let velocity = frame(&p0).rotation * ((place(&pp, &c) - place(&pm, &c)) / (2.0 * h));
+            let scale = m.velocity.norm() + m.spin.norm() + 1e-3;
+            assert!(
+                (velocity - m.velocity).norm() < 1e-5 * scale,
+                "{velocity} {}",
+                m.velocity
+            );
+            let turn = (frame(&pm).inverse() * pm[l])
+                .rotation
+                .rotation_to(&(frame(&pp).inverse() * pp[l]).rotation);
+            let spin = frame(&p0).rotation * (turn.scaled_axis() / (2.0 * h));
+            assert!((spin - m.spin).norm() < 1e-5 * scale, "{spin} {}", m.spin);
+            for v in &mesh.vertices {
+                let second = (place(&pp, v) - 2.0 * place(&p0, v).coords + place(&pm, v).coords)
+                    .coords
+                    / (h * h);
+                assert!(
+                    second.norm() <= accel * (1.0 + 1e-3) + 1e-3,
+                    "{} > {accel}",
+                    second.norm()
+                );
+            }
+            let v = mesh.vertices[rng.random_range(0..mesh.vertices.len())];
+            let own = place(&p1, &v) - place(&p0, &v);
+            for n_here in [
+                unit(&mut rng),
+                own.try_normalize(1e-12).unwrap_or(Vector3::x()),
+            ] {
+                // the normal is fixed in the still frame; `Moving` speaks in world axes
+                let n_world = frame(&p0).rotation * n_here;
+                let rate =
+                    n_world.dot(&m.velocity).abs() + m.radius * n_world.cross(&m.spin).norm();
+                let bound = rate * sigma.abs() + accel * sigma * sigma / 2.0 + 1e-12;
+                for v in &mesh.vertices {
+                    let moved = n_here.dot(&(place(&p1, v) - place(&p0, v)));
+                    assert!(
+                        moved <= bound,
+                        "link {l} (except {except:?}) moved {moved} along {n_here:?}, bound {bound}"
+                    );
+                }
+                checked += 1;
+                let worst: f64 = oracle.reach[l]
+                    .iter()
+                    .filter(|(k, _)| {
+                        except.is_none_or(|o| !oracle.reach[o].iter().any(|(j, _)| j == k))
+                    })
+                    .map(|&(k, f)| delta[k].abs() * f)
+                    .sum();
+                tighter += usize::from(rate < 0.5 * worst);
+            }
+        }
+        assert!(checked > 500, "only {checked} checks");
+        assert!(
+            tighter > checked / 4,
+            "tighter in only {tighter} of {checked}"
+        );
     }
 }
