@@ -403,10 +403,11 @@ fn scaled(mesh: TriMesh, scale: [f64; 3], path: &Path) -> Result<TriMesh, RobotE
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn panda() -> Arm {
+    /// The shipped Panda (`scenes/arms/panda`), for unit tests.
+    pub(crate) fn panda() -> Arm {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda");
         Arm::load(
             &dir.join("panda.urdf"),

@@ -778,6 +778,13 @@ mod tests {
             .collect()
     }
 
+    /// A moving blob (size 0.3) and a still one (0.5), and their clouds.
+    fn two_blobs(rng: &mut ChaCha8Rng) -> (Vec<Point3<f64>>, Vec<Point3<f64>>, Cloud, Cloud) {
+        let (a, b) = (blob(rng, 0.3), blob(rng, 0.5));
+        let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
+        (a, b, ca, cb)
+    }
+
     /// A random vector in the cube `[-1, 1]³`.
     fn cube(rng: &mut ChaCha8Rng) -> Vector3<f64> {
         Vector3::new(
@@ -881,8 +888,7 @@ mod tests {
             angle in -6.0f64..6.0,
         ) {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            let (a, b) = (blob(&mut rng, 0.3), blob(&mut rng, 0.5));
-            let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
+            let (a, b, ca, cb) = two_blobs(&mut rng);
             let mut v = || cube(&mut rng);
             let from = Isometry3::new(v() * 1.5, v());
             let at = Isometry3::new(v() * 0.5, v());
@@ -970,8 +976,7 @@ mod tests {
             angle in -4.0f64..4.0,
         ) {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            let (a, b) = (blob(&mut rng, 0.3), blob(&mut rng, 0.5));
-            let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
+            let (a, b, ca, cb) = two_blobs(&mut rng);
             let mut v = || cube(&mut rng);
             let from = Isometry3::new(v() * 1.5, v());
             let (axis, offset) = (Unit::new_normalize(v()), v() * 2.0);
@@ -1002,10 +1007,8 @@ mod tests {
         let (mut plain, mut with_along, mut through, mut refused) = (0, 0, 0, 0);
         // few planes: the bound along the normals proves with fewer
         const PLANES: usize = 8;
-
         for _ in 0..300 {
-            let (a, b) = (blob(&mut rng, 0.3), blob(&mut rng, 0.5));
-            let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
+            let (a, b, ca, cb) = two_blobs(&mut rng);
             let mut v = || cube(&mut rng);
             let from = Isometry3::new(Vector3::new(-2.0, 0.0, 0.0) + v() * 0.2, v());
             // across the still body, passing it at some height
@@ -1076,8 +1079,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let (mut whole, mut part, mut none) = (0, 0, 0);
         for _ in 0..300 {
-            let (a, b) = (blob(&mut rng, 0.3), blob(&mut rng, 0.5));
-            let (ca, cb) = (Cloud::of(&a).unwrap(), Cloud::of(&b).unwrap());
+            let (_, _, ca, cb) = two_blobs(&mut rng);
             let mut v = || cube(&mut rng);
             let from = Isometry3::new(v(), v());
             let at = Isometry3::new(v() * 0.5, v());

@@ -378,20 +378,9 @@ impl ArmOracle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::robot::{Arm, ArmOptions};
+    use crate::robot::arm::tests::panda;
     use nalgebra::{Point3, Vector3};
     use rand::{Rng, SeedableRng};
-    use std::path::Path;
-
-    fn panda() -> Arm {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda");
-        Arm::load(
-            &dir.join("panda.urdf"),
-            Some(&dir.join("panda.srdf")),
-            &ArmOptions::default(),
-        )
-        .unwrap()
-    }
 
     /// The bound along a plane's normal ([`ArmOracle::moving`], [`clearance::Along`]) holds for
     /// every vertex of a link, between random moments of random straight motions, along random
