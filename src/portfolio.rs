@@ -34,9 +34,10 @@ pub struct Planning<'a> {
     pub oracle: &'a dyn CollisionOracle,
     /// The DOF groups single-group motions move (one per joint for an arm).
     pub groups: &'a [Group],
-    /// Shorten with straight motions of several joints at once where they are proved free
-    /// ([`Space::straight_group`](crate::space::Space::straight_group)), not only with
-    /// single-joint staircases (as [`crate::roadmap::QueryOptions::straight_shortcuts`]).
+    /// Straight motions of several joints at once where they are proved free
+    /// ([`Space::straight_group`](crate::space::Space::straight_group)), not only single-joint
+    /// staircases: start to goal, the trees' extends ([`TreeParams::straight`], which this
+    /// turns off too) and shortening (as [`crate::roadmap::QueryOptions::straight_shortcuts`]).
     pub straight: bool,
 }
 
@@ -323,6 +324,11 @@ pub fn tree_stage(
     whole: &Deadline,
 ) -> Result<TreeStage, TreeError> {
     let growing = Instant::now();
+    // staircases only where the straight motions are off
+    let tree = &TreeParams {
+        straight: tree.straight && p.straight,
+        ..tree.clone()
+    };
     let found = rrt_connect(
         &p.scene.space,
         p.oracle,

@@ -127,3 +127,57 @@ fn an_answer_shortened_with_straight_motions_is_certified_and_shorter() {
     );
     assert!(lt < ls, "straight {lt} is not shorter than staircases {ls}");
 }
+
+#[test]
+fn tree_extends_go_straight_where_proved_and_the_tree_path_is_certified() {
+    // the box's query (the goal inside the box) by the two trees alone, with straight extends
+    // of all joints (`TreeParams::straight`, the default) and with staircases only: both raw
+    // paths pass the independent checker, only the first moves several joints at once, and
+    // it costs fewer calls and nodes
+    let scene = box_scene();
+    let oracle = scene.oracle();
+    let groups = scene.space.groups(false);
+    let q = &scene.checked_queries().unwrap()[0];
+    let grow = |straight: bool| {
+        let params = TreeParams {
+            max_nodes: Some(20_000),
+            straight,
+            ..TreeParams::for_space(&scene.space)
+        };
+        let found = viaroad::roadmap::tree::rrt_connect(
+            &scene.space,
+            oracle.as_ref(),
+            &groups,
+            &q.start,
+            &q.goal,
+            &params,
+            1,
+            &viaroad::deadline::Deadline::none(),
+        )
+        .unwrap();
+        let path = found.path.clone().expect("the trees connect");
+        certify(&scene, &path);
+        (found, path)
+    };
+    let moving = |p: &[Vec<f64>]| {
+        p.windows(2)
+            .map(|w| w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count())
+            .max()
+            .unwrap_or(0)
+    };
+    let (stairs, stairs_path) = grow(false);
+    let (straight, straight_path) = grow(true);
+    assert_eq!(
+        moving(&stairs_path),
+        1,
+        "staircases move one joint at a time"
+    );
+    assert!(moving(&straight_path) > 1, "no straight extend on the path");
+    let size = |o: &viaroad::roadmap::tree::TreeOutcome| o.nodes[0] + o.nodes[1];
+    assert!(
+        size(&straight) < size(&stairs),
+        "straight extends grew {} nodes, staircases {}",
+        size(&straight),
+        size(&stairs)
+    );
+}

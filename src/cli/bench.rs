@@ -302,9 +302,10 @@ pub struct MbmArgs {
     /// `ends`: both trees grow from the bare start and goal, as a single problem's do.
     #[arg(long, value_enum, default_value_t = TreesFrom::Roadmap)]
     pub trees_from: TreesFrom,
-    /// Shorten with single-joint staircases only: no straight motions of several joints at
-    /// once (by default the answers are shortened with them where conservative advancement
-    /// proves them free; `QueryOptions::straight_shortcuts`, `Planning::straight`).
+    /// Single-joint staircases only: no straight motions of several joints at once (by
+    /// default they are tried where conservative advancement proves them free — start to
+    /// goal, attaching, the trees' extends, shortening; `QueryOptions::straight_shortcuts`,
+    /// `Planning::straight`, `TreeParams::straight`).
     #[arg(long)]
     pub no_straight: bool,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.

@@ -87,10 +87,10 @@ pub struct QueryArgs {
     /// query p50 92 ms in turn, 16–18 ms racing (`QueryOptions::race`).
     #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
     pub race: HeadStart,
-    /// Shorten with single-joint staircases only: no straight motions of several joints at
-    /// once (by default an arm's answers are shortened with them where conservative
-    /// advancement proves them free, `QueryOptions::straight_shortcuts`; the Panda's
-    /// workcells: half the path length).
+    /// Single-joint staircases only: no straight motions of several joints at once (by
+    /// default an arm's query tries them where conservative advancement proves them free —
+    /// start to goal, attaching, the trees' extends, shortening: `QueryOptions::
+    /// straight_shortcuts`; the Panda's workcells: half the path length).
     #[arg(long)]
     pub no_straight: bool,
     /// Feed every path found back into the roadmap before the next query (its corners become

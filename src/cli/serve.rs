@@ -61,9 +61,9 @@ pub struct ServeArgs {
     /// `off`: in turn; `auto` (default): 2 ms for arms, in turn otherwise.
     #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
     pub race: super::query::HeadStart,
-    /// Shorten with single-joint staircases only: no straight motions of several joints at
-    /// once (by default an arm's answers are shortened with them where conservative
-    /// advancement proves them free, as `query --no-straight`).
+    /// Single-joint staircases only: no straight motions of several joints at once (by
+    /// default an arm's query tries them where conservative advancement proves them free, as
+    /// `query --no-straight`).
     #[arg(long)]
     pub no_straight: bool,
     /// Re-check every solved answer's path (the shortened one it returns) with the scene's

@@ -107,8 +107,9 @@ pub struct SolveArgs {
     /// portfolio's trees.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// The portfolio (`--portfolio`, an arm's default) shortens with single-joint staircases
-    /// only, no straight motions of several joints at once (as `query --no-straight`).
+    /// The portfolio (`--portfolio`, an arm's default) and the trees (`--tree`) keep to
+    /// single-joint staircases: no straight motions of several joints at once, neither as the
+    /// trees' extends nor as shortcuts (as `query --no-straight`).
     #[arg(long)]
     pub no_straight: bool,
     /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
@@ -418,6 +419,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         restart: a.tree_restart,
         streams: a.tree_streams,
         stairs,
+        straight: !a.no_straight,
     };
     params.validate().map_err(anyhow::Error::msg)?;
     // checked before the path files are prepared (which removes those of earlier runs)

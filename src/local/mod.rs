@@ -270,6 +270,29 @@ pub fn straight_connection(
     Ok(free.then(|| Connection::from_corners(a, z, Some(vec![z.to_vec()]), CallCounts::default())))
 }
 
+/// `path` with corners added along its straight motions of several joints ([`path_pieces`]),
+/// none of them longer than `piece` (in the space's distance): points of a motion proved free,
+/// for shortening to start and end shortcuts at. Other segments are kept as they are.
+pub fn straight_corners(space: &Space, path: &[Config], piece: f64) -> Vec<Config> {
+    let Some(whole) = space.straight_group() else {
+        return path.to_vec();
+    };
+    let mut out = Vec::with_capacity(path.len());
+    out.extend(path.first().cloned());
+    for w in path.windows(2) {
+        let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
+        if moving > 1 && piece > 0.0 {
+            let pieces = (space.group_length(&w[0], &w[1], &whole) / piece).ceil();
+            let pieces = pieces.clamp(1.0, 1e4) as usize;
+            out.extend(
+                (1..pieces).map(|i| space.interpolate(&w[0], &w[1], i as f64 / pieces as f64)),
+            );
+        }
+        out.push(w[1].clone());
+    }
+    out
+}
+
 /// Whether consecutive corners `a`, `z` of a path are joined by one straight motion of
 /// several joints ([`path_pieces`]).
 fn goes_straight(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool {
@@ -577,5 +600,44 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Corners along a path's straight motions of several joints: at most `piece` apart, on
+    /// the motion's line in order, the path's own corners kept; single-joint stairs and spaces
+    /// without straight motions untouched.
+    #[test]
+    fn straight_corners_split_straight_motions_only() {
+        let space = Space::joints(vec![-3.0; 4], vec![3.0; 4], &[false; 4]).unwrap();
+        let whole = space.straight_group().unwrap();
+        let path = vec![
+            vec![0.0, 0.0, 0.0, 0.0],
+            vec![1.0, 0.0, 0.0, 0.0],
+            vec![2.0, 1.0, -1.0, 0.5],
+            vec![2.0, 1.0, -1.0, 0.5],
+            vec![2.0, 1.0, -1.0, 0.6],
+        ];
+        let piece = 0.3;
+        let dense = straight_corners(&space, &path, piece);
+        // the stair 0 → 1 and the short stair at the end are kept; the straight motion of
+        // length √3.25 ≈ 1.80 is cut into 7 pieces; the repeated corner stays
+        assert_eq!(dense.len(), path.len() + 6);
+        assert_eq!(&dense[..2], &path[..2]);
+        assert_eq!(&dense[dense.len() - 3..], &path[2..]);
+        let (a, z) = (&path[1], &path[2]);
+        let mut last = 0.0;
+        for c in &dense[2..8] {
+            let t = (c[0] - a[0]) / (z[0] - a[0]);
+            assert!(t > last && t < 1.0);
+            for i in 0..4 {
+                assert!((c[i] - (a[i] + t * (z[i] - a[i]))).abs() < 1e-12);
+            }
+            last = t;
+        }
+        for w in dense[1..9].windows(2) {
+            assert!(space.group_length(&w[0], &w[1], &whole) <= piece + 1e-12);
+        }
+        let plane = Space::se2([-3.0, -1.0], [2.0, 5.0], 0.7).unwrap();
+        let moves = vec![vec![0.0, 0.0, 0.0], vec![1.0, 2.0, 0.5]];
+        assert_eq!(straight_corners(&plane, &moves, 0.1), moves);
     }
 }

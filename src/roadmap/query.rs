@@ -170,7 +170,8 @@ pub struct QueryOptions {
     /// advancement proves them free ([`crate::robot::ArmOracle::straight_free`],
     /// [`crate::space::Space::straight_group`]), not only staircases of single-joint moves:
     /// start to goal before the roadmap, each end to its nearest nodes before their direct
-    /// staircase, and between corners when shortening. The answer then moves several joints
+    /// staircase, the trees' extends ([`TreeParams::straight`], which this turns off too), and
+    /// between corners when shortening. The answer then moves several joints
     /// per pair of corners where it cuts across (every pair of corners is one straight motion,
     /// [`crate::local::path_pieces`]). On by default; no effect in other spaces (or with
     /// continuous joints). The Panda's workcells (2026-12-05, seed 1): half the path length in
@@ -900,6 +901,11 @@ impl<'a> QueryPlanner<'a> {
         shortening: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let seed = query_seed(self.roadmap.header().seed, &result);
+        // staircases only where the straight motions are off
+        let params = &TreeParams {
+            straight: params.straight && self.options.straight_shortcuts,
+            ..params.clone()
+        };
         let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups).connect(
             &result.start,
             &result.goal,
@@ -926,8 +932,11 @@ impl<'a> QueryPlanner<'a> {
         let mut fewer = raw.clone();
         if self.options.shorten {
             let began = Instant::now();
-            known.certify_path(self.space(), &self.shortcut_groups, &raw);
-            fewer = self.greedy_passes(&raw, &mut known, &mut result.counts, shortening)?;
+            // corners along the straight extends, for shortcuts to start and end at
+            let piece = crate::roadmap::tree::STRAIGHT_PIECE * self.space().extent();
+            let dense = crate::local::straight_corners(self.space(), &raw, piece);
+            known.certify_path(self.space(), &self.shortcut_groups, &dense);
+            fewer = self.greedy_passes(&dense, &mut known, &mut result.counts, shortening)?;
             result.shorten_s += began.elapsed().as_secs_f64();
         }
         // the visibility graph costs up to m²/2 checks: not over what is still hundreds

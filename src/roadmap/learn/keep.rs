@@ -7,7 +7,7 @@
 use super::super::graph::Roadmap;
 use super::super::tree::Rooted;
 use super::work::Work;
-use crate::local::{direct_pieces, path_pieces};
+use crate::local::path_pieces;
 use crate::space::Config;
 
 impl Roadmap {
@@ -101,11 +101,14 @@ fn keep_tree(work: &mut Work, tree: &Rooted) {
             Some(n) => n,
             None => keep_given(work, tree, anchor, &mut node_of),
         };
+        // a tree edge is a single-group stair or a straight extend of several joints
+        // ([`TreeParams::straight`](crate::roadmap::tree::TreeParams::straight)): the tree's
+        // own motion, never the staircase between its ends ([`path_pieces`])
         let mut corners = Vec::new();
         for w in chain.windows(2) {
             let (a, z) = (tree.node(w[0]), tree.node(w[1]));
             corners.extend(
-                direct_pieces(work.space, &work.groups, 0, a, z)
+                path_pieces(work.space, &work.groups, a, z)
                     .into_iter()
                     .map(|(_, c)| c),
             );
