@@ -11,6 +11,12 @@
 //! while moving); a long one costs fewer calls. Every tree edge — and every edge of the
 //! returned path — is one certified free single-group motion.
 //!
+//! In a joint space without continuous joints (an arm) each extend is first asked as one
+//! straight motion of all joints to its end, proved free by conservative advancement
+//! ([`TreeParams::straight`], `crate::robot::ArmOracle::straight_free`): a yes/no proof
+//! instead of up to a stair per joint per 1 % of the extent; the staircase only where the
+//! straight motion is not proved. Such a tree edge is that straight motion.
+//!
 //! Two trees grow from start and goal; after each extend of one tree towards a uniform sample,
 //! the other tree *connects* (extends repeatedly) towards the new node, as in OMPL's
 //! `RRTConnect`. How an extend walks its stairs is [`TreeParams::stairs`]: each group's piece as
