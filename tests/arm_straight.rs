@@ -181,3 +181,27 @@ fn tree_extends_go_straight_where_proved_and_the_tree_path_is_certified() {
         size(&stairs)
     );
 }
+
+#[test]
+fn a_straight_proof_stops_at_a_watched_deadline() {
+    // a query's deadline reaches into a proof in progress (as into an exact sweep): an
+    // interrupted proof is an error, not a "not proved" to be kept as the motion's answer
+    let scene = box_scene();
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm scene")
+    };
+    let oracle = a.arm_oracle();
+    let q = &scene.checked_queries().unwrap()[0];
+    // a short motion from the start, inside the box: pairs to prove, nothing surely hit
+    let near: Vec<f64> = q.start.iter().map(|x| x + 0.02).collect();
+    let mut counts = CallCounts::default();
+    let passed = viaroad::deadline::Deadline::none().within(Some(std::time::Duration::ZERO));
+    let stopped = viaroad::deadline::watching(&passed, || {
+        oracle.straight_free(&q.start, &near, &mut counts)
+    });
+    assert!(
+        matches!(stopped, Err(viaroad::robot::RobotError::Interrupted)),
+        "{stopped:?}"
+    );
+    assert!(oracle.straight_free(&q.start, &near, &mut counts).unwrap());
+}

@@ -9,7 +9,8 @@
 //! the position group, then the orientation group, to the stair's end, each as far as it is
 //! free. A short stair follows the coupled motion closely (alpha-1.5's passage needs turning
 //! while moving); a long one costs fewer calls. Every tree edge — and every edge of the
-//! returned path — is one certified free single-group motion.
+//! returned path — is one certified free single-group motion, or for an arm one certified
+//! straight motion of all joints (below).
 //!
 //! In a joint space without continuous joints (an arm) each extend is first asked as one
 //! straight motion of all joints to its end, proved free by conservative advancement
@@ -194,7 +195,7 @@ pub struct TreeParams {
     /// conservative advancement (one yes/no call); the staircase only where it is not proved.
     /// The tree edge is then that straight motion. A stair is 1 % of the extent and a joint
     /// per piece, so a free extend of 20 % costs up to 140 calls as a staircase: over the
-    /// first 15 Panda problems of each family, the portfolio's p50 20.5 → 9 ms (2026-12-05).
+    /// first 15 Panda problems of each family, the portfolio's p50 20.5 → 9–10 ms (2026-12-05).
     /// On by default; `--no-straight` turns it off with the straight shortcuts.
     pub straight: bool,
 }

@@ -53,6 +53,18 @@ const MAX_PIECES: usize = 32;
 /// Points along a motion the sure test looks at first (in halving order: ½, ¼, ¾, ⅛, …).
 const SURE_SAMPLES: usize = 16;
 
+/// A proof stops once the deadline watched on this thread has passed
+/// ([`crate::deadline::watching`]), before each pair's window of at most [`MAX_PLANES`] planes:
+/// a query's time is a promise, and an interrupted proof is an error, never a "not proved"
+/// that would be kept as the motion's answer.
+fn interrupted() -> Result<(), RobotError> {
+    if crate::deadline::watched_expired() {
+        Err(RobotError::Interrupted)
+    } else {
+        Ok(())
+    }
+}
+
 /// Per link, the movable joints between the root and it with the factor that turns the
 /// joint's rate into a bound on the speed of the link's points (`R_kl`; 1 for a prismatic
 /// joint). Empty for a link without geometry.
@@ -111,7 +123,8 @@ impl ArmOracle {
     /// joints moving at once, each linearly in `t`) is proved free of collision by conservative
     /// advancement (see the module's text). `false` means *not proved*: a collision, or two
     /// bodies too close for the proof to finish. One joint moving is a straight motion too,
-    /// but [`Self::joint_move_free`] answers it exactly.
+    /// but [`Self::joint_move_free`] answers it exactly. [`RobotError::Interrupted`] once a
+    /// deadline watched on this thread has passed ([`crate::deadline::watching`]).
     pub fn straight_free(
         &self,
         q0: &[f64],
@@ -265,6 +278,7 @@ impl ArmOracle {
                 (poses[a], poses[b], speed)
             };
             for w in windows {
+                interrupted()?;
                 if !clearance::apart_along(ca, cb, &mut at, w, relative, margin, MAX_PLANES) {
                     return Ok(false);
                 }
@@ -306,6 +320,7 @@ impl ArmOracle {
                 let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
                 counts.pairs_tested += 1;
                 for w in windows {
+                    interrupted()?;
                     if !clearance::apart_along(cl, ce, &mut at, w, fastest, margin, MAX_PLANES) {
                         return Ok(false);
                     }
