@@ -89,8 +89,8 @@ pub struct QueryArgs {
     pub race: HeadStart,
     /// Single-joint staircases only: no straight motions of several joints at once (by
     /// default an arm's query tries them where conservative advancement proves them free —
-    /// start to goal, attaching, the trees' extends, shortening: `QueryOptions::
-    /// straight_shortcuts`; the Panda's workcells: half the path length).
+    /// start to goal, attaching, the trees' extends, shortening, as
+    /// `QueryOptions::straight_shortcuts`; the Panda's workcells: half the path length).
     #[arg(long)]
     pub no_straight: bool,
     /// Feed every path found back into the roadmap before the next query (its corners become

@@ -473,8 +473,8 @@ pub(crate) fn apart(
 pub(crate) struct Speed {
     pub rate: f64,
     pub growth: f64,
-    /// Where body `b` stands still: how body `a` moves at that moment, for a bound along the
-    /// plane's normal (see [`Along`]).
+    /// How the two bodies move at that moment, for a bound along the plane's normal
+    /// ([`Along`]); `None` where it is not known (a prismatic joint moves one of them).
     pub along: Option<Along>,
 }
 
