@@ -726,17 +726,16 @@ impl Grower<'_> {
 }
 
 impl Grower<'_> {
-    /// [`TreeParams::straight`]: `step` as one straight motion of all joints, its end a node
-    /// if the motion is proved free; `None` where it is not asked or not proved.
+    /// [`TreeParams::straight`]: `step` as one straight motion of all joints
+    /// ([`crate::local::straight_connection`]: asked where it moves more than one joint), its
+    /// end a node if the motion is proved free; `None` where it is not asked or not proved.
     fn straight(&mut self, tree: &mut Tree, step: &Step) -> Result<Option<Extend>, OracleError> {
-        let Some(whole) = self.space.straight_group().filter(|_| self.params.straight) else {
-            return Ok(None);
-        };
-        if self.deadline.expired()
-            || crate::local::check_direct(
+        if !self.params.straight
+            || self.deadline.expired()
+            || crate::local::straight_connection(
                 self.space,
                 self.oracle,
-                std::slice::from_ref(&whole),
+                self.groups,
                 &step.from,
                 &step.aim,
                 &mut self.counts,
