@@ -23,7 +23,7 @@
 
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// A point in time after which long operations stop and return what they have, and/or a flag
@@ -161,18 +161,29 @@ pub fn watched_expired() -> bool {
 #[derive(Debug)]
 pub struct Raced<A, B> {
     /// The first side's deciding run: the one in the race, or the head start when that
-    /// answered (or the deadline ended with it).
+    /// answered (or the deadline ended with it, or the second side answered in turn after it).
     pub first: A,
-    /// The head start that did not answer, when a race followed it (its work counts too).
+    /// The head start that did not answer, when the first side ran again after it (its work
+    /// counts too).
     pub head_start: Option<A>,
     /// The second side's run; `None` when there was no race.
     pub second: Option<B>,
 }
 
+/// How long the caller of a race waits for an idle pool thread to take the second side before
+/// it runs the sides in turn itself. Waking a sleeping rayon worker takes tens of microseconds;
+/// a race only starts after a head start of milliseconds, so the wait costs little.
+const STEAL_WAIT: Duration = Duration::from_micros(200);
+
 /// Two planners for the same answer, a portfolio: `first` alone for `head_start` (none when
 /// zero); unless that answered (`first_won`) or `deadline` ended, `first` again beside
 /// `second` on the rayon pool, the first of them to answer (`first_won`, `second_won`)
 /// stopping the other through their shared deadline. The caller picks the answer.
+///
+/// A race is a schedule, not a thread: when no pool thread is free to take the second side (a
+/// pool of one thread, or a batch that keeps every thread busy), the caller runs the sides in
+/// turn ([`in_turn`]). Waiting for a thread that never comes would leave the second side
+/// nothing but an expired deadline, so every raced query of a busy batch would time out.
 ///
 /// `first` gets two deadlines: the one its search stops at, and the one by which it finishes
 /// (shortens) a path it found. In the head start they are `head_start` and `deadline`: the head
@@ -205,31 +216,119 @@ pub fn race<A: Send, B: Send>(
         }
         alone = Some(a);
     }
+    if deadline.remaining().is_none() {
+        // nothing can starve: each side runs to its own budget wherever it runs
+        let (a, b) = rayon::join(|| first(deadline, deadline), || second(deadline));
+        return Raced {
+            first: a,
+            head_start: alone,
+            second: Some(b),
+        };
+    }
     let won = Arc::new(AtomicBool::new(false));
-    let racing = if deadline.remaining().is_some() {
-        deadline.or_cancelled_by(won.clone())
-    } else {
-        deadline.clone()
+    let racing = deadline.or_cancelled_by(won.clone());
+    // the second side goes to whoever takes it first: a pool thread, or the caller in turn
+    let second = Mutex::new(Some((second, second_won)));
+    let taken = AtomicBool::new(false);
+    let take = || {
+        let side = second.lock().ok().and_then(|mut s| s.take());
+        taken.store(true, Ordering::Release);
+        side
     };
-    let (a, b) = rayon::join(
+    let (caller, pool) = rayon::join(
         || {
+            wait_for_a_thread(&taken);
+            if let Some((second, second_won)) = take() {
+                let sides = (&first, &first_won, second, second_won);
+                return Err(in_turn(&racing, alone.take(), sides));
+            }
             let a = first(&racing, &racing);
             if first_won(&a) {
                 won.store(true, Ordering::Relaxed);
             }
-            a
+            Ok(a)
         },
         || {
+            let (second, second_won) = take()?;
             let b = second(&racing);
             if second_won(&b) {
                 won.store(true, Ordering::Relaxed);
             }
-            b
+            Some(b)
         },
     );
+    match caller {
+        Ok(a) => Raced {
+            first: a,
+            head_start: alone,
+            second: pool,
+        },
+        Err(raced) => raced,
+    }
+}
+
+/// Waits up to [`STEAL_WAIT`] for a pool thread to take the second side (none can in a pool of
+/// one thread).
+fn wait_for_a_thread(taken: &AtomicBool) {
+    let began = Instant::now();
+    while rayon::current_num_threads() > 1
+        && !taken.load(Ordering::Acquire)
+        && began.elapsed() < STEAL_WAIT
+    {
+        std::thread::yield_now();
+    }
+}
+
+/// The share of a race's time the first side gets before the second when they run in turn and
+/// the first had no head start, and the most it gets: a head start of its own, short beside a
+/// long budget.
+const IN_TURN_FIRST_SHARE: u32 = 16;
+const IN_TURN_FIRST_MOST: Duration = Duration::from_millis(50);
+
+/// The sides of a race in turn on the caller's thread: the first for its head start (`head`,
+/// when it already ran, else a share of the time), the second until `racing` ends or its own
+/// budget does, then, unless it answered, the first again for what is left. The second side,
+/// in a race a tree search that grows from nothing, gets the time it would have had beside the
+/// first; the first side's own search is the one the head start already tried.
+fn in_turn<A, B, F, W, S, V>(
+    racing: &Deadline,
+    head: Option<A>,
+    (first, first_won, second, second_won): (&F, &W, S, V),
+) -> Raced<A, B>
+where
+    F: Fn(&Deadline, &Deadline) -> A,
+    W: Fn(&A) -> bool,
+    S: FnOnce(&Deadline) -> B,
+    V: FnOnce(&B) -> bool,
+{
+    let head = match head {
+        Some(a) => a,
+        None => {
+            let share = racing
+                .remaining()
+                .map(|t| (t / IN_TURN_FIRST_SHARE).min(IN_TURN_FIRST_MOST));
+            let a = first(&racing.within(share), racing);
+            if first_won(&a) || racing.expired() {
+                return Raced {
+                    first: a,
+                    head_start: None,
+                    second: None,
+                };
+            }
+            a
+        }
+    };
+    let b = second(racing);
+    if second_won(&b) || racing.expired() {
+        return Raced {
+            first: head,
+            head_start: None,
+            second: Some(b),
+        };
+    }
     Raced {
-        first: a,
-        head_start: alone,
+        first: first(racing, racing),
+        head_start: Some(head),
         second: Some(b),
     }
 }
@@ -362,7 +461,8 @@ mod tests {
             |d| count(1000, d),
             |b| b.1,
         );
-        assert!(raced.head_start.is_some_and(|(_, done)| !done));
+        // (in turn when no pool thread came: then the head start is the first side's run)
+        assert!(!raced.first.1 && raced.head_start.is_none_or(|(_, done)| !done));
         assert_eq!(raced.second, Some((1000, true)));
     }
 
@@ -380,6 +480,59 @@ mod tests {
             (raced.first, raced.second),
             ((2000, true), Some((10, true)))
         );
+    }
+
+    /// A race on a pool with no free thread runs its sides in turn rather than leaving the
+    /// second side an expired deadline: on one thread, and in a batch larger than the pool.
+    #[test]
+    fn a_race_with_no_free_thread_runs_its_sides_in_turn() {
+        let run = |head_start: Duration| {
+            race(
+                &Deadline::after(Duration::from_secs(2)),
+                head_start,
+                |d, _| count(u64::MAX, d),
+                |a| a.1,
+                |d| count(1000, d),
+                |b| b.1,
+            )
+        };
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        for head_start in [Duration::ZERO, Duration::from_millis(1)] {
+            let raced = one.install(|| run(head_start));
+            assert_eq!(raced.second, Some((1000, true)), "{raced:?}");
+            assert!(raced.head_start.is_none(), "the first ran once: {raced:?}");
+        }
+        let two = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let batch: Vec<_> = two.install(|| {
+            use rayon::prelude::*;
+            (0..8)
+                .into_par_iter()
+                .map(|_| run(Duration::from_millis(1)))
+                .collect()
+        });
+        for raced in &batch {
+            assert_eq!(raced.second, Some((1000, true)), "{raced:?}");
+        }
+        // in turn, a second side that gives up leaves the rest of the time to the first
+        let raced = one.install(|| {
+            race(
+                &Deadline::after(Duration::from_secs(3600)),
+                Duration::from_millis(1),
+                |d, _| count(50_000, d),
+                |a| a.1,
+                |d| count(10, d),
+                |_| false,
+            )
+        });
+        assert_eq!(raced.first, (50_000, true), "{raced:?}");
+        assert!(raced.head_start.is_some_and(|(_, done)| !done));
+        assert_eq!(raced.second, Some((10, true)));
     }
 
     /// The head start ends the first side's search, not its finishing: a path found as the

@@ -168,3 +168,53 @@ fn the_trees_error_is_reported_when_the_roadmap_gives_no_answer() {
         other => panic!("expected the trees' error, got {other:?}"),
     }
 }
+
+/// A race is a schedule, not a thread: with no pool thread free to grow the trees (a pool of
+/// one thread, a batch of more racing queries than threads), the query runs the roadmap's
+/// search and the trees in turn and answers as it does alone, never timing out while the trees
+/// wait for a thread.
+#[test]
+fn racing_arm_queries_are_answered_on_one_thread_and_in_a_batch_larger_than_the_pool() {
+    let (scene, roadmap) = box_and_roadmap();
+    let oracle = scene.oracle();
+    let options = QueryOptions {
+        time: Some(Duration::from_secs(30)),
+        ..QueryOptions::default().with_arm_trees(&scene.space)
+    };
+    assert!(options.race.is_some() && options.trees.is_some());
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(options);
+    let q = &scene.checked_queries().unwrap()[0];
+    let check = checker(&scene).unwrap();
+    let certified = |a: &viaroad::roadmap::QueryResult, (s, g): (&Vec<f64>, &Vec<f64>)| {
+        assert!(a.is_solved(), "{:?}", a.outcome);
+        assert_eq!((a.path.first(), a.path.last()), (Some(s), Some(g)));
+        let report = check.check_path(&a.path, check_step(&check)).unwrap();
+        assert!(report.valid, "{report:?}");
+    };
+    let pool = |n| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap()
+    };
+    // both ways, so that the batch is not one query asked eight times
+    let batch: Vec<_> = (0..8)
+        .map(|i| match i % 2 {
+            0 => (q.start.clone(), q.goal.clone()),
+            _ => (q.goal.clone(), q.start.clone()),
+        })
+        .collect();
+    let one = pool(1);
+    let alone = one.install(|| planner.query(&q.start, &q.goal)).unwrap();
+    certified(&alone, (&q.start, &q.goal));
+    let answers = one.install(|| planner.query_batch(&batch[..2]));
+    for (answer, (s, g)) in answers.into_iter().zip(&batch) {
+        certified(&answer.result.unwrap(), (s, g));
+    }
+    let answers = pool(2).install(|| planner.query_batch(&batch));
+    for (answer, (s, g)) in answers.into_iter().zip(&batch) {
+        certified(&answer.result.unwrap(), (s, g));
+    }
+}
