@@ -38,6 +38,11 @@ pub const MIN_SAMPLED_RESOLUTION: f64 = 1e-9;
 /// ±10³⁰⁸ overflows even the width of the box.
 pub const MAX_COORDINATE: f64 = 1e100;
 
+/// Most clients `viaroad serve --listen` keeps connected at once (`--max-clients` can only
+/// lower it). Each holds a reader thread and three descriptors, so 256 stay well inside the
+/// usual limit of 1024 open files.
+pub const MAX_SERVE_CLIENTS: usize = 256;
+
 /// Most bytes read from a scene, mesh or query file: a file this large is not a scene (and
 /// `/dev/zero` would otherwise be read until memory runs out).
 pub const MAX_TEXT_FILE_BYTES: u64 = 1 << 30;

@@ -9,12 +9,12 @@ mod common;
 use rand::SeedableRng;
 use serde_json::{json, Value};
 use std::collections::{BTreeMap, BTreeSet};
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{BufRead, BufReader, ErrorKind, Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{channel, Receiver};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use viaroad::bench::validity::Checker;
 use viaroad::scene::Scene;
 use viaroad::space::Config;
@@ -76,9 +76,15 @@ impl Server {
 
     /// The address a `--listen …:0` server reports on stderr.
     fn address(&self) -> SocketAddr {
+        self.status().1
+    }
+
+    /// The status line a `--listen …:0` server starts with, and the address it reports there.
+    fn status(&self) -> (String, SocketAddr) {
         let line = self.stderr.recv_timeout(PATIENCE).expect("a status line");
         let at = line.rfind("listening on ").expect(&line) + "listening on ".len();
-        line[at..].trim().parse().unwrap()
+        let addr = line[at..].trim().parse().unwrap();
+        (line, addr)
     }
 
     /// Waits for the server to end by itself; its exit status.
@@ -530,4 +536,173 @@ fn a_roadmap_of_another_scene_is_refused_at_start() {
         "--time must be",
     );
     assert!(Path::new(&root().join(DISCS_MAP)).exists());
+}
+
+/// A TCP client that sends nothing until told to, reading with the tests' patience.
+fn quiet_client(addr: SocketAddr) -> BufReader<TcpStream> {
+    let s = TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(PATIENCE)).unwrap();
+    BufReader::new(s)
+}
+
+/// The next line from the server, parsed; `None` once it has closed the connection.
+fn next_line(r: &mut BufReader<TcpStream>) -> Option<Value> {
+    let mut line = String::new();
+    match r.read_line(&mut line) {
+        Ok(0) => None,
+        Ok(_) => Some(serde_json::from_str(&line).unwrap_or_else(|e| panic!("{e}: {line}"))),
+        Err(e) if e.kind() == ErrorKind::ConnectionReset => None,
+        Err(e) => panic!("no line in time: {e}"),
+    }
+}
+
+/// Sends `lines` at once; the first reply (a refused client's reason, if the server closed
+/// the connection before it could send).
+fn request(r: &mut BufReader<TcpStream>, lines: &str) -> Value {
+    let _ = r.get_mut().write_all(format!("{lines}\n").as_bytes());
+    next_line(r).expect("a reply")
+}
+
+#[test]
+fn idle_clients_are_disconnected_after_the_idle_timeout_and_free_their_places() {
+    let sc = scene(DISCS);
+    let checker = Checker::for_scene(&sc).unwrap();
+    let pair = &free_pairs(&sc, 1, 5)[0];
+    let server = Server::start(
+        DISCS_MAP,
+        DISCS,
+        &[
+            "--listen",
+            "127.0.0.1:0",
+            "--threads",
+            "1",
+            "--idle-timeout",
+            "1",
+            "--max-clients",
+            "2",
+        ],
+    );
+    let (status, addr) = server.status();
+    assert!(
+        status.starts_with(&format!("serving {DISCS_MAP} (1000 nodes, ")),
+        "{status}"
+    );
+    assert!(
+        status.contains(
+            " edges) with 1 thread for at most 2 clients (disconnected after 1 s idle), \
+             listening on 127.0.0.1:"
+        ),
+        "{status}"
+    );
+    // two clients take every place and say nothing: each is told why, then disconnected
+    let connected = Instant::now();
+    let mut quiet: Vec<_> = (0..2).map(|_| quiet_client(addr)).collect();
+    for c in &mut quiet {
+        let v = next_line(c).expect("the reason before the end");
+        assert!(connected.elapsed() >= Duration::from_secs(1), "{v}");
+        assert_eq!(v["id"], Value::Null);
+        assert!(
+            v["error"]
+                .as_str()
+                .unwrap()
+                .contains("disconnected: no line from this client in 1 s"),
+            "{v}"
+        );
+        assert!(next_line(c).is_none(), "nothing after the reason");
+    }
+    // their places are free: a new client is served, and its `shutdown` ends the server
+    let mut c = quiet_client(addr);
+    let answer = request(
+        &mut c,
+        &(query_line(1, pair) + "\n{\"cmd\": \"shutdown\", \"id\": \"bye\"}"),
+    );
+    assert_eq!(answer["id"], 1, "{answer}");
+    check_answer(&checker, pair, &answer);
+    let bye = next_line(&mut c).expect("the shutdown reply");
+    assert_eq!(bye["id"], "bye");
+    assert_eq!(bye["answered"], 1);
+    assert!(server.exit().success());
+}
+
+#[test]
+fn a_server_full_of_idle_clients_makes_room_for_a_new_client_and_its_shutdown() {
+    // the default idle timeout (60 s) never runs out here: room is made by the newcomer
+    let server = Server::start(
+        DISCS_MAP,
+        DISCS,
+        &[
+            "--listen",
+            "127.0.0.1:0",
+            "--threads",
+            "1",
+            "--max-clients",
+            "3",
+        ],
+    );
+    let addr = server.address();
+    // three clients take every place, each seen by the server in turn, then go quiet
+    let mut quiet: Vec<_> = (0..3)
+        .map(|i| {
+            let mut c = quiet_client(addr);
+            let v = request(&mut c, &format!(r#"{{"cmd": "info", "id": {i}}}"#));
+            assert_eq!(v["id"], i, "{v}");
+            c
+        })
+        .collect();
+    // quiet for longer than the second that makes a client give its place away
+    std::thread::sleep(Duration::from_millis(1500));
+    let mut newcomer = quiet_client(addr);
+    let bye = request(&mut newcomer, r#"{"cmd": "shutdown", "id": "bye"}"#);
+    assert_eq!(bye["id"], "bye", "{bye}");
+    assert_eq!(bye["shutdown"], true);
+    // the client quiet longest gave its place and was told why
+    let v = next_line(&mut quiet[0]).expect("the reason before the end");
+    assert_eq!(v["id"], Value::Null);
+    assert!(
+        v["error"]
+            .as_str()
+            .unwrap()
+            .contains("the server is full (at most 3 clients)"),
+        "{v}"
+    );
+    assert!(next_line(&mut quiet[0]).is_none());
+    // the others kept theirs until the shutdown closed them, without a word
+    for c in &mut quiet[1..] {
+        assert_eq!(next_line(c), None);
+    }
+    assert!(server.exit().success());
+}
+
+#[test]
+fn idle_timeouts_and_client_limits_out_of_range_are_refused_at_start() {
+    // without --listen: a bad value must be refused before the missing --listen is
+    let serve = ["serve", DISCS_MAP, "--scene", DISCS];
+    for (extra, needle) in [
+        (
+            ["--idle-timeout", "0"],
+            "--idle-timeout must be a positive number of seconds",
+        ),
+        (
+            ["--idle-timeout=-3", "--threads=1"],
+            "--idle-timeout must be",
+        ),
+        (["--idle-timeout", "1e300"], "--idle-timeout must be"),
+        (["--idle-timeout", "NaN"], "--idle-timeout must be"),
+        (["--max-clients", "0"], "--max-clients must be at least 1"),
+        (
+            ["--max-clients", "257"],
+            "--max-clients 257 is more than the 256 viaroad accepts",
+        ),
+        (
+            ["--idle-timeout", "5"],
+            "--idle-timeout applies to TCP clients only",
+        ),
+        (
+            ["--max-clients", "5"],
+            "--max-clients applies to TCP clients only",
+        ),
+    ] {
+        let args: Vec<&str> = serve.iter().chain(&extra).copied().collect();
+        common::cli::fails_with(&args, needle);
+    }
 }

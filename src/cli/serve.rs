@@ -9,6 +9,12 @@
 //! reading, answers every query already read, and then replies to the `shutdown` last, so a
 //! client that sees that reply has seen every answer. End of input on stdin does the same.
 //!
+//! Over TCP, at most `--max-clients` clients are connected at once, and a client that sends
+//! no line for `--idle-timeout` while none of its queries is in flight is told so and
+//! disconnected. When every place is taken, a new client takes the place of the one idle
+//! longest (idle for a second at least), so that a `shutdown` still gets through a server
+//! held full by clients that connected and went quiet.
+//!
 //! Queries never change the roadmap (see [`viaroad::roadmap::query`]), so answers do not
 //! depend on which client asked first or how many threads answer.
 
@@ -21,12 +27,12 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
-use std::sync::{Arc, Mutex};
+use std::sync::mpsc::{channel, sync_channel, Receiver, RecvTimeoutError, SyncSender};
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
-use viaroad::limits::duration_from_secs;
+use viaroad::limits::{duration_from_secs, MAX_SERVE_CLIENTS};
 use viaroad::roadmap::{QueryOptions, QueryPlanner, QueryResult, Roadmap};
 use viaroad::scene::Scene;
 
@@ -39,9 +45,21 @@ pub struct ServeArgs {
     #[arg(long)]
     pub scene: PathBuf,
     /// Listen on this TCP address (e.g. `127.0.0.1:7878`; port 0 picks a free port, printed
-    /// on stderr) instead of stdin/stdout. No authentication: keep it on the loopback.
+    /// on stderr) instead of stdin/stdout. No authentication: keep it on the loopback. Serves
+    /// up to `--max-clients` clients at once and disconnects idle ones (`--idle-timeout`).
     #[arg(long, value_name = "ADDR")]
     pub listen: Option<SocketAddr>,
+    /// With `--listen`: a client that has sent no line for this many seconds and waits for no
+    /// answer is sent one `error` line and disconnected, freeing its place (default: 60). An
+    /// empty line keeps a client connected.
+    #[arg(long, value_name = "SECONDS")]
+    pub idle_timeout: Option<f64>,
+    /// With `--listen`: most clients connected at once (default and at most: 256). When every
+    /// place is taken, a new client takes the place of the one idle longest, if that one has
+    /// been idle for a second or more (it is sent one `error` line and disconnected);
+    /// otherwise the new client is told the server is full and disconnected.
+    #[arg(long, value_name = "N")]
+    pub max_clients: Option<usize>,
     /// Queries answered at once (default: the machine's cores).
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
@@ -77,8 +95,17 @@ pub struct ServeArgs {
 /// times over; a longer line is answered with an error and skipped, not buffered.
 pub const MAX_LINE: usize = 1 << 20;
 
-/// Connections served at once over TCP; one more is told so and closed.
-pub const MAX_CONNECTIONS: usize = 256;
+/// How long a TCP client may stay idle unless `--idle-timeout` says otherwise: far longer
+/// than any pause of a client at work, short enough that clients gone quiet free their places.
+pub const DEFAULT_IDLE_TIMEOUT: Duration = Duration::from_secs(60);
+
+/// A client idle this long (or `--idle-timeout`, if shorter) gives its place to a new client
+/// when every place is taken: a client between two of its own requests keeps it.
+const EVICTABLE_AFTER: Duration = Duration::from_secs(1);
+
+/// How long the server tries to tell a disconnected client why: one that reads nothing must
+/// not hold its thread.
+const FAREWELL_WRITE: Duration = Duration::from_secs(1);
 
 /// Queries read but not yet answered, per server: readers wait beyond this (back-pressure).
 const QUEUE: usize = 1024;
@@ -118,6 +145,114 @@ struct Job {
     shorten: usize,
     time: Option<Duration>,
     sink: Arc<dyn Sink>,
+    /// The TCP client that asked (none on stdin), told when its answer is sent.
+    client: Option<Arc<Client>>,
+}
+
+/// Why the server disconnected a TCP client.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Eviction {
+    /// Idle for `--idle-timeout`.
+    Idle,
+    /// Idle longest when every place was taken and a new client came.
+    Full,
+}
+
+/// What the server knows of one TCP client's activity.
+#[derive(Clone, Copy, Debug)]
+struct Activity {
+    /// Its last line read or answer sent.
+    last: Instant,
+    /// Its queries read and not answered yet.
+    pending: usize,
+    /// Set once, when the server disconnects it: no line of it is served afterwards.
+    evicted: Option<Eviction>,
+}
+
+impl Activity {
+    /// How long it has been idle at `now` (nothing of it in flight), if it is.
+    fn idle_for(&self, now: Instant) -> Option<Duration> {
+        (self.pending == 0 && self.evicted.is_none())
+            .then(|| now.saturating_duration_since(self.last))
+    }
+}
+
+/// Which client gives its place to a new one when every place is taken: the one idle longest
+/// (an index into `clients`), if it has been idle for `at_least`.
+fn longest_idle(
+    clients: impl IntoIterator<Item = Activity>,
+    now: Instant,
+    at_least: Duration,
+) -> Option<usize> {
+    clients
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, a)| a.idle_for(now).map(|d| (d, i)))
+        .filter(|(d, _)| *d >= at_least)
+        .max_by_key(|(d, _)| *d)
+        .map(|(_, i)| i)
+}
+
+/// A mutex's value, even if a thread panicked while holding it.
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// One TCP client as the server tracks it.
+struct Client {
+    activity: Mutex<Activity>,
+    /// Its stream, to end its reader from another thread.
+    stream: TcpStream,
+}
+
+impl Client {
+    fn new(stream: TcpStream) -> Client {
+        Client {
+            activity: Mutex::new(Activity {
+                last: Instant::now(),
+                pending: 0,
+                evicted: None,
+            }),
+            stream,
+        }
+    }
+
+    fn activity(&self) -> Activity {
+        *lock(&self.activity)
+    }
+
+    /// Disconnects it (ends its reader, which then says why) if it has been idle for
+    /// `at_least` at `now`; whether it did. Checked and marked at once, so a client is never
+    /// disconnected with a query in flight.
+    fn evict_if_idle(&self, now: Instant, at_least: Duration, why: Eviction) -> bool {
+        let mut a = lock(&self.activity);
+        if a.idle_for(now).is_none_or(|d| d < at_least) {
+            return false;
+        }
+        a.evicted = Some(why);
+        drop(a);
+        let _ = self.stream.shutdown(Shutdown::Read);
+        true
+    }
+
+    /// A line of it read (a query if `query`): false if it was disconnected meanwhile, and
+    /// the line is not served.
+    fn line_read(&self, query: bool) -> bool {
+        let mut a = lock(&self.activity);
+        if a.evicted.is_some() {
+            return false;
+        }
+        a.last = Instant::now();
+        a.pending += usize::from(query);
+        true
+    }
+
+    /// One of its queries answered.
+    fn answered(&self) {
+        let mut a = lock(&self.activity);
+        a.pending = a.pending.saturating_sub(1);
+        a.last = Instant::now();
+    }
 }
 
 /// A query request as sent (unknown fields are refused: a typo must not be silently ignored).
@@ -267,12 +402,20 @@ impl Server<'_> {
             shorten,
             time,
             sink: sink.clone(),
+            client: None,
         }))
     }
 
-    /// Reads requests from one client until its input ends, `shutdown`, or a `shutdown` from
-    /// another client; queries go to the workers, everything else is answered here.
-    fn read_client(&self, input: impl Read, sink: Arc<dyn Sink>, jobs: &SyncSender<Job>) {
+    /// Reads requests from one client until its input ends, `shutdown`, a `shutdown` from
+    /// another client, or the server disconnects it (`client`, over TCP); queries go to the
+    /// workers, everything else is answered here.
+    fn read_client(
+        &self,
+        input: impl Read,
+        sink: Arc<dyn Sink>,
+        client: Option<&Arc<Client>>,
+        jobs: &SyncSender<Job>,
+    ) {
         let mut input = BufReader::new(input);
         let mut line = Vec::new();
         while !self.stop.load(Ordering::SeqCst) {
@@ -280,6 +423,9 @@ impl Server<'_> {
             match read_bounded_line(&mut input, &mut line, MAX_LINE) {
                 Ok(Line::End) | Err(_) => return,
                 Ok(Line::TooLong) => {
+                    if client.is_some_and(|c| !c.line_read(false)) {
+                        return;
+                    }
                     self.errors.fetch_add(1, Ordering::Relaxed);
                     sink.send(&error_reply(
                         &Value::Null,
@@ -289,11 +435,20 @@ impl Server<'_> {
                 }
                 Ok(Line::Complete) => {}
             }
-            if line.iter().all(u8::is_ascii_whitespace) {
-                continue;
+            let request = if line.iter().all(u8::is_ascii_whitespace) {
+                None
+            } else {
+                Some(self.parse(&line, &sink))
+            };
+            if let Some(c) = client {
+                if !c.line_read(matches!(request, Some(Ok(Request::Query(_))))) {
+                    return;
+                }
             }
-            match self.parse(&line, &sink) {
-                Ok(Request::Query(job)) => {
+            let Some(request) = request else { continue };
+            match request {
+                Ok(Request::Query(mut job)) => {
+                    job.client = client.cloned();
                     if jobs.send(job).is_err() {
                         return;
                     }
@@ -348,6 +503,9 @@ impl Server<'_> {
             self.answered.fetch_add(1, Ordering::Relaxed);
             job.sink
                 .send(&answer_reply(&job.id, &result, ms, check.as_ref()));
+            if let Some(c) = &job.client {
+                c.answered();
+            }
         }
     }
 
@@ -425,6 +583,27 @@ fn read_bounded_line(
 
 /// Runs `serve`.
 pub fn run(a: ServeArgs) -> anyhow::Result<()> {
+    let idle = super::limits::parse_seconds(
+        "--idle-timeout",
+        a.idle_timeout.unwrap_or(DEFAULT_IDLE_TIMEOUT.as_secs_f64()),
+    )?;
+    let max_clients = super::limits::count_in_range(
+        "--max-clients",
+        a.max_clients.unwrap_or(MAX_SERVE_CLIENTS),
+        MAX_SERVE_CLIENTS,
+        "each client holds a thread and three open files",
+    )?;
+    if a.listen.is_none() {
+        for (flag, given) in [
+            ("--idle-timeout", a.idle_timeout.is_some()),
+            ("--max-clients", a.max_clients.is_some()),
+        ] {
+            anyhow::ensure!(
+                !given,
+                "{flag} applies to TCP clients only: give --listen ADDR with it"
+            );
+        }
+    }
     let scene = Scene::load(&a.scene)?;
     let roadmap = Roadmap::load(&a.roadmap, scene.fingerprint())?;
     let time = super::limits::parse_seconds("--time", a.time)?;
@@ -486,14 +665,22 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         }
         None => None,
     };
+    // the address ends the line, where a script that started the server on port 0 finds it
     eprintln!(
-        "serving {} ({} nodes, {} edges) with {threads} threads on {}",
+        "serving {} ({} nodes, {} edges) with {threads} thread{} {}",
         a.roadmap.display(),
         roadmap.node_count(),
         roadmap.edge_count(),
+        if threads == 1 { "" } else { "s" },
         match &listener {
-            Some(l) => format!("listening on {}", l.local_addr()?),
-            None => "stdin".to_string(),
+            Some(l) => format!(
+                "for at most {max_clients} client{} (disconnected after {} s idle), \
+                 listening on {}",
+                if max_clients == 1 { "" } else { "s" },
+                idle.as_secs_f64(),
+                l.local_addr()?
+            ),
+            None => "on stdin/stdout".to_string(),
         }
     );
     std::thread::scope(|s| -> anyhow::Result<()> {
@@ -503,11 +690,11 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         match &listener {
             None => {
                 let sink: Arc<dyn Sink> = Arc::new(StdoutSink);
-                server.read_client(std::io::stdin().lock(), sink, &tx);
+                server.read_client(std::io::stdin().lock(), sink, None, &tx);
                 drop(tx);
             }
             Some(l) => {
-                let result = accept_loop(s, &server, l, &tx);
+                let result = accept_loop(s, &server, l, &tx, idle, max_clients);
                 drop(tx);
                 result?;
             }
@@ -518,23 +705,36 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Accepts clients until `shutdown`, one reader thread each; then stops every reader.
+/// Accepts clients until `shutdown`, one reader thread each, at most `max` at once; then
+/// stops every reader. A janitor thread disconnects clients idle for `idle`.
 fn accept_loop<'scope, 'env>(
     s: &'scope std::thread::Scope<'scope, 'env>,
     server: &'env Server<'env>,
     listener: &TcpListener,
     jobs: &SyncSender<Job>,
+    idle: Duration,
+    max: usize,
 ) -> anyhow::Result<()> {
     let addr = listener.local_addr()?;
-    // the streams of live clients, to stop their readers at `shutdown`
-    let live: Arc<Mutex<Vec<(u64, TcpStream)>>> = Arc::default();
-    let waker_addr = addr;
-    let mut next = 0u64;
+    // live clients, to disconnect idle ones and stop their readers at `shutdown`
+    let live: Arc<Mutex<Vec<Arc<Client>>>> = Arc::default();
     // a reader's `shutdown` wakes the blocking accept by connecting once
-    let wake = move || {
-        let _ = TcpStream::connect_timeout(&waker_addr, Duration::from_secs(5));
-    };
-    let wake = Arc::new(wake);
+    let wake = Arc::new(move || {
+        let _ = TcpStream::connect_timeout(&addr, Duration::from_secs(5));
+    });
+    // the janitor runs until this loop ends (and drops `_janitor`)
+    let (_janitor, stopped) = channel::<()>();
+    {
+        let live = live.clone();
+        let tick = (idle / 10).clamp(Duration::from_millis(10), Duration::from_secs(1));
+        s.spawn(move || {
+            while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(tick) {
+                let now = Instant::now();
+                lock(&live).retain(|c| !c.evict_if_idle(now, idle, Eviction::Idle));
+            }
+        });
+    }
+    let evictable = EVICTABLE_AFTER.min(idle);
     for stream in listener.incoming() {
         if server.stop.load(Ordering::SeqCst) {
             break;
@@ -551,37 +751,63 @@ fn accept_loop<'scope, 'env>(
         let Ok(closer) = stream.try_clone() else {
             continue;
         };
+        let client = Arc::new(Client::new(closer));
         {
-            let mut l = live.lock().unwrap_or_else(|p| p.into_inner());
-            if l.len() >= MAX_CONNECTIONS {
+            let mut l = lock(&live);
+            if l.len() >= max {
+                // full: the client idle longest makes room, so that a newcomer (its
+                // `shutdown` say) is not locked out by clients that went quiet
+                let now = Instant::now();
+                if let Some(i) = longest_idle(l.iter().map(|c| c.activity()), now, evictable) {
+                    if l[i].evict_if_idle(now, evictable, Eviction::Full) {
+                        l.swap_remove(i);
+                    }
+                }
+            }
+            if l.len() >= max {
                 TcpSink(Mutex::new(writer)).send(&error_reply(
                     &Value::Null,
-                    &format!("too many clients (at most {MAX_CONNECTIONS})"),
+                    &format!(
+                        "too many clients (at most {max}), none idle for {} s: try again later",
+                        evictable.as_secs_f64()
+                    ),
                 ));
-                let _ = closer.shutdown(Shutdown::Both);
+                let _ = stream.shutdown(Shutdown::Both);
                 continue;
             }
-            l.push((next, closer));
+            l.push(client.clone());
         }
-        let me = next;
-        next += 1;
         let jobs = jobs.clone();
         let live = live.clone();
         let wake = wake.clone();
         s.spawn(move || {
             let sink: Arc<dyn Sink> = Arc::new(TcpSink(Mutex::new(writer)));
-            server.read_client(stream, sink, &jobs);
-            live.lock()
-                .unwrap_or_else(|p| p.into_inner())
-                .retain(|(id, _)| *id != me);
+            server.read_client(stream, sink.clone(), Some(&client), &jobs);
+            lock(&live).retain(|c| !Arc::ptr_eq(c, &client));
+            if let Some(why) = client.activity().evicted {
+                // nothing of it is in flight, and nothing more will be
+                let message = match why {
+                    Eviction::Idle => format!(
+                        "disconnected: no line from this client in {} s (--idle-timeout)",
+                        idle.as_secs_f64()
+                    ),
+                    Eviction::Full => format!(
+                        "disconnected: the server is full (at most {max} clients) and this \
+                         client was the one idle longest"
+                    ),
+                };
+                let _ = client.stream.set_write_timeout(Some(FAREWELL_WRITE));
+                sink.send(&error_reply(&Value::Null, &message));
+                let _ = client.stream.shutdown(Shutdown::Both);
+            }
             if server.stop.load(Ordering::SeqCst) {
                 wake();
             }
         });
     }
     // stop the other readers: their clients can still read the answers to what they sent
-    for (_, s) in live.lock().unwrap_or_else(|p| p.into_inner()).iter() {
-        let _ = s.shutdown(Shutdown::Read);
+    for c in lock(&live).iter() {
+        let _ = c.stream.shutdown(Shutdown::Read);
     }
     Ok(())
 }
@@ -601,6 +827,33 @@ mod tests {
                 Line::TooLong => out.push(Err(Line::TooLong)),
             }
         }
+    }
+
+    #[test]
+    fn a_full_server_makes_room_by_the_client_idle_longest_never_a_busy_one() {
+        let t0 = Instant::now();
+        let now = t0 + Duration::from_secs(100);
+        let second = Duration::from_secs(1);
+        let seen = |at: u64, pending: usize| Activity {
+            last: t0 + Duration::from_secs(at),
+            pending,
+            evicted: None,
+        };
+        // quiet for 100 s but waiting for an answer: busy; of the idle ones, the older
+        assert_eq!(
+            longest_idle([seen(0, 1), seen(50, 0), seen(10, 0)], now, second),
+            Some(2)
+        );
+        // every client busy or idle for less than the threshold: nobody makes room
+        assert_eq!(
+            longest_idle([seen(0, 3), seen(99, 0)], now, Duration::from_secs(2)),
+            None
+        );
+        // a client already disconnected does not count
+        let mut gone = seen(0, 0);
+        gone.evicted = Some(Eviction::Idle);
+        assert_eq!(longest_idle([gone, seen(60, 0)], now, second), Some(1));
+        assert_eq!(longest_idle([], now, second), None);
     }
 
     #[test]
