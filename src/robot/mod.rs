@@ -34,7 +34,7 @@ pub use kinematics::{Group, Model};
 pub use oracle::ArmOracle;
 pub use shapes::Primitive;
 
-use crate::scene::SceneError;
+use crate::mesh_io::MeshError;
 use std::path::{Path, PathBuf};
 
 /// Everything that can be wrong with a robot description or a configuration asked of it.
@@ -42,7 +42,7 @@ use std::path::{Path, PathBuf};
 pub enum RobotError {
     /// A file (URDF, SRDF, mesh) cannot be read or a mesh cannot be used.
     #[error(transparent)]
-    Scene(#[from] SceneError),
+    Input(#[from] MeshError),
     /// The file is not well-formed XML.
     #[error("{path}: not valid XML: {message}")]
     Xml {

@@ -616,7 +616,7 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         message,
     };
     let robot_err = |e: RobotError| match e {
-        RobotError::Scene(s) => s,
+        RobotError::Input(e) => e.into(),
         other => invalid(other.to_string()),
     };
     let urdf = dir.join(&file.robot.urdf);

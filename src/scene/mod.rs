@@ -23,6 +23,7 @@ pub mod shapes;
 pub mod toml_format;
 
 use crate::geometry::{GeometryError, Polygon, TriMesh};
+use crate::mesh_io::MeshError;
 use crate::oracle::discs::Discs;
 use crate::oracle::polygons::Polygons;
 use crate::oracle::polyhedra::Polyhedra;
@@ -103,39 +104,23 @@ pub enum SceneError {
     },
 }
 
-/// Keeps I/O failures in [`SceneError::Io`], the rest (special or huge files) in
-/// [`SceneError::File`].
-fn input_error(e: FileError) -> SceneError {
-    match e {
-        FileError::Io { path, source, .. } => SceneError::Io { path, source },
-        other => SceneError::File(other),
+/// A mesh's (or another input file's) failure as the scene's, variant for variant.
+impl From<MeshError> for SceneError {
+    fn from(e: MeshError) -> SceneError {
+        match e {
+            MeshError::Io { path, source } => SceneError::Io { path, source },
+            MeshError::File(e) => SceneError::File(e),
+            MeshError::Parse { path, message } => SceneError::Parse { path, message },
+            MeshError::Geometry { path, source } => SceneError::Geometry { path, source },
+        }
     }
 }
 
-/// Opens an input file (scene, mesh, query list) if it is a regular file of at most
+/// The text of an input file, if it is a regular file of at most
 /// [`crate::limits::MAX_TEXT_FILE_BYTES`]: `/dev/zero` or a FIFO would otherwise be read until
 /// memory runs out, or block for ever.
-pub(crate) fn open_input(path: &Path) -> Result<std::fs::File, SceneError> {
-    let (file, size) = crate::safe_file::open_regular(path).map_err(input_error)?;
-    let limit = crate::limits::MAX_TEXT_FILE_BYTES;
-    if size > limit {
-        return Err(SceneError::File(FileError::TooLarge {
-            path: path.to_path_buf(),
-            size,
-            limit,
-        }));
-    }
-    Ok(file)
-}
-
-/// The bytes of an input file ([`open_input`]'s checks).
-pub(crate) fn read_input(path: &Path) -> Result<Vec<u8>, SceneError> {
-    crate::safe_file::read_regular(path, crate::limits::MAX_TEXT_FILE_BYTES).map_err(input_error)
-}
-
-/// The text of an input file ([`open_input`]'s checks).
 pub(crate) fn read_input_text(path: &Path) -> Result<String, SceneError> {
-    crate::safe_file::read_text(path).map_err(input_error)
+    Ok(crate::mesh_io::read_input_text(path)?)
 }
 
 /// Refuses robot and obstacle coordinates beyond [`crate::limits::MAX_COORDINATE`] (and disc
