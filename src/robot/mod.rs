@@ -14,6 +14,7 @@
 //! | [`shapes`] | primitives (box, cylinder, sphere, cone) and the polytopes that contain them; a big mesh's envelope |
 //! | [`kinematics`] | the kinematic tree, forward kinematics, planning groups and their bounds |
 //! | [`arm`] | a loaded arm: model + link geometry + self-collision pairs + a planning group |
+//! | [`objects`] | the world's collision objects: primitives and meshes placed in a frame |
 //! | [`oracle`] | exact collision intervals of a single-joint move (the polyhedra oracle's rotations) |
 //! | [`inner`] | balls inside the links: a sure collision test ahead of the exact one |
 //! | [`checker`] | the independent checker: parry `intersection_test` of every pair, sampled paths |
@@ -23,6 +24,7 @@ pub mod checker;
 mod clearance;
 pub mod inner;
 pub mod kinematics;
+pub mod objects;
 pub mod oracle;
 pub mod shapes;
 pub mod srdf;
