@@ -19,9 +19,9 @@ pub mod collada;
 pub mod mesh_io;
 pub mod moveit;
 pub mod ompl_cfg;
-pub mod shapes;
 pub mod toml_format;
 
+pub use crate::geometry::hull as shapes;
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use crate::mesh_io::MeshError;
 use crate::oracle::discs::Discs;
