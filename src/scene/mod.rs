@@ -164,6 +164,28 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// Checks the scene's queries as it loads. A malformed query (wrong length, not a number, a
+/// zero quaternion) is an error of the file; a well-formed one outside the bounds or in
+/// collision only stops the commands that answer it ([`Scene::checked_queries`]): a roadmap
+/// of the scene does not need its queries, so for `build` it is a warning.
+pub(crate) fn check_queries_on_load(scene: &mut Scene) -> Result<(), SceneError> {
+    match toml_format::checked_queries(scene) {
+        Ok(queries) => scene.queries = queries,
+        Err(e @ SceneError::Config { .. }) => return Err(e),
+        Err(e) => scene
+            .warnings
+            .push(format!("{e}: the scene's queries cannot be answered")),
+    }
+    Ok(())
+}
+
+/// The name a scene gets when its file gives none: the file name without extension.
+pub(crate) fn default_name(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into())
+}
+
 /// Warnings for the scene's SE(3) queries whose quaternion is not of unit length (within
 /// 10⁻⁶): they are normalised, as OMPL's `SO3StateSpace::enforceBounds` does, but a length far
 /// from 1 may be a typo, so it is said rather than corrected silently (issue 16).
