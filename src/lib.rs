@@ -19,6 +19,7 @@
 //! | [`roadmap`] | learning, persistence, queries |
 //! | [`robot`] | robot arms: URDF + SRDF, forward kinematics, the independent arm checker |
 //! | [`export`] | glTF export and the HTML viewer (seeing a plan in 3D) |
+//! | [`mesh_io`] | mesh files (OBJ, STL, Collada) and the checked reads of input files |
 //! | [`scene`] | TOML scenes, OMPL.app problems, MoveIt scenes and requests, meshes |
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
 //! | [`limits`] | the largest numbers accepted from users |
@@ -34,6 +35,7 @@ pub mod global;
 pub mod interval;
 pub mod limits;
 pub mod local;
+pub mod mesh_io;
 pub mod oracle;
 pub mod portfolio;
 pub mod render;

@@ -56,24 +56,6 @@ pub fn duration_from_secs(seconds: f64) -> Option<Duration> {
     }
 }
 
-/// Refuses a local method that could not finish a motion: the sampled method below
-/// [`MIN_SAMPLED_RESOLUTION`].
-pub fn check_local_spec(spec: &crate::local::LocalSpec) -> Result<(), String> {
-    match spec {
-        crate::local::LocalSpec::Sampled { resolution }
-            if resolution.is_nan() || *resolution < MIN_SAMPLED_RESOLUTION =>
-        {
-            Err(format!(
-                "sampled:res={resolution:?} is below the smallest resolution \
-                 {MIN_SAMPLED_RESOLUTION:e}: a motion would be checked at more than \
-                 {:e} states",
-                (1.0 / MIN_SAMPLED_RESOLUTION).round()
-            ))
-        }
-        _ => Ok(()),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -444,7 +444,7 @@ fn sampled_resolution_1e_300_is_refused() {
     );
     // the limit itself is accepted by the spec check
     let spec: viaroad::local::LocalSpec = "sampled:res=1e-9".parse().unwrap();
-    assert!(viaroad::limits::check_local_spec(&spec).is_ok());
+    assert!(viaroad::local::check_local_spec(&spec).is_ok());
 }
 
 // ---- row 8 ----------------------------------------------------------------------------

@@ -519,7 +519,7 @@ impl Roadmap {
                 .map_err(|e| LearnError::new_err(one_line(&e)))?,
             None => LocalSpec::roadmap_default(),
         };
-        viaroad::limits::check_local_spec(&spec).map_err(LearnError::new_err)?;
+        viaroad::local::check_local_spec(&spec).map_err(LearnError::new_err)?;
         let time = match time {
             None => None,
             Some(t) => Some(viaroad::limits::duration_from_secs(t).ok_or_else(|| {

@@ -1,7 +1,7 @@
 //! `viaroad solve --global cones` and `viaroad solve --oracle minkowski`: a scene's queries
 //! answered by the methods of the project's other seeds (issue 14), printed like `solve`'s.
 
-use super::solve::SolveArgs;
+use super::solve_args::SolveArgs;
 use anyhow::Context;
 use serde_json::json;
 use std::time::Instant;
@@ -130,7 +130,7 @@ pub fn run_minkowski(a: &SolveArgs, spec: &LocalSpec) -> anyhow::Result<()> {
         let t = Instant::now();
         let oracle = Bounded::new(plane.clone(), Minkowski::new(robot, &obstacles, theta));
         let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
-        let s = super::solve::solve_query(
+        let s = super::solve_args::solve_query(
             &translating,
             &oracle,
             spec,

@@ -66,7 +66,7 @@ impl LocalArgs {
         } else if self.beta.is_some() || self.via.is_some() || self.depth.is_some() {
             anyhow::bail!("--beta, --via and --depth apply to the via-point method only");
         }
-        viaroad::limits::check_local_spec(&spec)
+        viaroad::local::check_local_spec(&spec)
             .map_err(anyhow::Error::msg)
             .context("--local")?;
         Ok(spec)

@@ -19,6 +19,7 @@ mod query;
 mod render;
 mod serve;
 mod solve;
+mod solve_args;
 mod view;
 
 use clap::{Parser, Subcommand};
@@ -44,7 +45,7 @@ enum Command {
     /// Show what a roadmap file holds.
     Info(info::InfoArgs),
     /// Solve a scene's queries with the local method alone (no roadmap).
-    Solve(solve::SolveArgs),
+    Solve(solve_args::SolveArgs),
     /// Draw a scene, a solved query with the borderlines and via points tried, as SVG.
     Render(render::RenderArgs),
     /// Print the collision intervals of one straight motion (translation or turn).

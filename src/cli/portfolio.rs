@@ -2,7 +2,7 @@
 //! `bench mbm` runs ([`viaroad::portfolio`]): the direct path, two trees for a fifth of the
 //! time, the via-point planner, the trees afresh.
 
-use super::solve::{SingleQuery, SolveArgs};
+use super::solve_args::{SingleQuery, SolveArgs};
 use serde_json::json;
 use std::time::Instant;
 use viaroad::deadline::Deadline;

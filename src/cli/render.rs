@@ -2,7 +2,7 @@
 //! borderlines and via points it tried.
 
 use super::local_args::LocalArgs;
-use super::solve::solve_query;
+use super::solve_args::solve_query;
 use anyhow::Context;
 use clap::Args;
 use std::path::PathBuf;

@@ -1,168 +1,14 @@
 //! `viaroad solve`: a scene's queries answered by the local method alone (or a single-query
 //! planner: `--roadmap`, `--tree`, `--portfolio`, the default for arm scenes).
 
-use super::local_args::LocalArgs;
+use super::solve_args::{solve_query, SingleQuery, SolveArgs};
 use anyhow::Context;
-use clap::Args;
 use serde_json::json;
-use std::path::PathBuf;
 use std::time::Instant;
 use viaroad::deadline::Deadline;
-use viaroad::local::{path_length, shorten, LocalSpec};
-use viaroad::oracle::CollisionOracle;
+use viaroad::local::{path_length, LocalSpec};
 use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner};
 use viaroad::scene::Scene;
-
-/// Arguments of `solve`.
-#[derive(Args)]
-pub struct SolveArgs {
-    /// Scene file (.toml or OMPL.app .cfg).
-    pub scene: PathBuf,
-    #[command(flatten)]
-    pub local: LocalArgs,
-    /// One JSON object per query on stdout.
-    #[arg(long)]
-    pub json: bool,
-    /// Write each solved query's shortened path as an OMPL state file (one state per line);
-    /// several queries get `-1`, `-2`, … before the extension.
-    #[arg(long, value_name = "FILE")]
-    pub path_out: Option<PathBuf>,
-    /// Seconds each query may take (checked before every oracle call). Default: no limit for
-    /// the local method alone, 60 s with `--roadmap`.
-    #[arg(long, value_name = "SECONDS")]
-    pub time: Option<f64>,
-    /// Single-query roadmap (OMPL's PRM `solve`): grow a roadmap from start and goal with the
-    /// roadmap's local method (`--local` picks another) until they meet or the time is up,
-    /// then answer through it. Without it the local method alone connects start and goal.
-    #[arg(long, group = "single_query")]
-    pub roadmap: bool,
-    /// Most nodes of the grown roadmap (`--roadmap`) or of both trees (`--tree`; each stage of
-    /// trees with `--portfolio`): a budget that gives the same answer on any machine. With
-    /// `--nodes` and no `--time` there is no time limit.
-    #[arg(long, requires = "single_query")]
-    pub nodes: Option<usize>,
-    /// Single-query trees (OMPL's RRTConnect `solve`): two trees grown from start and goal
-    /// whose extends are staircases of single-group motions, each as far as it is free
-    /// (`roadmap::tree`). Default time 60 s, like `--roadmap`.
-    #[arg(long, group = "single_query")]
-    pub tree: bool,
-    /// Longest extend of `--tree`, as a share of the space's extent (OMPL's RRTConnect: 0.2).
-    #[arg(long, value_name = "SHARE", default_value_t = 0.2, requires = "tree")]
-    pub tree_range: f64,
-    /// Longest stair of a `--tree` extend (one position move, then one turn), as a share of
-    /// the extent: shorter stairs follow coupled motions more closely, for more calls.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.01, requires = "tree")]
-    pub tree_stair: f64,
-    /// How a `--tree` stair finds its free prefix: `intervals` (one interval call), `yesno`
-    /// (a yes/no call first, intervals only when blocked) or `first` (one first-collision
-    /// call: the same prefix, without the collisions beyond it).
-    #[arg(
-        long,
-        value_name = "MODE",
-        default_value = "intervals",
-        requires = "tree"
-    )]
-    pub tree_prefix: viaroad::roadmap::tree::Prefix,
-    /// `--tree`: try each extend as one stair first (yes/no), the staircase only when blocked.
-    #[arg(long, requires = "tree")]
-    pub tree_coarse: bool,
-    /// `--tree`: extend the smaller tree each time (`true`) instead of alternating (`false`).
-    /// Default: balanced with whole stairs, alternating otherwise.
-    #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", requires = "tree")]
-    pub tree_balance: Option<bool>,
-    /// `--tree`: centring rounds per blocked stair (0: off). A blocked stair moves the node to
-    /// the middle of its free chords across the stair (a first-collision call each way per
-    /// direction) and is tried again, up to N times: lines a robot up with a funnel (bugtrap).
-    #[arg(long, value_name = "N", default_value_t = 0, requires = "tree")]
-    pub tree_centre: usize,
-    /// `--tree-centre`: half-angle of the turns a centring round asks about, in turns (at most
-    /// 0.45): only free arcs narrower than this are centred.
-    #[arg(long, value_name = "TURNS", default_value_t = viaroad::roadmap::tree::CENTRE_TURN, requires = "tree")]
-    pub tree_centre_turn: f64,
-    /// `--tree`: restart both trees when an attempt has grown this many nodes, each later
-    /// attempt with a new random stream and twice the nodes (RRT run times are heavy-tailed;
-    /// the first attempt is the run without restarts). Default: no restarts.
-    #[arg(long, value_name = "NODES", requires = "tree")]
-    pub tree_restart: Option<usize>,
-    /// `--tree`: pairs of trees racing from the same ends with different random streams, on
-    /// the rayon pool; the first to connect answers (without a time limit: the first in stream
-    /// order, the same on any thread count). Default 1.
-    #[arg(long, value_name = "N", default_value_t = 1, requires = "tree")]
-    pub tree_streams: usize,
-    /// `--tree`: how an extend walks its stairs: `whole` (each stair all of it or not at all,
-    /// only the extend's end a candidate nearest node: OMPL's extend in steps of one stair),
-    /// `prefix` (each DOF group's piece as far as it is free, the first blocked group ends the
-    /// extend) or `slide` (a blocked group lets the stair's other groups go on). Default:
-    /// `whole`, `prefix` with `--tree-centre` or `--tree-coarse` (which need it).
-    #[arg(long, value_name = "MODE", requires = "tree")]
-    pub tree_stairs: Option<viaroad::roadmap::tree::Stairs>,
-    /// The stages `viaroad bench mbm` runs, one after the other (`viaroad::portfolio`): the
-    /// direct path, two trees for a fifth of the time (as `--tree`, first-hit prefixes), the
-    /// via-point planner (300 oracle calls), the trees afresh for the rest; the path found
-    /// shortened. The default for arm scenes unless the local method is chosen (`--local`,
-    /// `--beta`, `--via`, `--depth`). Default time 60 s, like `--tree`.
-    #[arg(long, group = "single_query", conflicts_with_all = ["local", "beta", "via", "depth", "global", "oracle"])]
-    pub portfolio: bool,
-    /// Seed of the grown roadmap (`--roadmap`), of the two trees (`--tree`) or of the
-    /// portfolio's trees.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// The portfolio (`--portfolio`, an arm's default) and the trees (`--tree`) keep to
-    /// single-joint staircases: no straight motions of several joints at once, neither as the
-    /// trees' extends nor as shortcuts (as `query --no-straight`).
-    #[arg(long)]
-    pub no_straight: bool,
-    /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
-    /// (`--roadmap`; 0: random bounces only). Default: the learner's.
-    #[arg(long, value_name = "SHARE")]
-    pub directed_share: Option<f64>,
-    /// Answer with a global method instead: `cones`, Brooks's freeways (generalized cones
-    /// searched with A*; planar scenes; incomplete by design, see the README).
-    #[arg(long, value_name = "METHOD", conflicts_with = "roadmap")]
-    pub global: Option<String>,
-    /// Collision oracle: `minkowski` answers through the C-obstacles of a robot that keeps
-    /// each query's orientation and only translates (se2 scenes whose queries do not turn).
-    #[arg(long, value_name = "ORACLE", conflicts_with_all = ["roadmap", "global"])]
-    pub oracle: Option<String>,
-}
-
-/// One solved query, as printed.
-pub struct Solved {
-    pub connection: viaroad::local::Connection,
-    pub shortened: Vec<viaroad::space::Config>,
-}
-
-/// Solves one query with the local method and shortens the path.
-pub fn solve_query(
-    scene: &Scene,
-    oracle: &dyn CollisionOracle,
-    spec: &LocalSpec,
-    start: &[f64],
-    goal: &[f64],
-    deadline: &Deadline,
-) -> anyhow::Result<Solved> {
-    let method = spec.build();
-    let mut connection = method
-        .connect_within(&scene.space, oracle, start, goal, deadline)
-        .context("local method")?;
-    let shortened = if connection.is_connected() {
-        let groups = method.groups(&scene.space);
-        shorten(
-            &scene.space,
-            oracle,
-            &groups,
-            &connection.path,
-            &mut connection.counts,
-        )
-        .context("shortening")?
-    } else {
-        Vec::new()
-    };
-    Ok(Solved {
-        connection,
-        shortened,
-    })
-}
 
 /// Runs `solve`.
 pub fn run(a: SolveArgs) -> anyhow::Result<()> {
@@ -257,48 +103,6 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         out.finish();
     }
     Ok(())
-}
-
-/// What every single-query planner of `solve` (`--roadmap`, `--tree`, `--portfolio`) needs
-/// before its first query: the time of each query (60 s by default; none with `--nodes` alone),
-/// `--nodes` checked (`too_big` says why there is a limit), the scene's checked queries (at least
-/// one), its warnings printed, and the `--path-out` files.
-pub struct SingleQuery {
-    /// The time each query may take.
-    pub time: Option<std::time::Duration>,
-    /// The scene's queries, checked.
-    pub queries: Vec<viaroad::scene::Query>,
-    /// Where solved paths are written.
-    pub path_out: Option<super::path_out::PathOut>,
-}
-
-impl SingleQuery {
-    /// The set-up of `a`'s single-query planner on `scene`.
-    pub fn prepare(a: &SolveArgs, scene: &Scene, too_big: &str) -> anyhow::Result<SingleQuery> {
-        let time = match (a.time, a.nodes) {
-            (None, Some(_)) => None,
-            (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
-        };
-        if let Some(n) = a.nodes {
-            super::limits::count_in_range("--nodes", n, viaroad::limits::MAX_NODES, too_big)?;
-        }
-        let queries = scene.checked_queries()?;
-        if queries.is_empty() {
-            anyhow::bail!("{} has no [[query]]", a.scene.display());
-        }
-        for w in &scene.warnings {
-            eprintln!("warning: {w}");
-        }
-        let path_out = match &a.path_out {
-            Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
-            None => None,
-        };
-        Ok(SingleQuery {
-            time,
-            queries,
-            path_out,
-        })
-    }
 }
 
 /// `solve --roadmap`: each query answered by a roadmap grown from its start and goal.

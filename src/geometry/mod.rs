@@ -1,9 +1,10 @@
 //! Geometric models shared by scene loading and the exact oracles: triangle meshes in 3D and
-//! polygons in the plane, the footprint of a prism mesh and the triangulation of a polygon,
-//! and (crate-internal) the geometric kernel of the rigid-body oracles. The collision verbs
-//! live in [`crate::oracle`].
+//! polygons in the plane, convex hulls, the footprint of a prism mesh and the triangulation of
+//! a polygon, and (crate-internal) the geometric kernel of the rigid-body oracles. The
+//! collision verbs live in [`crate::oracle`].
 
 pub mod footprint;
+pub mod hull;
 pub(crate) mod kernel;
 pub mod mesh;
 pub mod polygon;

@@ -17,7 +17,7 @@ pub mod straight;
 pub mod viapoint;
 
 pub use shorten::{drop_corners, drop_corners_known, shorten, shorten_known};
-pub use spec::LocalSpec;
+pub use spec::{check_local_spec, LocalSpec};
 pub use straight::StraightLine;
 pub use viapoint::{ViaPoint, ViaPointOptions};
 

@@ -14,6 +14,7 @@
 
 use super::viapoint::{BasePoint, Depth, Directions, Search, ViaLimit, ViaPoint, ViaPointOptions};
 use super::{LocalMethod, StraightLine};
+use crate::limits::MIN_SAMPLED_RESOLUTION;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
@@ -129,7 +130,7 @@ impl LocalSpec {
 
     /// Checks what the spec-string parser guarantees, for a spec that did not come from it
     /// (a roadmap file's header): a sampled resolution that is a positive number the limits
-    /// allow ([`crate::limits::check_local_spec`]), a finite β ≥ 0, at least one via point
+    /// allow ([`check_local_spec`]), a finite β ≥ 0, at least one via point
     /// and one random direction.
     pub fn validate(&self) -> Result<(), String> {
         match self {
@@ -151,7 +152,7 @@ impl LocalSpec {
                 }
             }
         }
-        crate::limits::check_local_spec(self)
+        check_local_spec(self)
     }
 
     /// Builds the method.
@@ -434,6 +435,24 @@ impl fmt::Display for LocalSpec {
                 write!(f, ",seed={}", o.seed)
             }
         }
+    }
+}
+
+/// Refuses a local method that could not finish a motion: the sampled method below
+/// [`MIN_SAMPLED_RESOLUTION`].
+pub fn check_local_spec(spec: &LocalSpec) -> Result<(), String> {
+    match spec {
+        LocalSpec::Sampled { resolution }
+            if resolution.is_nan() || *resolution < MIN_SAMPLED_RESOLUTION =>
+        {
+            Err(format!(
+                "sampled:res={resolution:?} is below the smallest resolution \
+                 {MIN_SAMPLED_RESOLUTION:e}: a motion would be checked at more than \
+                 {:e} states",
+                (1.0 / MIN_SAMPLED_RESOLUTION).round()
+            ))
+        }
+        _ => Ok(()),
     }
 }
 

@@ -6,8 +6,8 @@
 //! straight motion in one group and has no interior corners; without feedback an edge keeps the
 //! interior corners of the path the local method found.
 
+use super::header::Header;
 use super::nn::NearestNeighbours;
-use super::persist::Header;
 use crate::space::{Config, Space};
 use petgraph::graph::{NodeIndex, UnGraph};
 use petgraph::unionfind::UnionFind;

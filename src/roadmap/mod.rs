@@ -7,6 +7,7 @@
 //! | [`sampler`] | where new nodes are drawn: uniform, obstacle-based, Gaussian, bridge test |
 //! | [`nn`] | nearest neighbours: an incremental kd-tree over the space's embeddings |
 //! | [`graph`] | nodes, edges, components: the [`Roadmap`] |
+//! | [`header`] | how a roadmap was learnt and for which scene: the [`Header`] |
 //! | [`bounce`] | random-bounce walks driven by exact free sections |
 //! | [`learn`] | construction and expansion in reproducible parallel rounds; answers kept ([`Roadmap::with_path`]) |
 //! | [`persist`] | the file: magic, version, header, checksum, atomic save |
@@ -43,6 +44,7 @@
 pub mod bounce;
 pub mod centre;
 pub mod graph;
+pub mod header;
 pub mod info;
 pub mod landmarks;
 pub mod learn;
@@ -55,12 +57,13 @@ pub mod sampler;
 pub mod tree;
 
 pub use graph::{Edge, Roadmap};
+pub use header::Header;
 pub use info::RoadmapInfo;
 pub use landmarks::Landmarks;
 pub use learn::{LearnError, LearnReport, Learner, Learnt, Phase, Progress, StopReason};
 pub use nn::{KdTree, NearestNeighbours};
 pub use params::{Budget, LearnParams};
-pub use persist::{Header, RoadmapError, FORMAT_VERSION, MAGIC};
+pub use persist::{RoadmapError, FORMAT_VERSION, MAGIC};
 pub use query::{
     BatchAnswer, Endpoint, QueryError, QueryOptions, QueryOutcome, QueryPlanner, QueryResult,
     ATTACH_SHARE, TREES_ATTACH_SHARE,

@@ -26,9 +26,8 @@
 //! the payload's size, so a corrupted length can neither panic nor allocate without bound.
 
 use super::graph::{Edge, Roadmap};
-use super::params::LearnParams;
+pub use super::header::Header;
 use crate::local::LocalSpec;
-use crate::oracle::CallCounts;
 use crate::safe_file;
 use crate::space::{Space, SpaceKind};
 use serde::{Deserialize, Serialize};
@@ -44,29 +43,6 @@ pub const FORMAT_VERSION: u32 = 3;
 
 /// Bytes before the payload.
 pub const FIXED_HEADER_LEN: usize = 36;
-
-/// How a roadmap was learnt and for which scene: the signed part of the file.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Header {
-    /// The configuration space, with bounds.
-    pub space: Space,
-    /// Fingerprint of the scene learnt ([`crate::scene::Scene::fingerprint`]).
-    pub fingerprint: u64,
-    /// The learning parameters.
-    pub params: LearnParams,
-    /// The local method the roadmap was learnt with; queries rebuild it (and its budgeted and
-    /// deeper variants) from this, so that the groups of edges and attaching paths agree.
-    pub local_spec: LocalSpec,
-    /// Seed of the random streams.
-    pub seed: u64,
-    /// The node budget learning ran with, if any (a time budget is not recorded: it is not
-    /// reproducible).
-    pub node_budget: Option<u64>,
-    /// Rounds learning ran.
-    pub rounds: u64,
-    /// Oracle work spent on learning.
-    pub counts: CallCounts,
-}
 
 /// Why a roadmap cannot be saved or loaded. Each kind of bad file has its own variant.
 #[derive(Debug, thiserror::Error)]

@@ -8,7 +8,7 @@ use super::srdf::{load_srdf, Srdf};
 use super::urdf::{load_urdf, resolve_mesh_path, Geometry};
 use super::RobotError;
 use crate::geometry::TriMesh;
-use crate::scene::SceneError;
+use crate::mesh_io::MeshError;
 use nalgebra::{Isometry3, Point3};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -135,7 +135,7 @@ impl Arm {
                 let (source, polytope, envelope_gap) = match &c.geometry {
                     Geometry::Mesh { filename, scale } => {
                         let path = resolve_mesh_path(filename, &dir);
-                        let mesh = crate::scene::mesh_io::load_mesh(&path)?;
+                        let mesh = crate::mesh_io::load_mesh(&path)?;
                         let mesh = scaled(mesh, *scale, &path)?;
                         let around = (!options.exact_meshes)
                             .then(|| super::shapes::envelope(&mesh))
@@ -145,7 +145,7 @@ impl Arm {
                         (ShapeSource::Mesh { path, mesh }, polytope, gap)
                     }
                     Geometry::Primitive(p) => {
-                        let poly = p.polytope().map_err(|source| SceneError::Geometry {
+                        let poly = p.polytope().map_err(|source| MeshError::Geometry {
                             path: urdf.to_path_buf(),
                             source,
                         })?;
@@ -395,7 +395,7 @@ fn scaled(mesh: TriMesh, scale: [f64; 3], path: &Path) -> Result<TriMesh, RobotE
         .map(|t| if flip { [t[0], t[2], t[1]] } else { *t })
         .collect();
     TriMesh::new(vertices, triangles).map_err(|source| {
-        RobotError::Scene(SceneError::Geometry {
+        RobotError::Input(MeshError::Geometry {
             path: path.to_path_buf(),
             source,
         })

@@ -24,10 +24,10 @@
 //! (`0.001 · max_extent`).
 
 use super::arm::{Arm, ShapeSource};
+use super::objects::{CollisionObject, ObjectShape};
 use super::shapes::Primitive;
 use super::RobotError;
 use crate::geometry::TriMesh;
-use crate::scene::moveit::{CollisionObject, ObjectShape};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::{SharedShape, TriMeshFlags};
 

@@ -14,6 +14,7 @@
 //! | [`shapes`] | primitives (box, cylinder, sphere, cone) and the polytopes that contain them; a big mesh's envelope |
 //! | [`kinematics`] | the kinematic tree, forward kinematics, planning groups and their bounds |
 //! | [`arm`] | a loaded arm: model + link geometry + self-collision pairs + a planning group |
+//! | [`objects`] | the world's collision objects: primitives and meshes placed in a frame |
 //! | [`oracle`] | exact collision intervals of a single-joint move (the polyhedra oracle's rotations) |
 //! | [`inner`] | balls inside the links: a sure collision test ahead of the exact one |
 //! | [`checker`] | the independent checker: parry `intersection_test` of every pair, sampled paths |
@@ -23,6 +24,7 @@ pub mod checker;
 mod clearance;
 pub mod inner;
 pub mod kinematics;
+pub mod objects;
 pub mod oracle;
 pub mod shapes;
 pub mod srdf;
@@ -34,7 +36,7 @@ pub use kinematics::{Group, Model};
 pub use oracle::ArmOracle;
 pub use shapes::Primitive;
 
-use crate::scene::SceneError;
+use crate::mesh_io::MeshError;
 use std::path::{Path, PathBuf};
 
 /// Everything that can be wrong with a robot description or a configuration asked of it.
@@ -42,7 +44,7 @@ use std::path::{Path, PathBuf};
 pub enum RobotError {
     /// A file (URDF, SRDF, mesh) cannot be read or a mesh cannot be used.
     #[error(transparent)]
-    Scene(#[from] SceneError),
+    Input(#[from] MeshError),
     /// The file is not well-formed XML.
     #[error("{path}: not valid XML: {message}")]
     Xml {

@@ -60,6 +60,7 @@
 use super::arm::Arm;
 use super::clearance::{self, Cloud, Move, Pair};
 use super::inner::{InnerBall, Solid};
+use super::objects::{CollisionObject, ObjectShape};
 use super::RobotError;
 use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
@@ -67,7 +68,6 @@ use crate::interval::{Interval, IntervalList};
 use crate::oracle::polyhedra::{AngleRange, Body, Gather, Gathered, Polyhedra};
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::robot::urdf::JointKind;
-use crate::scene::moveit::{CollisionObject, ObjectShape};
 use crate::space::{Change, Motion};
 use nalgebra::{Isometry3, Point3, Vector3};
 use std::f64::consts::TAU;

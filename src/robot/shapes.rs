@@ -13,8 +13,8 @@
 //! A link mesh of thousands of triangles gets the same treatment ([`envelope`]): a convex
 //! polytope of a few hundred faces that contains it, where one stands off it by little.
 
+use crate::geometry::hull::convex_hull_3d;
 use crate::geometry::{GeometryError, TriMesh};
-use crate::scene::shapes::convex_hull_3d;
 use nalgebra::{Matrix3, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;

@@ -50,7 +50,7 @@ pub struct GroupSpec {
 
 /// Reads and parses an SRDF file.
 pub fn load_srdf(path: &Path) -> Result<Srdf, RobotError> {
-    let text = crate::scene::read_input_text(path)?;
+    let text = crate::mesh_io::read_input_text(path)?;
     parse_srdf(&text, path)
 }
 

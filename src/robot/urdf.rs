@@ -120,7 +120,7 @@ pub struct Joint {
 
 /// Reads and parses a URDF file.
 pub fn load_urdf(path: &Path) -> Result<Urdf, RobotError> {
-    let text = crate::scene::read_input_text(path)?;
+    let text = crate::mesh_io::read_input_text(path)?;
     parse_urdf(&text, path)
 }
 

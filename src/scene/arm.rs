@@ -616,7 +616,7 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         message,
     };
     let robot_err = |e: RobotError| match e {
-        RobotError::Scene(s) => s,
+        RobotError::Input(e) => e.into(),
         other => invalid(other.to_string()),
     };
     let urdf = dir.join(&file.robot.urdf);
@@ -710,13 +710,11 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         }
         arm.set_joint_values(&names, &values).map_err(robot_err)?;
     }
-    let name = file
-        .name
-        .unwrap_or_else(|| super::toml_format::default_name(path));
+    let name = file.name.unwrap_or_else(|| super::default_name(path));
     let robot = ArmRobot::new(arm, objects, urdf, srdf, moveit_scene).map_err(robot_err)?;
     let mut scene = arm_scene(name, robot, queries, path)?;
     scene.warnings.extend(warnings);
-    super::toml_format::check_queries_on_load(&mut scene)?;
+    super::check_queries_on_load(&mut scene)?;
     Ok(scene)
 }
 

@@ -19,10 +19,11 @@ pub mod collada;
 pub mod mesh_io;
 pub mod moveit;
 pub mod ompl_cfg;
-pub mod shapes;
 pub mod toml_format;
 
+pub use crate::geometry::hull as shapes;
 use crate::geometry::{GeometryError, Polygon, TriMesh};
+use crate::mesh_io::MeshError;
 use crate::oracle::discs::Discs;
 use crate::oracle::polygons::Polygons;
 use crate::oracle::polyhedra::Polyhedra;
@@ -103,39 +104,23 @@ pub enum SceneError {
     },
 }
 
-/// Keeps I/O failures in [`SceneError::Io`], the rest (special or huge files) in
-/// [`SceneError::File`].
-fn input_error(e: FileError) -> SceneError {
-    match e {
-        FileError::Io { path, source, .. } => SceneError::Io { path, source },
-        other => SceneError::File(other),
+/// A mesh's (or another input file's) failure as the scene's, variant for variant.
+impl From<MeshError> for SceneError {
+    fn from(e: MeshError) -> SceneError {
+        match e {
+            MeshError::Io { path, source } => SceneError::Io { path, source },
+            MeshError::File(e) => SceneError::File(e),
+            MeshError::Parse { path, message } => SceneError::Parse { path, message },
+            MeshError::Geometry { path, source } => SceneError::Geometry { path, source },
+        }
     }
 }
 
-/// Opens an input file (scene, mesh, query list) if it is a regular file of at most
+/// The text of an input file, if it is a regular file of at most
 /// [`crate::limits::MAX_TEXT_FILE_BYTES`]: `/dev/zero` or a FIFO would otherwise be read until
 /// memory runs out, or block for ever.
-pub(crate) fn open_input(path: &Path) -> Result<std::fs::File, SceneError> {
-    let (file, size) = crate::safe_file::open_regular(path).map_err(input_error)?;
-    let limit = crate::limits::MAX_TEXT_FILE_BYTES;
-    if size > limit {
-        return Err(SceneError::File(FileError::TooLarge {
-            path: path.to_path_buf(),
-            size,
-            limit,
-        }));
-    }
-    Ok(file)
-}
-
-/// The bytes of an input file ([`open_input`]'s checks).
-pub(crate) fn read_input(path: &Path) -> Result<Vec<u8>, SceneError> {
-    crate::safe_file::read_regular(path, crate::limits::MAX_TEXT_FILE_BYTES).map_err(input_error)
-}
-
-/// The text of an input file ([`open_input`]'s checks).
 pub(crate) fn read_input_text(path: &Path) -> Result<String, SceneError> {
-    crate::safe_file::read_text(path).map_err(input_error)
+    Ok(crate::mesh_io::read_input_text(path)?)
 }
 
 /// Refuses robot and obstacle coordinates beyond [`crate::limits::MAX_COORDINATE`] (and disc
@@ -177,6 +162,28 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
         }
     }
     Ok(())
+}
+
+/// Checks the scene's queries as it loads. A malformed query (wrong length, not a number, a
+/// zero quaternion) is an error of the file; a well-formed one outside the bounds or in
+/// collision only stops the commands that answer it ([`Scene::checked_queries`]): a roadmap
+/// of the scene does not need its queries, so for `build` it is a warning.
+pub(crate) fn check_queries_on_load(scene: &mut Scene) -> Result<(), SceneError> {
+    match toml_format::checked_queries(scene) {
+        Ok(queries) => scene.queries = queries,
+        Err(e @ SceneError::Config { .. }) => return Err(e),
+        Err(e) => scene
+            .warnings
+            .push(format!("{e}: the scene's queries cannot be answered")),
+    }
+    Ok(())
+}
+
+/// The name a scene gets when its file gives none: the file name without extension.
+pub(crate) fn default_name(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into())
 }
 
 /// Warnings for the scene's SE(3) queries whose quaternion is not of unit length (within

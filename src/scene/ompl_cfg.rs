@@ -27,7 +27,7 @@
 
 use super::collada;
 use super::mesh_io::{is_dae, load_mesh, vertex_mean};
-use super::toml_format::{check_queries_on_load, default_name};
+use super::{check_queries_on_load, default_name};
 use super::{Obstacle, Query, Robot, Scene, SceneError};
 use crate::geometry::{GeometryError, Polygon};
 use crate::oracle::polygons::footprint_polygons;

@@ -59,7 +59,7 @@
 use super::collada;
 use super::mesh_io::{self, is_dae, open_mesh_warning, vertex_mean};
 use super::shapes::{convex_hull_2d, convex_hull_3d, is_simple};
-use super::{Obstacle, Query, Robot, Scene, SceneError};
+use super::{check_queries_on_load, default_name, Obstacle, Query, Robot, Scene, SceneError};
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use crate::oracle::polygons::footprint_polygons;
 use crate::space::Space;
@@ -177,21 +177,6 @@ pub fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
     Ok(scene)
 }
 
-/// Checks the scene's queries as it loads. A malformed query (wrong length, not a number, a
-/// zero quaternion) is an error of the file; a well-formed one outside the bounds or in
-/// collision only stops the commands that answer it ([`Scene::checked_queries`]): a roadmap
-/// of the scene does not need its queries, so for `build` it is a warning.
-pub(crate) fn check_queries_on_load(scene: &mut Scene) -> Result<(), SceneError> {
-    match checked_queries(scene) {
-        Ok(queries) => scene.queries = queries,
-        Err(e @ SceneError::Config { .. }) => return Err(e),
-        Err(e) => scene
-            .warnings
-            .push(format!("{e}: the scene's queries cannot be answered")),
-    }
-    Ok(())
-}
-
 /// Checks every query of the scene: shape, bounds, collision.
 pub fn validate_queries(scene: &Scene) -> Result<(), SceneError> {
     checked_queries(scene).map(|_| ())
@@ -230,13 +215,6 @@ pub fn checked_queries(scene: &Scene) -> Result<Vec<Query>, SceneError> {
             })
         })
         .collect()
-}
-
-/// The name a scene gets when its file gives none: the file name without extension.
-pub(crate) fn default_name(path: &Path) -> String {
-    path.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "scene".into())
 }
 
 /// Reading state: the file for messages and relative paths, and the warnings so far.

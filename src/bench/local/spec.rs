@@ -439,7 +439,7 @@ impl Plan {
             }
         }
         for m in &self.methods {
-            crate::limits::check_local_spec(&m.local).map_err(BenchError::Invalid)?;
+            crate::local::check_local_spec(&m.local).map_err(BenchError::Invalid)?;
         }
         if self.query_calls == Some(0) {
             return Err(BenchError::Invalid(

@@ -24,7 +24,7 @@
 
 use super::body::{Component, Face, Part};
 use super::envelope::AngleRange;
-use super::rotation::{lin, swept_box, turn};
+use super::turning::{lin, swept_box, turn};
 use super::Aabb;
 use super::{Hits, Polyhedra, Pose};
 use crate::geometry::kernel::trig::Zeros;

@@ -67,6 +67,7 @@ mod envelope;
 mod predicate;
 mod rotation;
 mod translation;
+mod turning;
 
 use super::{CallCounts, CollisionOracle, OracleError, Workspace};
 use crate::geometry::kernel::memo::Memo;

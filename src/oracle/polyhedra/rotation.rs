@@ -21,6 +21,7 @@
 use super::body::{Body, Face};
 use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
 use super::predicate::Tolerance;
+use super::turning::{lin, swept_box};
 use super::{containment, descend_pairs, note_earliest, Caches, Hits, Polyhedra, Pose};
 use super::{Aabb, Spans};
 use crate::geometry::kernel::memo::Memo;
@@ -57,23 +58,6 @@ const OFF_FAR: f64 = 16.0;
 /// far (radians) into the known pieces on either side ([`Hits::uncovered`]): more than
 /// [`DEGENERATE_SPAN`], so that a piece continuing a known one is never dropped as a sliver.
 const CLIP_OVERLAP: f64 = 1e-6;
-
-/// `s·x_φ` for fixed `s` and `x` turning about the unit `axis` (formula 2.1).
-pub(crate) fn lin(s: &V3, x: &V3, axis: &V3) -> Trig {
-    let sr = s.dot(axis);
-    let rx = axis.dot(x);
-    Trig {
-        alpha: s.dot(x) - sr * rx,
-        beta: s.dot(&axis.cross(x)),
-        gamma: sr * rx,
-    }
-}
-
-/// `x` turned by `phi` about the unit `axis` through the origin (formula 2.1).
-pub(crate) fn turn(x: &V3, axis: &V3, phi: f64) -> V3 {
-    let (s, c) = phi.sin_cos();
-    axis * ((1.0 - c) * axis.dot(x)) + x * c + axis.cross(x) * s
-}
 
 /// A window of angles summarised for cheap bounds: with `m` the window's middle and `h` its half
 /// width, `a cos φ + b sin φ + c = P cos(φ − m) + Q sin(φ − m) + c` with `P = a cos m + b sin m`,
@@ -596,68 +580,16 @@ fn face_swept(
     b.grown(margin + 1e-12 * size).shifted(&pose.pos)
 }
 
-/// The world box around everything a body-frame box at `pose` sweeps while turning about the
-/// world `axis` through `pose`'s position: the arcs of its eight corners (a turned convex set
-/// stays in the hull of its turned corners), cut down to the sphere of `radius` about the
-/// reference point (CHS §2.3.2: spheres "can easily be handled even during rotations").
-pub(crate) fn swept_box(
-    pose: &Pose,
-    body_box: &Aabb,
-    radius: f64,
-    axis: &V3,
-    turning: &AngleRange,
-) -> Aabb {
-    if body_box.is_empty() {
-        return *body_box;
-    }
-    let mut b = Aabb::EMPTY;
-    for k in 0..8 {
-        let c = V3::new(
-            if k & 1 == 0 {
-                body_box.lo.x
-            } else {
-                body_box.hi.x
-            },
-            if k & 2 == 0 {
-                body_box.lo.y
-            } else {
-                body_box.hi.y
-            },
-            if k & 4 == 0 {
-                body_box.lo.z
-            } else {
-                body_box.hi.z
-            },
-        );
-        b = b.merge(&turning.arc_box(&(pose.rot * c), axis));
-    }
-    let sphere = Aabb {
-        lo: V3::repeat(-radius),
-        hi: V3::repeat(radius),
-    };
-    b.meet(&sphere).shifted(&pose.pos)
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::predicate::edge_meets_face;
+    use super::super::turning::turn;
     use super::*;
     use proptest::prelude::*;
     use std::f64::consts::PI;
 
     fn v(a: [f64; 3]) -> V3 {
         V3::new(a[0], a[1], a[2])
-    }
-
-    #[test]
-    fn lin_matches_turning() {
-        let axis = v([0.2, -0.4, 0.9]).normalize();
-        let (s, x) = (v([1.0, 2.0, -0.5]), v([-0.3, 0.7, 1.1]));
-        let f = lin(&s, &x, &axis);
-        for k in 0..20 {
-            let phi = -3.0 + 0.3 * k as f64;
-            assert!((f.eval(phi) - s.dot(&turn(&x, &axis, phi))).abs() < 1e-12);
-        }
     }
 
     proptest! {

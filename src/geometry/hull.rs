@@ -1,6 +1,6 @@
-//! Shapes a scene builds from its inputs: convex hulls given inline and the check that a
-//! polygon is simple. (Footprints of OMPL.app's 2D prism meshes come from
-//! [`crate::oracle::polygons::footprint_polygons`].)
+//! Convex hulls (of points given inline in a scene, of a robot's curved primitives) and the
+//! check that a polygon is simple. (Footprints of OMPL.app's 2D prism meshes come from
+//! [`super::footprint`].)
 
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use nalgebra::{Point2, Point3};
