@@ -21,6 +21,7 @@ pub mod moveit;
 pub mod ompl_cfg;
 pub mod shapes;
 pub mod toml_format;
+mod yaml_depth;
 
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use crate::oracle::discs::Discs;
@@ -136,6 +137,11 @@ pub(crate) fn read_input(path: &Path) -> Result<Vec<u8>, SceneError> {
 /// The text of an input file ([`open_input`]'s checks).
 pub(crate) fn read_input_text(path: &Path) -> Result<String, SceneError> {
     crate::safe_file::read_text(path).map_err(input_error)
+}
+
+/// The text of an input file of at most `limit` bytes, its size checked before it is read.
+pub(crate) fn read_input_text_within(path: &Path, limit: u64) -> Result<String, SceneError> {
+    crate::safe_file::read_text_within(path, limit).map_err(input_error)
 }
 
 /// Refuses robot and obstacle coordinates beyond [`crate::limits::MAX_COORDINATE`] (and disc
