@@ -488,7 +488,7 @@ mod tests {
     fn a_race_with_no_free_thread_runs_its_sides_in_turn() {
         let run = |head_start: Duration| {
             race(
-                &Deadline::after(Duration::from_secs(2)),
+                &Deadline::after(Duration::from_secs(30)),
                 head_start,
                 |d, _| count(u64::MAX, d),
                 |a| a.1,

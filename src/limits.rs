@@ -47,6 +47,46 @@ pub const MAX_SERVE_CLIENTS: usize = 256;
 /// `/dev/zero` would otherwise be read until memory runs out).
 pub const MAX_TEXT_FILE_BYTES: u64 = 1 << 30;
 
+/// Most `<link>` and `<joint>` elements of a URDF, together, counted before any of them is
+/// read: arms have tens (the Panda 25, VAMP's Fetch 33), and the kinematic tree, the joint
+/// values and the link poses all grow with them.
+pub const MAX_URDF_ELEMENTS: usize = 10_000;
+
+/// Most `<collision>` elements of a URDF, all links together, counted before any is read:
+/// each becomes a polytope with its inner balls when the robot is loaded (some 10 ms for a
+/// sphere), and a spherized Fetch has about a hundred.
+pub const MAX_COLLISION_ELEMENTS: usize = 1_000;
+
+/// Most XML nodes (elements, text runs, comments) of a URDF or SRDF: the XML parser stops
+/// there instead of building a tree of a whole file first. About thirty nodes per link with
+/// its visual, inertial and whitespace, so [`MAX_URDF_ELEMENTS`] links fit several times over.
+pub const MAX_XML_NODES: u32 = 1_000_000;
+
+/// Most link pairs an arm checks for self-collision (pairs of links with geometry that the
+/// SRDF does not exempt). The exact oracle builds one oracle per pair when the scene is
+/// loaded (about 0.1 MB each for two spheres): 5 000 is every pair of 100 links, several times
+/// what a two-armed robot with hands needs.
+pub const MAX_SELF_PAIRS: usize = 5_000;
+
+/// Largest MoveIt YAML file (PlanningScene, MotionPlanRequest), checked before it is read: the
+/// YAML reader holds every token of the file at once, some 120 bytes per token, so the densest
+/// 8 MiB (`[0,0,0],` repeated) already takes 0.6 GB. MotionBenchMaker's scenes have a few
+/// kilobytes; 8 MiB still holds an inline mesh of 100 000 triangles written in block style.
+pub const MAX_MOVEIT_YAML_BYTES: u64 = 8 << 20;
+
+/// Most collision objects of a PlanningScene, counted as they are read: each becomes placed
+/// polytopes, bounding volumes and a part of the environment every link is checked against.
+pub const MAX_SCENE_OBJECTS: usize = 10_000;
+
+/// Most shapes (primitives and meshes) of a PlanningScene, all objects together.
+pub const MAX_SCENE_SHAPES: usize = 10_000;
+
+/// Deepest nesting of YAML sequences and mappings (flow `[`/`{` or block), checked before the
+/// YAML is deserialized. MoveIt messages nest about eight deep; the YAML scanner's work per
+/// token grows with the nesting of flow collections (80 000 `[` took 80 s), and yaml_serde's
+/// own limit of 128 applies only after the whole file has been scanned.
+pub const MAX_YAML_DEPTH: usize = 128;
+
 /// `seconds` as a [`Duration`] if it is a positive, finite number of at most [`MAX_SECONDS`].
 pub fn duration_from_secs(seconds: f64) -> Option<Duration> {
     if seconds.is_finite() && seconds > 0.0 && seconds <= MAX_SECONDS {

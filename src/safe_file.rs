@@ -318,7 +318,12 @@ pub fn read_regular(path: &Path, limit: u64) -> Result<Vec<u8>, FileError> {
 
 /// [`read_regular`] as UTF-8 text, limited to [`crate::limits::MAX_TEXT_FILE_BYTES`].
 pub fn read_text(path: &Path) -> Result<String, FileError> {
-    let bytes = read_regular(path, crate::limits::MAX_TEXT_FILE_BYTES)?;
+    read_text_within(path, crate::limits::MAX_TEXT_FILE_BYTES)
+}
+
+/// [`read_regular`] as UTF-8 text of at most `limit` bytes.
+pub fn read_text_within(path: &Path, limit: u64) -> Result<String, FileError> {
+    let bytes = read_regular(path, limit)?;
     String::from_utf8(bytes).map_err(|e| FileError::Io {
         action: "read",
         path: path.to_path_buf(),

@@ -340,6 +340,9 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             ..Default::default()
         },
     )?;
+    for w in &robot.warnings {
+        eprintln!("warning: {w}");
+    }
     let problems = mbm::find_problems(&a.dir, a.limit)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let race = match a.race {

@@ -101,6 +101,9 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
             ..ArmOptions::default()
         },
     )?;
+    for w in &arm.warnings {
+        eprintln!("warning: {w}");
+    }
     scene.apply_to(&mut arm)?;
     let (start, goal) = req.start_goal(&mut arm)?;
     let (path, source) = match &a.path {

@@ -86,6 +86,11 @@ pub(crate) fn read_input_text(path: &Path) -> Result<String, MeshError> {
     crate::safe_file::read_text(path).map_err(input_error)
 }
 
+/// The text of an input file of at most `limit` bytes, its size checked before it is read.
+pub(crate) fn read_input_text_within(path: &Path, limit: u64) -> Result<String, MeshError> {
+    crate::safe_file::read_text_within(path, limit).map_err(input_error)
+}
+
 /// Reads a mesh, choosing the format by the file extension (`obj`, `stl`, `dae`; any case).
 pub fn load_mesh(path: &Path) -> Result<TriMesh, MeshError> {
     let ext = path

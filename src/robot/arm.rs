@@ -11,6 +11,7 @@ use crate::geometry::TriMesh;
 use crate::mesh_io::MeshError;
 use nalgebra::{Isometry3, Point3};
 use rayon::prelude::*;
+use std::collections::{BTreeSet, HashSet};
 use std::path::{Path, PathBuf};
 
 /// Which joints a loaded arm moves.
@@ -99,6 +100,9 @@ pub struct Arm {
     pub self_pairs: Vec<(usize, usize)>,
     /// The robot's folder (`package://` paths resolve against it).
     pub dir: PathBuf,
+    /// What loading found odd but accepted as MoveIt does (an SRDF exempting links the URDF
+    /// does not have): for whoever loads the arm to print once.
+    pub warnings: Vec<String>,
 }
 
 impl Arm {
@@ -128,6 +132,8 @@ impl Arm {
                 model.resolve_group(&srdf_data, &first.name.clone(), srdf_path)?
             }
         };
+        // counted before any mesh is read or any polytope built
+        let (self_pairs, warnings) = self_pairs(&model, &srdf_data, urdf, srdf_path)?;
         let dir = urdf.parent().map(Path::to_path_buf).unwrap_or_default();
         let mut shapes = Vec::new();
         for (l, link) in model.urdf.links.iter().enumerate() {
@@ -165,18 +171,6 @@ impl Arm {
         shapes
             .par_iter_mut()
             .for_each(|s| s.inner = inner_balls(&s.polytope));
-        let with_geometry: Vec<usize> = (0..model.urdf.links.len())
-            .filter(|&l| shapes.iter().any(|s| s.link == l))
-            .collect();
-        let mut self_pairs = Vec::new();
-        for (i, &a) in with_geometry.iter().enumerate() {
-            for &b in &with_geometry[i + 1..] {
-                let (na, nb) = (&model.urdf.links[a].name, &model.urdf.links[b].name);
-                if !srdf_data.is_disabled(na, nb) {
-                    self_pairs.push((a, b));
-                }
-            }
-        }
         let values = model
             .urdf
             .joints
@@ -196,6 +190,7 @@ impl Arm {
             shapes,
             self_pairs,
             dir,
+            warnings,
         })
     }
 
@@ -375,6 +370,81 @@ impl Arm {
             .map(|&k| self.model.urdf.joints[k].name.as_str())
             .collect()
     }
+}
+
+/// Pairs of link indices, `a < b`.
+type LinkPairs = Vec<(usize, usize)>;
+
+/// The link pairs checked for self-collision: links with collision elements, `a < b` in link
+/// order, that the SRDF does not exempt; refused beyond [`crate::limits::MAX_SELF_PAIRS`]
+/// before they are listed (the oracle builds one exact oracle per pair). Links the SRDF exempts
+/// but the URDF lacks are skipped with a warning, as MoveIt's SRDF reader skips them (VAMP's
+/// Fetch SRDF exempts the wheels its trimmed URDF leaves out).
+fn self_pairs(
+    model: &Model,
+    srdf: &Srdf,
+    urdf_path: &Path,
+    srdf_path: &Path,
+) -> Result<(LinkPairs, Vec<String>), RobotError> {
+    let links = &model.urdf.links;
+    let has_geometry = |l: usize| !links[l].collisions.is_empty();
+    let mut exempt = HashSet::new();
+    let mut unknown = BTreeSet::new();
+    for (a, b) in &srdf.disabled_collisions {
+        match (model.link(a), model.link(b)) {
+            (Some(x), Some(y)) => {
+                exempt.insert((x.min(y), x.max(y)));
+            }
+            (x, y) => {
+                for (name, found) in [(a, x), (b, y)] {
+                    if found.is_none() {
+                        unknown.insert(name.as_str());
+                    }
+                }
+            }
+        }
+    }
+    let with_geometry: Vec<usize> = (0..links.len()).filter(|&l| has_geometry(l)).collect();
+    let n = with_geometry.len();
+    let exempt_among = exempt
+        .iter()
+        .filter(|&&(a, b)| a != b && has_geometry(a) && has_geometry(b))
+        .count();
+    let count = n * n.saturating_sub(1) / 2 - exempt_among;
+    let max = crate::limits::MAX_SELF_PAIRS;
+    if count > max {
+        return Err(RobotError::Invalid {
+            path: urdf_path.to_path_buf(),
+            message: format!(
+                "{n} links with collision geometry make {count} self-collision pairs the SRDF \
+                 does not exempt: more than the {max} viaroad checks"
+            ),
+        });
+    }
+    let mut pairs = Vec::with_capacity(count);
+    for (i, &a) in with_geometry.iter().enumerate() {
+        for &b in &with_geometry[i + 1..] {
+            if !exempt.contains(&(a, b)) {
+                pairs.push((a, b));
+            }
+        }
+    }
+    let mut warnings = Vec::new();
+    if !unknown.is_empty() {
+        const SHOWN: usize = 12;
+        let mut names: Vec<&str> = unknown.iter().take(SHOWN).copied().collect();
+        if unknown.len() > SHOWN {
+            names.push("…");
+        }
+        warnings.push(format!(
+            "{}: <disable_collisions> names {} link(s) the URDF does not have, ignored as MoveIt \
+             ignores them: {}",
+            srdf_path.display(),
+            unknown.len(),
+            names.join(", ")
+        ));
+    }
+    Ok((pairs, warnings))
 }
 
 /// A mesh scaled per axis; a negative scale mirrors it, so the triangles are turned to keep

@@ -5,11 +5,11 @@
 //! follows its master. A **planning group** (CHS §1.5: the DOF groups of an arm are its single
 //! joints) picks the moving joints; every other joint keeps a given value.
 
-use super::srdf::Srdf;
+use super::srdf::{GroupSpec, Srdf};
 use super::urdf::{JointKind, Urdf};
 use super::RobotError;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -88,6 +88,9 @@ impl Model {
             .filter(|&l| parent_joint[l].is_none())
             .collect();
         let [root] = roots[..] else {
+            if roots.is_empty() {
+                return Err(invalid(cycle_message(&urdf, &parent_joint, &joint_links)));
+            }
             let names: Vec<&str> = roots.iter().map(|&l| urdf.links[l].name.as_str()).collect();
             return Err(invalid(format!(
                 "the links must form one tree; these have no parent joint: {names:?}"
@@ -105,7 +108,7 @@ impl Model {
             stack.extend(children[joint_links[k].1].iter().rev());
         }
         if order.len() != urdf.joints.len() {
-            return Err(invalid("the joints form a cycle".into()));
+            return Err(invalid(cycle_message(&urdf, &parent_joint, &joint_links)));
         }
         let mut mimic_master = vec![None; urdf.joints.len()];
         for (k, j) in urdf.joints.iter().enumerate() {
@@ -225,16 +228,17 @@ impl Model {
             message,
         };
         let mut members = vec![false; self.urdf.joints.len()];
-        let mut pending = vec![name.to_string()];
-        let mut visited: Vec<String> = Vec::new();
+        let groups: HashMap<&str, &GroupSpec> =
+            srdf.groups.iter().map(|g| (g.name.as_str(), g)).collect();
+        let mut pending = vec![name];
+        let mut visited: HashSet<&str> = HashSet::new();
         while let Some(g) = pending.pop() {
-            if visited.contains(&g) {
+            if !visited.insert(g) {
                 continue;
             }
-            let spec = srdf
-                .group(&g)
+            let spec = groups
+                .get(g)
                 .ok_or_else(|| invalid(format!("no group called {g}")))?;
-            visited.push(g);
             for (base, tip) in &spec.chains {
                 let b = self
                     .link(base)
@@ -267,7 +271,7 @@ impl Model {
                     members[k] = true;
                 }
             }
-            pending.extend(spec.subgroups.iter().cloned());
+            pending.extend(spec.subgroups.iter().map(String::as_str));
         }
         let joints: Vec<usize> = self
             .order
@@ -282,12 +286,17 @@ impl Model {
         if joints.is_empty() {
             return Err(invalid(format!("group {name} has no movable joint")));
         }
+        check_group_size(name, joints.len()).map_err(invalid)?;
         Ok(self.group_of(name, joints))
     }
 
     /// A group of the named joints, in the order given (each must be movable, not a mimic,
     /// and named once).
     pub fn group_from_names(&self, names: &[String], path: &Path) -> Result<Group, RobotError> {
+        check_group_size("custom", names.len()).map_err(|message| RobotError::Invalid {
+            path: path.to_path_buf(),
+            message,
+        })?;
         let mut joints = Vec::with_capacity(names.len());
         for n in names {
             let k = self.joint(n).ok_or_else(|| RobotError::Invalid {
@@ -331,6 +340,84 @@ impl Model {
             upper,
         }
     }
+}
+
+/// Refuses a planning group of more joints than a joint space takes
+/// ([`crate::space::joints::MAX_JOINTS`]) as soon as its joints are counted: the arm's
+/// geometry and oracles are built after the group, and a chain of thousands of joints would
+/// take gigabytes before the joint space refused it.
+fn check_group_size(name: &str, joints: usize) -> Result<(), String> {
+    let max = crate::space::joints::MAX_JOINTS;
+    if joints > max {
+        return Err(format!(
+            "group {name} has {joints} joints: a joint space needs 2 to {max} joints"
+        ));
+    }
+    Ok(())
+}
+
+/// Names a cycle of the links' parent relation, e.g. "the joints form a cycle through links
+/// a → b → a (joints j, k)", parent before child. Each link has at most one parent joint, so
+/// walking up from any link either reaches a root or enters a cycle; every link is walked once.
+fn cycle_message(
+    urdf: &Urdf,
+    parent_joint: &[Option<usize>],
+    joint_links: &[(usize, usize)],
+) -> String {
+    const SHOWN: usize = 12;
+    // 0: not seen, 1: on the current walk, 2: leads to a root or to a cycle already walked
+    let mut state = vec![0u8; parent_joint.len()];
+    for start in 0..parent_joint.len() {
+        let mut walk = Vec::new();
+        let mut l = start;
+        loop {
+            if state[l] == 2 {
+                break;
+            }
+            if state[l] == 1 {
+                let from = walk.iter().position(|&x| x == l).unwrap_or(0);
+                let mut cycle: Vec<usize> = walk[from..].to_vec();
+                cycle.reverse();
+                let n = cycle.len();
+                let mut links: Vec<&str> = cycle
+                    .iter()
+                    .take(SHOWN)
+                    .map(|&x| urdf.links[x].name.as_str())
+                    .collect();
+                let mut joints: Vec<&str> = cycle
+                    .iter()
+                    .skip(1)
+                    .chain(std::iter::once(&cycle[0]))
+                    .take(SHOWN)
+                    .filter_map(|&x| parent_joint[x])
+                    .map(|k| urdf.joints[k].name.as_str())
+                    .collect();
+                let all = if n > SHOWN {
+                    links.push("…");
+                    joints.push("…");
+                    format!(", {n} links in all")
+                } else {
+                    String::new()
+                };
+                links.push(urdf.links[cycle[0]].name.as_str());
+                return format!(
+                    "the joints form a cycle through links {} (joints {}{all})",
+                    links.join(" → "),
+                    joints.join(", ")
+                );
+            }
+            state[l] = 1;
+            walk.push(l);
+            match parent_joint[l] {
+                Some(k) => l = joint_links[k].0,
+                None => break,
+            }
+        }
+        for &x in &walk {
+            state[x] = 2;
+        }
+    }
+    "the joints form a cycle".into()
 }
 
 impl Group {

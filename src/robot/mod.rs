@@ -94,14 +94,28 @@ pub(crate) fn parse_numbers<const N: usize>(text: &str) -> Option<[f64; N]> {
 }
 
 /// Parses URDF or SRDF text and checks that its root is `<robot>` (both formats share it);
-/// `path` names the file in errors.
+/// `path` names the file in errors. The parser stops at [`crate::limits::MAX_XML_NODES`]
+/// nodes, so a huge file is refused before its tree is built.
 pub(crate) fn robot_xml<'t>(
     text: &'t str,
     path: &Path,
 ) -> Result<roxmltree::Document<'t>, RobotError> {
-    let doc = roxmltree::Document::parse(text).map_err(|e| RobotError::Xml {
-        path: path.to_path_buf(),
-        message: e.to_string(),
+    let options = roxmltree::ParsingOptions {
+        nodes_limit: crate::limits::MAX_XML_NODES,
+        ..roxmltree::ParsingOptions::default()
+    };
+    let doc = roxmltree::Document::parse_with_options(text, options).map_err(|e| match e {
+        roxmltree::Error::NodesLimitReached => RobotError::Invalid {
+            path: path.to_path_buf(),
+            message: format!(
+                "more than {} XML nodes, far more than any robot description has",
+                crate::limits::MAX_XML_NODES
+            ),
+        },
+        e => RobotError::Xml {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        },
     })?;
     let root = doc.root_element();
     if !root.has_tag_name("robot") {

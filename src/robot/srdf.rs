@@ -4,7 +4,9 @@
 //! Read: `<group name>` with `<chain base_link tip_link>`, `<joint name>`, `<link name>` and
 //! `<group name>` (subgroup) members; `<disable_collisions link1 link2>`; `<virtual_joint
 //! name type parent_frame child_link>`. Group states, end effectors and passive joints are
-//! ignored (a passive joint is simply not moved by a planning group of arm joints).
+//! ignored (a passive joint is simply not moved by a planning group of arm joints). A
+//! `<disable_collisions>` naming a link the URDF lacks is skipped with a warning, as MoveIt's
+//! SRDF reader skips it ([`crate::robot::Arm::warnings`]).
 
 use super::RobotError;
 use std::path::Path;
@@ -72,6 +74,7 @@ pub fn parse_srdf(text: &str, path: &Path) -> Result<Srdf, RobotError> {
         })
     };
     let mut srdf = Srdf::default();
+    let mut group_names = std::collections::HashSet::new();
     for node in root.children().filter(|n| n.is_element()) {
         match node.tag_name().name() {
             "group" => {
@@ -88,7 +91,7 @@ pub fn parse_srdf(text: &str, path: &Path) -> Result<Srdf, RobotError> {
                         _ => {}
                     }
                 }
-                if srdf.groups.iter().any(|h| h.name == g.name) {
+                if !group_names.insert(g.name.clone()) {
                     return Err(invalid(format!("group {} is defined twice", g.name)));
                 }
                 srdf.groups.push(g);

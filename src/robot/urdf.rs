@@ -7,6 +7,8 @@
 //! `<child>`, `<axis>` (default `1 0 0`), `<limit lower upper>` (urdfdom's default 0) and
 //! `<mimic joint multiplier offset>`. Visual and inertial elements, materials, transmissions
 //! and Gazebo tags are ignored. Floating and planar joints are refused: they are not arm joints.
+//! A URDF of more than [`crate::limits::MAX_URDF_ELEMENTS`] links and joints, or more than
+//! [`crate::limits::MAX_COLLISION_ELEMENTS`] collision elements, is refused before any is read.
 
 use super::shapes::Primitive;
 use super::{parse_number, parse_numbers, RobotError};
@@ -133,6 +135,30 @@ pub fn parse_urdf(text: &str, path: &Path) -> Result<Urdf, RobotError> {
     };
     let root = doc.root_element();
     let name = root.attribute("name").unwrap_or("").to_string();
+    // counted before anything is built: everything after (the tree, the self-collision pairs,
+    // the link geometry) grows with these
+    let (mut elements, mut collisions) = (0, 0);
+    for n in root.children() {
+        if n.has_tag_name("link") || n.has_tag_name("joint") {
+            elements += 1;
+            collisions += n.children().filter(|c| c.has_tag_name("collision")).count();
+        }
+    }
+    let (max, max_collisions) = (
+        crate::limits::MAX_URDF_ELEMENTS,
+        crate::limits::MAX_COLLISION_ELEMENTS,
+    );
+    if elements > max {
+        return Err(invalid(format!(
+            "{elements} links and joints: more than the {max} viaroad reads from a robot"
+        )));
+    }
+    if collisions > max_collisions {
+        return Err(invalid(format!(
+            "{collisions} collision elements: more than the {max_collisions} viaroad reads \
+             from a robot"
+        )));
+    }
     let mut links = Vec::new();
     let mut joints = Vec::new();
     for node in root.children().filter(|n| n.is_element()) {

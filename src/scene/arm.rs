@@ -638,6 +638,16 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         Some(GroupSpec::Name(n)) => GroupChoice::Srdf(n.clone()),
         Some(GroupSpec::Joints(j)) => GroupChoice::Joints(j.clone()),
     };
+    // the environment is read (and its limits checked) before the robot's meshes are
+    let moveit_scene = file
+        .environment
+        .as_ref()
+        .and_then(|e| e.moveit_scene.as_ref())
+        .map(|s| dir.join(s));
+    let planning_scene = moveit_scene
+        .as_deref()
+        .map(load_planning_scene)
+        .transpose()?;
     let mut arm = Arm::load(
         &urdf,
         srdf.as_deref(),
@@ -647,15 +657,9 @@ pub(crate) fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         },
     )
     .map_err(robot_err)?;
-    let mut warnings = Vec::new();
-    let moveit_scene = file
-        .environment
-        .as_ref()
-        .and_then(|e| e.moveit_scene.as_ref())
-        .map(|s| dir.join(s));
-    let objects = match &moveit_scene {
-        Some(p) => {
-            let ps = load_planning_scene(p)?;
+    let mut warnings = std::mem::take(&mut arm.warnings);
+    let objects = match planning_scene {
+        Some(ps) => {
             ps.apply_to(&mut arm).map_err(robot_err)?;
             ps.objects
         }

@@ -20,6 +20,7 @@ pub mod mesh_io;
 pub mod moveit;
 pub mod ompl_cfg;
 pub mod toml_format;
+mod yaml_depth;
 
 pub use crate::geometry::hull as shapes;
 use crate::geometry::{GeometryError, Polygon, TriMesh};
@@ -121,6 +122,11 @@ impl From<MeshError> for SceneError {
 /// memory runs out, or block for ever.
 pub(crate) fn read_input_text(path: &Path) -> Result<String, SceneError> {
     Ok(crate::mesh_io::read_input_text(path)?)
+}
+
+/// The text of an input file of at most `limit` bytes, its size checked before it is read.
+pub(crate) fn read_input_text_within(path: &Path, limit: u64) -> Result<String, SceneError> {
+    Ok(crate::mesh_io::read_input_text_within(path, limit)?)
 }
 
 /// Refuses robot and obstacle coordinates beyond [`crate::limits::MAX_COORDINATE`] (and disc

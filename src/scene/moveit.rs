@@ -14,11 +14,16 @@
 //! placed by [`CollisionObject::placed`] once the robot's state is known ([`Arm::frame_pose`]);
 //! attached objects, planes and octomaps are not read.
 //!
+//! A file is read if it has at most [`MAX_MOVEIT_YAML_BYTES`], nests at most
+//! [`MAX_YAML_DEPTH`] lists and maps, and a scene at most [`MAX_SCENE_OBJECTS`] objects and
+//! [`MAX_SCENE_SHAPES`] primitives and meshes ([`crate::limits`]).
+//!
 //! Curved primitives become polytopes that contain them ([`crate::robot::shapes`]) when the
 //! exact oracle needs them; here they stay exact [`Primitive`]s.
 
 use super::SceneError;
 use crate::geometry::TriMesh;
+use crate::limits::{MAX_MOVEIT_YAML_BYTES, MAX_SCENE_OBJECTS, MAX_SCENE_SHAPES, MAX_YAML_DEPTH};
 pub use crate::robot::objects::{placed_objects, CollisionObject, ObjectShape};
 use crate::robot::{Arm, Primitive, RobotError};
 use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion};
@@ -88,6 +93,39 @@ pub struct MotionPlanRequest {
 }
 
 // ---- the YAML as written (serde) ----
+
+/// How a list longer than its limit ends its message, so that [`parse_yaml`] can tell it from
+/// a YAML of the wrong shape.
+const TOO_MANY: &str = "the most viaroad reads";
+
+/// A list of at most `MAX` items, refused at the first item past the limit (before it or any
+/// later one is built).
+fn at_most<'de, const MAX: usize, T, D>(de: D) -> Result<Vec<T>, D::Error>
+where
+    T: Deserialize<'de>,
+    D: serde::Deserializer<'de>,
+{
+    struct Bounded<const MAX: usize, T>(std::marker::PhantomData<T>);
+    impl<'de, const MAX: usize, T: Deserialize<'de>> serde::de::Visitor<'de> for Bounded<MAX, T> {
+        type Value = Vec<T>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            write!(f, "a list of at most {MAX} items")
+        }
+        fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
+            let mut items = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(MAX));
+            while let Some(item) = seq.next_element()? {
+                if items.len() == MAX {
+                    return Err(serde::de::Error::custom(format!(
+                        "more than {MAX} items, {TOO_MANY},"
+                    )));
+                }
+                items.push(item);
+            }
+            Ok(items)
+        }
+    }
+    de.deserialize_seq(Bounded::<MAX, T>(std::marker::PhantomData))
+}
 
 #[derive(Deserialize)]
 #[serde(untagged)]
@@ -175,19 +213,19 @@ struct RawObject {
     header: RawHeader,
     #[serde(default)]
     pose: Option<RawPose>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "at_most::<MAX_SCENE_SHAPES, _, _>")]
     primitives: Vec<RawPrimitive>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "at_most::<MAX_SCENE_SHAPES, _, _>")]
     primitive_poses: Vec<RawPose>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "at_most::<MAX_SCENE_SHAPES, _, _>")]
     meshes: Vec<RawMesh>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "at_most::<MAX_SCENE_SHAPES, _, _>")]
     mesh_poses: Vec<RawPose>,
 }
 
 #[derive(Deserialize, Default)]
 struct RawWorld {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "at_most::<MAX_SCENE_OBJECTS, _, _>")]
     collision_objects: Vec<RawObject>,
 }
 
@@ -397,20 +435,55 @@ fn object(o: &RawObject) -> Result<CollisionObject, String> {
     })
 }
 
+/// Deserializes a MoveIt message, after checking that it nests at most
+/// [`MAX_YAML_DEPTH`] collections deep ([`super::yaml_depth`]).
 fn parse_yaml<T: serde::de::DeserializeOwned>(text: &str, path: &Path) -> Result<T, SceneError> {
-    yaml_serde::from_str(text).map_err(|e| SceneError::Parse {
-        path: path.to_path_buf(),
-        message: format!("not a MoveIt YAML message of the expected shape: {e}"),
+    if let Some(line) = super::yaml_depth::first_too_deep(text, MAX_YAML_DEPTH) {
+        return Err(SceneError::Invalid {
+            path: path.to_path_buf(),
+            message: format!(
+                "line {line}: YAML nested deeper than {MAX_YAML_DEPTH} lists and maps \
+                 (a MoveIt message nests about eight)"
+            ),
+        });
+    }
+    yaml_serde::from_str(text).map_err(|e| {
+        let e = e.to_string();
+        if e.contains(TOO_MANY) {
+            SceneError::Invalid {
+                path: path.to_path_buf(),
+                message: e,
+            }
+        } else {
+            SceneError::Parse {
+                path: path.to_path_buf(),
+                message: format!("not a MoveIt YAML message of the expected shape: {e}"),
+            }
+        }
     })
 }
 
-/// Parses a PlanningScene YAML; `path` names the file in errors.
+/// Parses a PlanningScene YAML; `path` names the file in errors. At most
+/// [`MAX_SCENE_OBJECTS`] collision objects and [`MAX_SCENE_SHAPES`] primitives and meshes in
+/// all are read; a longer list is refused at its first item past the limit.
 pub fn parse_planning_scene(text: &str, path: &Path) -> Result<PlanningScene, SceneError> {
     let raw: RawScene = parse_yaml(text, path)?;
     let invalid = |message: String| SceneError::Invalid {
         path: path.to_path_buf(),
         message,
     };
+    let shapes: usize = raw
+        .world
+        .collision_objects
+        .iter()
+        .map(|o| o.primitives.len() + o.meshes.len())
+        .sum();
+    if shapes > MAX_SCENE_SHAPES {
+        return Err(invalid(format!(
+            "{shapes} primitives and meshes: more than the {MAX_SCENE_SHAPES} viaroad reads \
+             from a scene"
+        )));
+    }
     let objects = raw
         .world
         .collision_objects
@@ -451,9 +524,13 @@ pub fn parse_planning_scene(text: &str, path: &Path) -> Result<PlanningScene, Sc
     })
 }
 
-/// Reads a PlanningScene YAML file.
+/// Reads a PlanningScene YAML file of at most [`MAX_MOVEIT_YAML_BYTES`] (checked before it is
+/// read).
 pub fn load_planning_scene(path: &Path) -> Result<PlanningScene, SceneError> {
-    parse_planning_scene(&super::read_input_text(path)?, path)
+    parse_planning_scene(
+        &super::read_input_text_within(path, MAX_MOVEIT_YAML_BYTES)?,
+        path,
+    )
 }
 
 /// Parses a MotionPlanRequest YAML; `path` names the file in errors. The goal is the first
@@ -505,9 +582,13 @@ pub fn parse_motion_plan_request(text: &str, path: &Path) -> Result<MotionPlanRe
     })
 }
 
-/// Reads a MotionPlanRequest YAML file.
+/// Reads a MotionPlanRequest YAML file of at most [`MAX_MOVEIT_YAML_BYTES`] (checked before it
+/// is read).
 pub fn load_motion_plan_request(path: &Path) -> Result<MotionPlanRequest, SceneError> {
-    parse_motion_plan_request(&super::read_input_text(path)?, path)
+    parse_motion_plan_request(
+        &super::read_input_text_within(path, MAX_MOVEIT_YAML_BYTES)?,
+        path,
+    )
 }
 
 impl PlanningScene {
