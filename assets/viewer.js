@@ -1,6 +1,7 @@
 // viaroad's viewer page (src/export/html.rs embeds this after the three.js bundle and the
-// .glb): orbit controls, play/pause and a time slider, a legend read from the file's
-// asset.extras. window.viaroad is the hook the browser test (tests/view_browser.rs) drives.
+// .glb): orbit controls, play/pause and a time slider; the page carries the legend (written
+// from the file's asset.extras.legend). window.viaroad is the hook the browser test
+// (tests/view_browser.rs) drives.
 (function () {
   'use strict';
   const T = window.VIAROAD_THREE;
@@ -60,27 +61,6 @@
       render();
     }
     requestAnimationFrame(tick);
-  }
-
-  function fmt(x, digits) {
-    return typeof x === 'number' ? x.toFixed(digits) : '–';
-  }
-
-  function fillLegend(extras) {
-    const l = (extras && extras.legend) || {};
-    const row = (html) => {
-      const d = document.createElement('div');
-      d.innerHTML = html;
-      legend.appendChild(d);
-    };
-    const text = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
-    row(text(l.space || '') + (l.source ? ' · ' + text(l.source) : ''));
-    const raw = typeof l.raw_length === 'number';
-    row('<span class="swatch" style="background:#0967d2"></span>' + (raw ? 'shortened path' : 'path') + ', length ' + fmt(l.length, 3));
-    if (raw) {
-      row('<span class="swatch" style="background:#e12d39"></span>raw path, length ' + fmt(l.raw_length, 3));
-    }
-    row('<span class="swatch" style="background:#3ebd93"></span>robot' + (typeof l.calls === 'number' ? ' · oracle calls ' + l.calls : ''));
   }
 
   function frame(root) {
@@ -148,7 +128,6 @@
     '',
     (gltf) => {
       scene.add(gltf.scene);
-      fillLegend(gltf.asset && gltf.asset.extras);
       if (gltf.animations.length > 0) {
         mixer = new T.AnimationMixer(gltf.scene);
         const action = mixer.clipAction(gltf.animations[0]);

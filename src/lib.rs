@@ -24,6 +24,7 @@
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
 //! | [`limits`] | the largest numbers accepted from users |
 //! | [`safe_file`] | atomic saves that never replace special files; bounded reads |
+//! | [`short`] | numbers and configurations in short form for human messages |
 #![warn(missing_docs)]
 
 pub mod bench;
@@ -43,4 +44,5 @@ pub mod roadmap;
 pub mod robot;
 pub mod safe_file;
 pub mod scene;
+pub mod short;
 pub mod space;

@@ -1,12 +1,14 @@
 //! glTF export (issue 13): the `.glb` read back by a reader written here (not the writer's),
 //! the drawn motion re-checked by the independent validity checkers (parry, conservative
 //! advancement), the arm's links against forward kinematics, and every file run through the
-//! Khronos glTF validator (npm `gltf-validator`, pinned in tools/js; skipped with a message
-//! where node or the package is absent: `cd tools/js && npm ci --omit=dev`).
+//! Khronos glTF validator (npm `gltf-validator`, pinned in tools/js; skipped with a `SKIPPED`
+//! line on stderr where node or the package is absent, `cd tools/js && npm ci --omit=dev`,
+//! and failed instead where `VIAROAD_REQUIRE_JS` is set: `common::js`).
 
 mod common;
 
 use common::cli::{fails_with, temp_dir, viaroad, write};
+use common::js::{node_script, skip};
 use common::rigid::RigidChecker;
 use common::rigid2d::PlanarChecker;
 use serde_json::Value;
@@ -19,16 +21,6 @@ use viaroad::robot::arm::GroupChoice;
 use viaroad::robot::{Arm, ArmOptions};
 use viaroad::scene::moveit::{load_motion_plan_request, load_planning_scene};
 use viaroad::scene::{ompl_cfg, Scene};
-
-/// Says why a test is skipped; fails it instead where `VIAROAD_REQUIRE_JS` is set (`.ci/run`
-/// installs the tools, so a skip there would hide a broken install).
-fn skip(test: &str, why: &str) {
-    assert!(
-        std::env::var_os("VIAROAD_REQUIRE_JS").is_none(),
-        "{test}: {why}, and VIAROAD_REQUIRE_JS is set"
-    );
-    eprintln!("SKIPPED {test}: {why}");
-}
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -389,17 +381,7 @@ fn arm_links_follow_forward_kinematics_at_every_corner() {
 
 /// `node` and tools/js/node_modules/gltf-validator, or why not.
 fn validator() -> Result<PathBuf, String> {
-    let js = root().join("tools/js");
-    if !js.join("node_modules/gltf-validator").is_dir() {
-        return Err(
-            "tools/js/node_modules/gltf-validator is absent (cd tools/js && npm ci --omit=dev)"
-                .into(),
-        );
-    }
-    match Command::new("node").arg("--version").output() {
-        Ok(o) if o.status.success() => Ok(js.join("validate.js")),
-        _ => Err("node is absent".into()),
-    }
+    node_script("gltf-validator", "validate.js")
 }
 
 #[test]

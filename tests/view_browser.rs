@@ -5,8 +5,9 @@
 //! of it the full render differs from the render without the robot), that it moved (the masks differ and the
 //! full renders change where the robot was), and that the console stayed free of errors.
 //!
-//! Skipped with a message where Chromium (`/usr/bin/chromium`, or `CHROMIUM`), node or the
-//! npm packages are absent; `.ci/run` installs them. One rigid body (OMPL.app's Easy, a
+//! Skipped with a `SKIPPED` line on stderr where Chromium (`/usr/bin/chromium`, or
+//! `CHROMIUM`), node or the npm packages are absent, and failed instead where
+//! `VIAROAD_REQUIRE_JS` is set (`common::js`); `.ci/run` installs them. One rigid body (OMPL.app's Easy, a
 //! handful of nodes) and one arm (the Panda in
 //! MotionBenchMaker's table_pick problem 1, `scenes/arms/panda-table_pick-1.toml`), so
 //! that the suite stays quick.
@@ -14,23 +15,10 @@
 mod common;
 
 use common::cli::{stderr, temp_dir, viaroad};
+use common::js::{node_script, skip};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
-
-/// Says why a test is skipped; fails it instead where `VIAROAD_REQUIRE_JS` is set (`.ci/run`
-/// installs the tools, so a skip there would hide a broken install).
-fn skip(test: &str, why: &str) {
-    assert!(
-        std::env::var_os("VIAROAD_REQUIRE_JS").is_none(),
-        "{test}: {why}, and VIAROAD_REQUIRE_JS is set"
-    );
-    eprintln!("SKIPPED {test}: {why}");
-}
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
 
 /// The browser and the driver, or why the test cannot run.
 fn browser() -> Result<(PathBuf, PathBuf), String> {
@@ -43,17 +31,7 @@ fn browser() -> Result<(PathBuf, PathBuf), String> {
             chromium.display()
         ));
     }
-    let js = root().join("tools/js");
-    if !js.join("node_modules/playwright-core").is_dir() {
-        return Err(
-            "tools/js/node_modules/playwright-core is absent (cd tools/js && npm ci --omit=dev)"
-                .into(),
-        );
-    }
-    match Command::new("node").arg("--version").output() {
-        Ok(o) if o.status.success() => Ok((chromium, js.join("view-check.js"))),
-        _ => Err("node is absent".into()),
-    }
+    Ok((chromium, node_script("playwright-core", "view-check.js")?))
 }
 
 /// Writes the page with `viaroad view ARGS -o page.html`, loads it and returns the report.

@@ -23,6 +23,7 @@ use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};
 use crate::roadmap::RoadmapError;
 use crate::roadmap::{Budget, LearnError, LearnParams, Learner, QueryOptions, QueryPlanner};
 use crate::scene::{Obstacle, Robot, Scene};
+use crate::short;
 use crate::space::{Config, Space, SpaceKind};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -256,8 +257,9 @@ pub fn run_scene(scene: &Scene, cfg: &ValidityConfig) -> Result<ValidityReport, 
                     let ends = path.first() == Some(&r.start) && path.last() == Some(&r.goal);
                     if !ends {
                         return Verdict::Invalid(format!(
-                            "{what} path does not join {:?} to {:?}",
-                            r.start, r.goal
+                            "{what} path does not join {} to {}",
+                            short::config(&r.start),
+                            short::config(&r.goal)
                         ));
                     }
                     if let Err(e) = checker.check_path(path) {
@@ -482,18 +484,29 @@ fn check_disc_path(
 ) -> Result<(), String> {
     for (k, q) in path.iter().enumerate() {
         if q.len() != lower.len() {
-            return Err(format!("corner {k} {q:?} has the wrong dimension"));
+            return Err(format!(
+                "corner {k} {} has the wrong dimension",
+                short::config(q)
+            ));
         }
         for i in 0..q.len() {
             if !(q[i] >= lower[i] - TOL && q[i] <= upper[i] + TOL) {
-                return Err(format!("corner {k} {q:?} outside the bounds"));
+                return Err(format!(
+                    "corner {k} {} outside the bounds",
+                    short::config(q)
+                ));
             }
         }
     }
     if path.len() == 1 {
         for (c, r) in centres.iter().zip(radii) {
             if segment_point_distance(&path[0], &path[0], c) <= *r {
-                return Err(format!("{:?} lies in disc {c:?} of radius {r}", path[0]));
+                return Err(format!(
+                    "{} lies in disc {} of radius {}",
+                    short::config(&path[0]),
+                    short::config(c),
+                    short::num(*r)
+                ));
             }
         }
     }
@@ -503,8 +516,12 @@ fn check_disc_path(
             // closed balls: a segment at exactly the radius touches, and touching collides
             if d < r - TOL {
                 return Err(format!(
-                    "segment {k} {:?}→{:?} passes {d} from disc {c:?} of radius {r}",
-                    w[0], w[1]
+                    "segment {k} {}→{} passes {} from disc {} of radius {}",
+                    short::config(&w[0]),
+                    short::config(&w[1]),
+                    short::num(d),
+                    short::config(c),
+                    short::num(*r)
                 ));
             }
         }
@@ -543,7 +560,7 @@ fn certify_by_advancement(
 fn in_box(q: &[f64], lower: &[f64], upper: &[f64]) -> Result<(), String> {
     for i in 0..lower.len() {
         if !(q[i] >= lower[i] - TOL && q[i] <= upper[i] + TOL) {
-            return Err(format!("{q:?} lies outside the bounds"));
+            return Err(format!("{} lies outside the bounds", short::config(q)));
         }
     }
     Ok(())
@@ -819,7 +836,8 @@ pub mod rigid {
             if let Some(q) = path.first() {
                 if self.contained(q) {
                     return Err(format!(
-                        "the robot at {q:?} lies inside an obstacle (or holds one)"
+                        "the robot at {} lies inside an obstacle (or holds one)",
+                        short::config(q)
                     ));
                 }
             }

@@ -8,7 +8,7 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::export::{Legend, Plan};
-use viaroad::local::{path_length, shorten, LocalSpec};
+use viaroad::local::{first_collision_on_path, path_length, shorten, LocalSpec};
 use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::robot::arm::GroupChoice;
 use viaroad::robot::{Arm, ArmChecker, ArmOptions};
@@ -25,7 +25,9 @@ pub struct PlanArgs {
     /// start and goal, as `solve --roadmap` does).
     #[arg(long)]
     pub roadmap: Option<PathBuf>,
-    /// Draw this path (an OMPL state file, one state per line) instead of planning one.
+    /// Draw this path (an OMPL state file, one state per line) instead of planning one. It is
+    /// checked first, as exactly as the scene's oracle answers: a path that collides is drawn
+    /// as it is (not shortened) and said so in the legend and in a warning.
     #[arg(long, conflicts_with = "roadmap")]
     pub path: Option<PathBuf>,
     /// Which of the scene's queries to plan (1-based).
@@ -64,12 +66,37 @@ pub struct PlanArgs {
 
 /// What `export` writes and `view` embeds.
 pub struct Exported {
-    /// The scene's name.
-    pub name: String,
     /// The glTF binary.
     pub glb: Vec<u8>,
     /// One line on what it shows.
     pub summary: String,
+    /// What the viewer page's legend says.
+    pub legend: Legend,
+}
+
+/// Where a path collides, as the legend and the warning say it: `segment` 0-based (shown
+/// 1-based: the motion from configuration k to k + 1), `t` the share of it travelled; where
+/// not `proved`, the segment is only not proved free from `t` on.
+fn collision_text(corners: usize, segment: usize, t: f64, proved: bool) -> String {
+    if corners == 1 {
+        "collides at its only configuration".to_string()
+    } else if proved {
+        format!("collides in segment {} at t = {t:.3}", segment + 1)
+    } else {
+        format!(
+            "is not proved free in segment {} from t = {t:.3} (too close to an obstacle to certify)",
+            segment + 1
+        )
+    }
+}
+
+/// Reads a `--path` file, refusing one with no configuration (nothing to draw or follow).
+fn read_path(file: &Path, space: &Space) -> anyhow::Result<Vec<viaroad::space::Config>> {
+    let path = ompl_cfg::read_states(file, space)?;
+    if path.is_empty() {
+        anyhow::bail!("the path file {} holds no configuration", file.display());
+    }
+    Ok(path)
 }
 
 /// Plans (or reads) the path and builds the `.glb`: a rigid-body scene, or an arm in a MoveIt
@@ -81,9 +108,9 @@ pub fn export(a: &PlanArgs) -> anyhow::Result<Exported> {
             let p = plan(a)?;
             let (glb, summary) = glb(&p)?;
             Ok(Exported {
-                name: p.scene.name.clone(),
                 glb,
                 summary,
+                legend: p.legend,
             })
         }
     }
@@ -106,28 +133,30 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
     }
     scene.apply_to(&mut arm)?;
     let (start, goal) = req.start_goal(&mut arm)?;
-    let (path, source) = match &a.path {
+    let (path, source, raw_name) = match &a.path {
         Some(file) => {
             let space = Space::euclidean(arm.group.lower.clone(), arm.group.upper.clone())?;
-            let path = ompl_cfg::read_states(file, &space)?;
-            (path, format!("path file {}", file.display()))
+            let path = read_path(file, &space)?;
+            (path, format!("path file {}", file.display()), "given path")
         }
-        None => (vec![start, goal], "start → goal".to_string()),
+        None => (
+            vec![start, goal],
+            "start → goal".to_string(),
+            "straight motion start → goal",
+        ),
     };
     let checker = ArmChecker::new(&arm, &scene.objects)?;
     // the checker's own sampling step in joint space (radians): about 0.6° per joint
     let report = checker.check_path(&path, 0.01)?;
-    let verdict = match &report.first_invalid {
-        None => "free".to_string(),
-        Some((seg, t, c)) => {
-            let what: Vec<String> = c.iter().map(|c| format!("{}–{}", c.a, c.b)).collect();
-            format!(
-                "COLLIDES in segment {} at t = {t:.3} {}",
-                seg + 1,
-                what.join(", ")
-            )
+    let collision = report.first_invalid.as_ref().map(|(seg, t, c)| {
+        let what: Vec<String> = c.iter().map(|c| format!("{}–{}", c.a, c.b)).collect();
+        let text = collision_text(path.len(), *seg, *t, true);
+        if what.is_empty() {
+            format!("{text} (out of bounds)")
+        } else {
+            format!("{text} ({})", what.join(", "))
         }
-    };
+    });
     // MotionBenchMaker scenes have no name: their family folder and file say which they are
     let name = if scene.name.is_empty() {
         let part = |p: Option<&std::ffi::OsStr>| p.map(|s| s.to_string_lossy().into_owned());
@@ -139,6 +168,7 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
     } else {
         scene.name.clone()
     };
+    // from +0.0: a sum of no terms would be -0.0
     let length: f64 = path
         .windows(2)
         .map(|w| {
@@ -148,22 +178,27 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
                 .sum::<f64>()
                 .sqrt()
         })
-        .sum();
-    let legend = Legend {
+        .fold(0.0, |total, l| total + l);
+    let verdict = match &collision {
+        None => "free",
+        Some(_) => "collides",
+    };
+    let mut legend = Legend {
         scene: name.clone(),
         space: format!("arm, {} joints ({})", arm.group.dof(), arm.group.name),
         source: format!("{source}; arm checker: {verdict}"),
-        raw_length: None,
-        length: Some(length),
-        calls: None,
+        ..Legend::default()
     };
     let plan = Plan {
         raw: path.clone(),
         shortened: Vec::new(),
     };
+    legend.set_paths(&plan, raw_name, length, length, collision.as_deref());
+    // the shortened length is the raw one here: no second row, no raw length to show
+    legend.raw_length = None;
     let g = viaroad::export::arm::arm_gltf(&arm, &scene.objects, &plan, 0, &legend)?;
-    if report.first_invalid.is_some() {
-        eprintln!("warning: the drawn path collides ({verdict})");
+    if let Some(c) = &collision {
+        eprintln!("warning: the {raw_name} {c}; drawn as it is");
     }
     Ok(Exported {
         summary: format!(
@@ -171,8 +206,8 @@ fn export_arm(a: &PlanArgs, request: &Path, urdf: &Path) -> anyhow::Result<Expor
             path.len(),
             legend.source
         ),
-        name,
         glb: g.to_glb(),
+        legend,
     })
 }
 
@@ -201,15 +236,28 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
         ..Legend::default()
     };
     let mut roadmap = None;
+    let mut collision = None;
     let plan = if let Some(file) = &a.path {
-        let raw = ompl_cfg::read_states(file, &scene.space)?;
+        let raw = read_path(file, &scene.space)?;
         let mut counts = viaroad::oracle::CallCounts::default();
-        let shortened = if a.shorten == Shortening::Off {
+        // a given path is vouched for by no planner: checked before anything trusts it
+        // (shortening assumes a free path)
+        let hit =
+            first_collision_on_path(&scene.space, oracle.as_ref(), &groups, &raw, &mut counts)
+                .context("checking the path")?;
+        collision = hit.map(|h| collision_text(raw.len(), h.segment, h.t, h.proved));
+        let shortened = if a.shorten == Shortening::Off || hit.is_some() {
             Vec::new()
         } else {
             shorten(&scene.space, oracle.as_ref(), &groups, &raw, &mut counts)
                 .context("shortening")?
         };
+        if let Some(c) = &collision {
+            eprintln!(
+                "warning: the given path {} {c}; drawn as it is, not shortened",
+                file.display()
+            );
+        }
         legend.source = format!("path file {}", file.display());
         legend.calls = Some(counts.intersect_calls());
         Plan { raw, shortened }
@@ -295,8 +343,20 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
             shortened,
         }
     };
-    legend.raw_length = Some(path_length(&scene.space, &groups, &plan.raw));
-    legend.length = Some(path_length(&scene.space, &groups, plan.animated()));
+    let raw_name = if a.path.is_some() {
+        "given path"
+    } else if plan.shortened.is_empty() {
+        "path"
+    } else {
+        "raw path"
+    };
+    legend.set_paths(
+        &plan,
+        raw_name,
+        path_length(&scene.space, &groups, &plan.raw),
+        path_length(&scene.space, &groups, plan.animated()),
+        collision.as_deref(),
+    );
     Ok(Planned {
         scene,
         groups,
@@ -337,7 +397,7 @@ pub fn glb(p: &Planned) -> anyhow::Result<(Vec<u8>, String)> {
 /// Runs `export`.
 pub fn run(a: ExportArgs) -> anyhow::Result<()> {
     // refused before the planning, not after it
-    viaroad::safe_file::resolve_target(&a.output)?;
+    super::output::check_writable(&a.output)?;
     let e = export(&a.plan)?;
     super::output::save(&a.output, &e.glb)?;
     eprintln!("{}", e.summary);

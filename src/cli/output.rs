@@ -24,6 +24,34 @@ pub fn save(file: &Path, bytes: &[u8]) -> anyhow::Result<PathBuf> {
     })?)
 }
 
+/// Refuses, before a long run, a file that could not be saved at its end: a special file, or
+/// one in a directory where no file can be created (read-only, or under a regular file). A
+/// save writes a temporary file beside the target and renames it, so that is what is tried:
+/// missing parent directories are created (as the save would), a temporary file is created
+/// and removed again.
+pub fn check_writable(file: &Path) -> anyhow::Result<()> {
+    let target = viaroad::safe_file::resolve_target(file)?;
+    create_parent(&target)?;
+    let probe = viaroad::safe_file::temp_path(&target);
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .with_context(|| {
+            format!(
+                "cannot save {}: no file can be created in {}",
+                file.display(),
+                dir.display()
+            )
+        })?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
 /// Refuses, before a long run, the outputs `names` in `dir` that could not be saved at its end
 /// (special files).
 pub fn check_targets(dir: &Path, names: &[&str]) -> anyhow::Result<()> {

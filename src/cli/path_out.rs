@@ -52,11 +52,13 @@ pub struct PathOut {
 
 impl PathOut {
     /// Prepares writing the paths of `total` queries under `base`: refuses a special file as
-    /// `base`, creates missing directories (as `build -o` does) and removes the regular files
-    /// earlier runs left under the names this run may write.
+    /// `base` and a directory no file can be created in, creates missing directories (as
+    /// `build -o` does) and removes the regular files earlier runs left under the names this
+    /// run may write.
     pub fn new(base: &Path, total: usize) -> anyhow::Result<PathOut> {
         viaroad::safe_file::resolve_target(base)?;
-        super::output::create_parent(base)?;
+        // a directory no file can be created in is refused now, not at the first answer
+        super::output::check_writable(&file_for(base, 0, total))?;
         let mut removed = Vec::new();
         let mut remove = |p: PathBuf| {
             let regular = std::fs::symlink_metadata(&p).is_ok_and(|m| m.is_file());

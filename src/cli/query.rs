@@ -451,6 +451,11 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         },
     };
     let planner = planner.with_options(options.clone());
+    if let Some(out) = &a.keep_answers {
+        // a target that cannot be saved to is refused before the queries (and before any
+        // status line), not after them
+        super::output::check_writable(out)?;
+    }
     let path_out = match &a.path_out {
         Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
         None => None,
@@ -478,10 +483,6 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             ..Printed::default()
         }),
     };
-    if let Some(out) = &a.keep_answers {
-        // a target that cannot be saved to is refused before the queries, not after them
-        viaroad::safe_file::resolve_target(out)?;
-    }
     let deadline = super::interrupt::on_ctrl_c(Deadline::none());
     match &a.keep_answers {
         None => planner.query_each(&queries, &deadline, &|i, answer| printer.answer(i, &answer)),

@@ -16,9 +16,9 @@ pub struct ViewArgs {
 
 /// Runs `view`.
 pub fn run(a: ViewArgs) -> anyhow::Result<()> {
-    viaroad::safe_file::resolve_target(&a.output)?;
+    super::output::check_writable(&a.output)?;
     let e = export(&a.plan)?;
-    let page = viaroad::export::html::page(&e.name, &e.glb);
+    let page = viaroad::export::html::page(&e.legend, &e.glb);
     super::output::save(&a.output, page.as_bytes())?;
     eprintln!("{}", e.summary);
     eprintln!("wrote {} ({} bytes)", a.output.display(), page.len());

@@ -94,7 +94,10 @@ pub fn arm_gltf(
                 return Err(ExportError::Path {
                     which,
                     index,
-                    message: format!("{dof} finite joint values expected, got {q:?}"),
+                    message: format!(
+                        "{dof} finite joint values expected, got {}",
+                        crate::short::config(q)
+                    ),
                 });
             }
         }
@@ -176,7 +179,7 @@ pub fn arm_gltf(
         .and_then(|&j| arm.model.link(&arm.model.urdf.joints[j].child))
         .unwrap_or(arm.model.urdf.links.len().saturating_sub(1));
     for (name, corners, hex) in [
-        (names::RAW_PATH, &plan.raw, colour::RAW_PATH),
+        (names::RAW_PATH, &plan.raw, legend.raw_colour(plan)),
         (names::SHORT_PATH, &plan.shortened, colour::SHORT_PATH),
     ] {
         // through every key, not only the corners: the hand sweeps arcs between them

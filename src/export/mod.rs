@@ -58,6 +58,79 @@ pub struct Legend {
     pub length: Option<f64>,
     /// Oracle calls spent finding (and shortening) the path.
     pub calls: Option<u64>,
+    /// One row per path trace drawn, in the trace's colour ([`Legend::set_paths`]).
+    pub paths: Vec<PathRow>,
+}
+
+/// A path trace as the legend names it.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct PathRow {
+    /// What the row says: "shortened path", "given path — collides in segment 3 at t = 0.410".
+    pub label: String,
+    /// The trace's colour (CSS, `#rrggbb`): the key beside the label.
+    pub colour: String,
+    /// The path's length in the space's metric.
+    pub length: f64,
+    /// The path collides: the row is a warning, in the warning colour.
+    pub collides: bool,
+}
+
+impl Legend {
+    /// Names the traces of `plan` (as [`scene_gltf`] and [`arm::arm_gltf`] draw them): where
+    /// there is a shortened path, it (blue) and the raw path called `raw_name` (red); else
+    /// the raw path alone, blue, or in the warning colour with `collision` (where and how it
+    /// collides) said. Only a path checked free is ever shortened, so a collision is the raw
+    /// path's. Lengths are in the space's metric.
+    pub fn set_paths(
+        &mut self,
+        plan: &Plan,
+        raw_name: &str,
+        raw_length: f64,
+        length: f64,
+        collision: Option<&str>,
+    ) {
+        let row = |label: String, hex: u32, length: f64, collides: bool| PathRow {
+            label,
+            colour: colour::css(hex),
+            // `+ 0.0` turns a `-0.0` into `0.0`: a length is never negative
+            length: length + 0.0,
+            collides,
+        };
+        let raw = match collision {
+            Some(c) => row(
+                format!("{raw_name} — {c}"),
+                colour::WARNING,
+                raw_length,
+                true,
+            ),
+            None if plan.shortened.is_empty() => {
+                row(raw_name.to_string(), colour::SHORT_PATH, raw_length, false)
+            }
+            None => row(raw_name.to_string(), colour::RAW_PATH, raw_length, false),
+        };
+        self.paths = if plan.shortened.is_empty() {
+            vec![raw]
+        } else {
+            vec![
+                row("shortened path".into(), colour::SHORT_PATH, length, false),
+                raw,
+            ]
+        };
+        self.raw_length = Some(raw_length + 0.0);
+        self.length = Some(length + 0.0);
+    }
+
+    /// The colour of the trace of `plan`'s raw path (sRGB hex): red beside a shortened path;
+    /// alone, blue, or the warning colour where the legend says it collides.
+    pub(crate) fn raw_colour(&self, plan: &Plan) -> u32 {
+        if !plan.shortened.is_empty() {
+            colour::RAW_PATH
+        } else if self.paths.iter().any(|r| r.collides) {
+            colour::WARNING
+        } else {
+            colour::SHORT_PATH
+        }
+    }
 }
 
 /// The paths to draw: the planner's raw path and its shortened version (either may be empty).
@@ -89,6 +162,13 @@ mod colour {
     pub const SHORT_PATH: u32 = 0x0967d2;
     pub const ROADMAP: u32 = 0x7b8794;
     pub const BOUNDS: u32 = 0x1f2933;
+    /// A path that collides: orange, apart from the raw path's red and the valid path's blue.
+    pub const WARNING: u32 = 0xe8590c;
+
+    /// `hex` as CSS.
+    pub fn css(hex: u32) -> String {
+        format!("#{hex:06x}")
+    }
 
     /// `hex` as linear RGBA with opacity `alpha`.
     pub fn linear(hex: u32, alpha: f32) -> [f32; 4] {
@@ -430,7 +510,7 @@ pub fn scene_gltf(
             .collect()
     };
     for (name, path, hex) in [
-        (names::RAW_PATH, &plan.raw, colour::RAW_PATH),
+        (names::RAW_PATH, &plan.raw, legend.raw_colour(plan)),
         (names::SHORT_PATH, &plan.shortened, colour::SHORT_PATH),
     ] {
         if path.len() >= 2 {

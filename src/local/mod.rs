@@ -544,11 +544,140 @@ pub fn direct_connection(
 }
 
 /// Total length of a path of corners joined by direct paths (a straight motion of several
-/// joints by its Euclidean length, [`path_pieces`]).
+/// joints by its Euclidean length, [`path_pieces`]). Starts from `+0.0`: `Iterator::sum` of
+/// no terms is `-0.0`, which a one-corner path would print as `-0.0000`.
 pub fn path_length(space: &Space, groups: &[Group], path: &[Config]) -> f64 {
     path.windows(2)
         .map(|w| segment_length(space, groups, &w[0], &w[1]))
-        .sum()
+        .fold(0.0, |total, l| total + l)
+}
+
+/// Where a path first collides ([`first_collision_on_path`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathCollision {
+    /// The segment, 0-based: the motion from corner `segment` to corner `segment + 1`.
+    pub segment: usize,
+    /// The share of the segment's length travelled when the robot first touches (0 where the
+    /// segment's first corner collides); where not `proved`, the end of the longest part of
+    /// the segment proved free.
+    pub t: f64,
+    /// Whether a collision was found. `false` where the oracle answers a motion only yes or
+    /// no and could not prove the rest of the segment free, yet its first configuration
+    /// there is free (an arm's straight motion of several joints passing too close to an
+    /// obstacle for conservative advancement to finish).
+    pub proved: bool,
+}
+
+/// Bisections that locate where a motion answered only yes or no stops being proved free:
+/// 2⁻²⁰ of the motion, far below what a message shows.
+const YES_NO_BISECTIONS: usize = 20;
+
+/// Configurations tried past the part of such a motion proved free, looking for one in
+/// collision: steps of 1/1024 of the motion.
+const YES_NO_STEPS: usize = 1024;
+
+/// Where `motion` first collides as a share of its range, and whether a collision was found:
+/// exact where the oracle answers intervals. Where it answers only yes or no
+/// ([`OracleError::Unsupported`], an arm's straight motion of several joints), the longest
+/// prefix proved free is found by bisection, and the first configuration in collision past it
+/// (in steps of [`YES_NO_STEPS`]) is the answer; with none, the end of that prefix, not
+/// proved. `None` if the whole motion is free.
+fn first_hit_share(
+    oracle: &dyn CollisionOracle,
+    motion: &Motion,
+    counts: &mut CallCounts,
+) -> Result<Option<(f64, bool)>, OracleError> {
+    let r = motion.range;
+    let share = |t: f64| {
+        if r.hi > r.lo {
+            ((t - r.lo) / (r.hi - r.lo)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    match oracle.first_hit(motion, counts) {
+        Ok(hit) => return Ok(hit.map(|t| (share(t), true))),
+        Err(OracleError::Unsupported(_)) => {}
+        Err(e) => return Err(e),
+    }
+    if oracle.check_motion(motion, counts)? {
+        return Ok(None);
+    }
+    if !oracle.is_free(&motion.at(r.lo), counts) {
+        return Ok(Some((0.0, true)));
+    }
+    // [r.lo, lo] proved free, [r.lo, hi] not
+    let (mut lo, mut hi) = (r.lo, r.hi);
+    for _ in 0..YES_NO_BISECTIONS {
+        let mid = 0.5 * (lo + hi);
+        let prefix = motion.with_range(crate::interval::Interval { lo: r.lo, hi: mid });
+        if oracle.check_motion(&prefix, counts)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let step = (r.hi - r.lo) / YES_NO_STEPS as f64;
+    let mut t = hi;
+    while t <= r.hi {
+        if !oracle.is_free(&motion.at(t), counts) {
+            return Ok(Some((share(t), true)));
+        }
+        t += step;
+    }
+    Ok(Some((share(lo), false)))
+}
+
+/// The first collision along `path`, its corners joined as the planners join them
+/// ([`path_pieces`]): as exact as the oracle (the earliest parameter of the first blocked
+/// piece, outside the bounds counting as obstacle where the oracle is [`Bounded`]; for a
+/// motion the oracle answers only yes or no, see [`PathCollision::proved`]). A path of one
+/// corner collides where that corner does (segment 0, `t` 0). `None` if the whole path is
+/// free. Checks a path given from outside (a file), which no planner vouches for.
+///
+/// [`Bounded`]: crate::oracle::Bounded
+pub fn first_collision_on_path(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    groups: &[Group],
+    path: &[Config],
+    counts: &mut CallCounts,
+) -> Result<Option<PathCollision>, OracleError> {
+    let at_corner = |segment| PathCollision {
+        segment,
+        t: 0.0,
+        proved: true,
+    };
+    if let [q] = path {
+        return Ok((!oracle.is_free(q, counts)).then_some(at_corner(0)));
+    }
+    for (segment, w) in path.windows(2).enumerate() {
+        let pieces = path_pieces(space, groups, &w[0], &w[1]);
+        if pieces.is_empty() {
+            // a repeated corner: no motion, only the corner itself to check
+            if !oracle.is_free(&w[0], counts) {
+                return Ok(Some(at_corner(segment)));
+            }
+            continue;
+        }
+        let total = segment_length(space, groups, &w[0], &w[1]);
+        let mut travelled = 0.0;
+        let mut from = w[0].clone();
+        for (motion, to) in &pieces {
+            let length = segment_length(space, groups, &from, to);
+            if let Some((share, proved)) = first_hit_share(oracle, motion, counts)? {
+                let t = if total > 0.0 {
+                    ((travelled + share * length) / total).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                return Ok(Some(PathCollision { segment, t, proved }));
+            }
+            travelled += length;
+            from.clone_from(to);
+        }
+    }
+    Ok(None)
 }
 
 /// Length of the motion joining two consecutive corners of a path ([`path_pieces`]): the

@@ -98,7 +98,10 @@ impl LearnParams {
         }
         if let Some(r) = self.radius {
             if r.is_nan() || r <= 0.0 {
-                return Err(format!("radius must be positive, got {r}"));
+                return Err(format!(
+                    "radius must be positive, got {}",
+                    crate::short::num(r)
+                ));
             }
         }
         if !(0.0..1.0).contains(&self.expansion_share) {

@@ -212,7 +212,7 @@ impl Arm {
             if !(v.is_finite() && v.abs() <= crate::limits::MAX_COORDINATE) {
                 return Err(RobotError::Config {
                     what: "joint state".into(),
-                    message: format!("joint {n} has the value {v}"),
+                    message: format!("joint {n} has the value {}", crate::short::num(v)),
                 });
             }
             if !self.group.joints.contains(&k) {

@@ -310,7 +310,11 @@ fn parse_joint(node: roxmltree::Node) -> Result<Joint, String> {
             None => return Err("a revolute or prismatic joint needs a <limit>".into()),
         };
         if lower > upper {
-            return Err(format!("lower limit {lower} exceeds upper limit {upper}"));
+            return Err(format!(
+                "lower limit {} exceeds upper limit {}",
+                crate::short::num(lower),
+                crate::short::num(upper)
+            ));
         }
         Ok((lower, upper))
     };

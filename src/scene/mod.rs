@@ -88,7 +88,7 @@ pub enum SceneError {
         source: SpaceError,
     },
     /// A configuration outside the bounds.
-    #[error("{what} {config:?} lies outside the scene's bounds")]
+    #[error("{what} {} lies outside the scene's bounds", crate::short::config(.config))]
     OutOfBounds {
         /// Which configuration.
         what: String,
@@ -96,7 +96,7 @@ pub enum SceneError {
         config: Config,
     },
     /// A configuration in collision.
-    #[error("{what} {config:?} is in collision")]
+    #[error("{what} {} is in collision", crate::short::config(.config))]
     InCollision {
         /// Which configuration.
         what: String,

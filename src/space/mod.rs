@@ -15,6 +15,7 @@ pub mod rotation;
 pub use motion::{Change, Motion, Sweep};
 
 use crate::interval::Interval;
+use crate::short;
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
@@ -125,10 +126,10 @@ pub enum SpaceError {
         value: f64,
     },
     /// An SE(3) quaternion of (almost) zero length.
-    #[error("quaternion (qx, qy, qz, qw) has length {0}, cannot be normalised")]
+    #[error("quaternion (qx, qy, qz, qw) has length {}, cannot be normalised", short::num(*.0))]
     Quaternion(f64),
     /// Rotation scale not positive.
-    #[error("rotation scale must be a positive number, got {0}")]
+    #[error("rotation scale must be a positive number, got {}", short::num(*.0))]
     RotationScale(f64),
 }
 
@@ -196,22 +197,27 @@ impl Space {
             }
             if l > u {
                 return Err(SpaceError::Bounds(format!(
-                    "coordinate {i}: lower {l} > upper {u}"
+                    "coordinate {i}: lower {} > upper {}",
+                    short::num(*l),
+                    short::num(*u)
                 )));
             }
             // decided in issue 16: a flat coordinate leaves no room beside a motion for the
             // via points, and every motion in the flat space runs into every obstacle on it
             if l == u {
                 return Err(SpaceError::Bounds(format!(
-                    "coordinate {i}: lower = upper = {l:?}, the space has no width there; \
-                     give bounds of positive width"
+                    "coordinate {i}: lower = upper = {}, the space has no width there; \
+                     give bounds of positive width",
+                    short::num(*l)
                 )));
             }
             // beyond this, widths, distances and their squares overflow (issue 16)
             let max = crate::limits::MAX_COORDINATE;
             if l.abs() > max || u.abs() > max {
                 return Err(SpaceError::Bounds(format!(
-                    "coordinate {i}: bounds [{l:?}, {u:?}] exceed ±{max:e}, where distances overflow"
+                    "coordinate {i}: bounds [{}, {}] exceed ±{max:e}, where distances overflow",
+                    short::num(*l),
+                    short::num(*u)
                 )));
             }
         }

@@ -40,6 +40,7 @@ pub fn check_disc_path(
 
 pub mod arms;
 pub mod cli;
+pub mod js;
 pub mod rigid;
 pub mod rigid2d;
 pub mod tree;
