@@ -182,7 +182,8 @@ const STEAL_WAIT: Duration = Duration::from_micros(200);
 ///
 /// A race is a schedule, not a thread: when no pool thread is free to take the second side (a
 /// pool of one thread, or a batch that keeps every thread busy), the caller runs the sides in
-/// turn ([`in_turn`]). Waiting for a thread that never comes would leave the second side
+/// turn: the second until the deadline or its own budget, then the first again for what is
+/// left. Waiting for a thread that never comes would leave the second side
 /// nothing but an expired deadline, so every raced query of a busy batch would time out.
 ///
 /// `first` gets two deadlines: the one its search stops at, and the one by which it finishes
