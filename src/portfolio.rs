@@ -1,5 +1,5 @@
 //! One query planned by a portfolio of the crate's planners, in the order the arm benchmark
-//! settled on (issue 10, `benches/results/2026-12-05-trees-first/`): the direct path, two trees
+//! settled on (`benches/results/2026-12-05-trees-first/`): the direct path, two trees
 //! of single-joint stairs for a share of the time, the via-point planner (a search bounded in
 //! oracle calls), then the trees afresh for what is left — or the via-point planner and the
 //! trees racing on the rayon pool ([`Portfolio::race`]). The path found is shortened within the
@@ -220,9 +220,29 @@ impl Portfolio {
         };
         let (connected, direct_s) = connected;
         a.direct_s = direct_s;
+        a.take_direct(p, connected, deadline);
+        let raced = raced.or_else(|| {
+            let tree = self.tree.as_ref()?;
+            (a.path.is_none() && !deadline.expired()).then(|| trees(tree, deadline))
+        });
+        a.take_trees(raced);
+        a
+    }
+}
+
+impl Answer {
+    /// Takes the direct stage's answer (the direct path or the via-point planner's) and, when
+    /// it connects, shortens its path within the query's time, as every stage (the shortest
+    /// path over the pairs found free when it ends).
+    fn take_direct(
+        &mut self,
+        p: &Planning,
+        connected: Result<Connection, OracleError>,
+        deadline: &Deadline,
+    ) {
         match connected {
             Ok(c) => {
-                a.counts += c.counts;
+                self.counts += c.counts;
                 if c.is_connected() {
                     let shortening = Instant::now();
                     // within the query's time, as every stage (the shortest path over the
@@ -236,43 +256,43 @@ impl Portfolio {
                         &groups,
                         &c.path,
                         &mut known,
-                        &mut a.counts,
+                        &mut self.counts,
                         deadline,
                     );
-                    a.shorten_s = shortening.elapsed().as_secs_f64();
+                    self.shorten_s = shortening.elapsed().as_secs_f64();
                     match short {
-                        Ok(s) => a.path = Some((c.path, s)),
-                        Err(e) => a.error = Some(PortfolioError::Shortening(e)),
+                        Ok(s) => self.path = Some((c.path, s)),
+                        Err(e) => self.error = Some(PortfolioError::Shortening(e)),
                     }
-                    a.stage = Some(Stage::Direct);
+                    self.stage = Some(Stage::Direct);
                 }
             }
-            Err(e) => a.error = Some(PortfolioError::Local(e)),
+            Err(e) => self.error = Some(PortfolioError::Local(e)),
         }
-        let raced = raced.or_else(|| {
-            let tree = self.tree.as_ref()?;
-            (a.path.is_none() && !deadline.expired()).then(|| trees(tree, deadline))
-        });
+    }
+
+    /// Takes the trees' answer, if they ran: their work always, their path only when the
+    /// direct stage found none.
+    fn take_trees(&mut self, raced: Option<Result<TreeStage, TreeError>>) {
         match raced {
             Some(Ok(found)) => {
-                a.nodes = found.nodes;
-                a.counts += found.counts;
-                a.grow_s = found.grow_s;
-                if a.path.is_none() {
-                    a.shorten_s = found.shorten_s;
+                self.nodes = found.nodes;
+                self.counts += found.counts;
+                self.grow_s = found.grow_s;
+                if self.path.is_none() {
+                    self.shorten_s = found.shorten_s;
                     if let Some(e) = found.shortening_error {
-                        a.error = Some(PortfolioError::Shortening(e));
+                        self.error = Some(PortfolioError::Shortening(e));
                     }
                     if found.path.is_some() {
-                        a.path = found.path;
-                        a.stage = Some(Stage::Tree);
+                        self.path = found.path;
+                        self.stage = Some(Stage::Tree);
                     }
                 }
             }
-            Some(Err(e)) => a.error = Some(PortfolioError::Trees(e)),
+            Some(Err(e)) => self.error = Some(PortfolioError::Trees(e)),
             None => {}
         }
-        a
     }
 }
 

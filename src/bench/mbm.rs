@@ -1,7 +1,7 @@
-//! MotionBenchMaker problems (issue 10): every problem of a family directory planned and
+//! MotionBenchMaker problems: every problem of a family directory planned and
 //! re-checked, summarised like VAMP's `evaluate_mbm` ("Solved / Valid / Total", mean, std and
 //! percentiles), and the workcell mode (one roadmap of a family's first scene answering the
-//! family's requests, issue 10 part 6).
+//! family's requests).
 //!
 //! A family directory holds `sceneNNNN.yaml` (a MoveIt PlanningScene) and `requestNNNN.yaml`
 //! (a MotionPlanRequest) pairs, as in MBM's `problems.tar.bz2`; a directory of family
@@ -22,7 +22,7 @@
 //! an end the checker accepts ("valid, refused by the oracle").
 
 use crate::deadline::{race, Deadline};
-use crate::local::{path_length, LocalSpec};
+use crate::local::{path_length, LocalMethod, LocalSpec};
 use crate::oracle::CollisionOracle;
 pub use crate::portfolio::{tree_stage, Planning, TreeStage};
 use crate::portfolio::{trees_found, Portfolio, Stage};
@@ -574,7 +574,7 @@ pub fn csv(results: &[ProblemResult]) -> String {
 }
 
 /// The workcell result of one family: one roadmap of the first scene, the family's requests
-/// asked of it (issue 10 part 6).
+/// asked of it.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct WorkcellResult {
     /// Family.
@@ -633,8 +633,8 @@ pub struct WorkcellOptions {
     pub query_time: Duration,
     /// Two trees where the roadmap gives no answer (after attaching, in half of `query_time`
     /// or beside it: [`Self::trees_from_roadmap`], [`Self::race`]): growing a copy of the roadmap does not
-    /// build the fine single-joint staircases into a box or a cage (2026-12-02 evening: box 2
-    /// of 5, cage 0 of 4 on a 200-node roadmap), the trees do.
+    /// build the fine single-joint staircases into a box or a cage (box 2 of 5, cage 0 of 4
+    /// on a 200-node roadmap), the trees do.
     pub trees: Option<TreeParams>,
     /// With `trees`: ask the roadmap (for all of `query_time`) and grow the trees at once on
     /// the rayon pool, the first to answer stopping the other, rather than the trees only
@@ -685,25 +685,12 @@ pub fn run_workcell(
         groups: &groups,
         straight: o.straight,
     };
-    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref()).learn(
-        &LearnParams::default(),
-        &o.budget,
-        o.seed,
-        &mut |_| {},
-    )?;
-    learnt.roadmap.save(save_to)?;
-    let mut loads = Vec::new();
-    let mut roadmap: Option<Roadmap> = None;
-    for _ in 0..5 {
-        let t = Instant::now();
-        roadmap = Some(Roadmap::load(save_to, scene.fingerprint())?);
-        loads.push(t.elapsed().as_secs_f64() * 1e3);
-    }
-    let roadmap = roadmap.ok_or("not loaded")?;
+    let (roadmap, learn_s, loads) =
+        learn_and_load(&scene, oracle.as_ref(), method.as_ref(), o, save_to)?;
     let mut r = WorkcellResult {
         family: first.family.clone(),
         nodes: roadmap.node_count(),
-        learn_s: learnt.report.elapsed.as_secs_f64(),
+        learn_s,
         learn_calls: roadmap.header().counts.intersect_calls(),
         load_ms: Stats::of(&loads).p50,
         requests: problems.len(),
@@ -752,65 +739,12 @@ pub fn run_workcell(
             };
             r.valid += 1;
             let t = Instant::now();
-            let deadline = Deadline::none().within(Some(o.query_time));
-            // the head start bounds the roadmap's search; a path it found is shortened within
-            // the request's time, not handed back raw when the head start ends
-            let ask_roadmap = |search: &Deadline, whole: &Deadline| {
-                planner.query_finding_within(&s, &g, search, whole).ok()
-            };
-            let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
-            let grow_trees = |tree: &TreeParams, d: &Deadline| {
-                tree_stage(&planning, (&s, &g), tree, o.seed, d, d)
-            };
-            let (answer, head_start, raced) = match (&o.trees, o.race) {
-                (Some(tree), Some(head_start)) if !in_query => {
-                    let raced = race(
-                        &deadline,
-                        head_start,
-                        ask_roadmap,
-                        answers,
-                        |d| grow_trees(tree, d),
-                        trees_found,
-                    );
-                    (raced.first, raced.head_start.flatten(), raced.second)
-                }
-                _ => (planner.query_within(&s, &g, &deadline).ok(), None, None),
-            };
-            let mut calls: u64 = [&head_start, &answer]
-                .into_iter()
-                .flatten()
-                .map(|a| a.counts.intersect_calls())
-                .sum();
-            // the query's own trees (`QueryOptions::trees`, in turn) count as the trees'
-            r.by_trees += usize::from(
-                answer
-                    .as_ref()
-                    .is_some_and(|a| a.outcome == QueryOutcome::Trees),
-            );
-            let (mut path, mut raw, mut grown, mut shorten_s) =
-                match answer.filter(|a| a.is_solved()) {
-                    Some(a) => (Some(a.path), a.raw_path, a.trees, a.shorten_s),
-                    None => (None, Vec::new(), None, 0.0),
-                };
-            let trees = raced.or_else(|| match (&path, &o.trees) {
-                (None, Some(tree)) if !in_query => Some(grow_trees(tree, &deadline)),
-                _ => None,
-            });
-            if let Some(Ok(found)) = trees {
-                calls += found.counts.intersect_calls();
-                if path.is_none() {
-                    if let Some((found_raw, short)) = found.path {
-                        path = Some(short);
-                        raw = found_raw;
-                    }
-                    r.by_trees += usize::from(path.is_some());
-                    grown = found.trees;
-                    shorten_s = found.shorten_s;
-                }
-            }
+            let a = answer_request(&planner, &planning, o, (&s, &g));
+            r.by_trees += a.by_trees;
+            let (path, raw, grown) = (a.path, a.raw, a.grown);
             times.push(t.elapsed().as_secs_f64() * 1e3);
-            r.shorten_ms.push(shorten_s * 1e3);
-            r.calls.push(calls);
+            r.shorten_ms.push(a.shorten_s * 1e3);
+            r.calls.push(a.calls);
             if let Some(path) = path {
                 r.solved += 1;
                 raw_lengths.push(path_length(&scene.space, &groups, &raw));
@@ -848,6 +782,123 @@ pub fn run_workcell(
     r.length = Stats::of(&lengths);
     r.latencies_ms = times;
     Ok(r)
+}
+
+/// Learns the roadmap of the workcell, saves it to `save_to` and loads it back five times: the
+/// roadmap as loaded, the learning time and the load times (ms), since a workcell's roadmap is
+/// learnt once and loaded for every session.
+#[allow(clippy::type_complexity)]
+fn learn_and_load(
+    scene: &Scene,
+    oracle: &dyn CollisionOracle,
+    method: &dyn LocalMethod,
+    o: &WorkcellOptions,
+    save_to: &Path,
+) -> Result<(Roadmap, f64, Vec<f64>), Box<dyn std::error::Error + Send + Sync>> {
+    let learnt = Learner::for_scene(scene, oracle, method).learn(
+        &LearnParams::default(),
+        &o.budget,
+        o.seed,
+        &mut |_| {},
+    )?;
+    learnt.roadmap.save(save_to)?;
+    let mut loads = Vec::new();
+    let mut roadmap: Option<Roadmap> = None;
+    for _ in 0..5 {
+        let t = Instant::now();
+        roadmap = Some(Roadmap::load(save_to, scene.fingerprint())?);
+        loads.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let roadmap = roadmap.ok_or("not loaded")?;
+    Ok((roadmap, learnt.report.elapsed.as_secs_f64(), loads))
+}
+
+/// One request's answer and what it took.
+struct Answered {
+    /// The path as shortened, if solved, and as found.
+    path: Option<Vec<Config>>,
+    raw: Vec<Config>,
+    /// The trees that found it, when they did.
+    grown: Option<Box<[Rooted; 2]>>,
+    shorten_s: f64,
+    /// Intersection calls of the query and of the trees.
+    calls: u64,
+    /// 1 for each time the trees answered (the query's own, or grown here).
+    by_trees: usize,
+}
+
+/// Answers one request `(s, g)` within `o.query_time`: the roadmap's query, and the trees from
+/// the bare ends when they are grown here (racing it, or after it failed, as `o` says).
+fn answer_request(
+    planner: &QueryPlanner,
+    planning: &Planning,
+    o: &WorkcellOptions,
+    (s, g): (&Config, &Config),
+) -> Answered {
+    let in_query = o.trees_from_roadmap;
+    let mut by_trees = 0;
+    let deadline = Deadline::none().within(Some(o.query_time));
+    // the head start bounds the roadmap's search; a path it found is shortened within
+    // the request's time, not handed back raw when the head start ends
+    let ask_roadmap = |search: &Deadline, whole: &Deadline| {
+        planner.query_finding_within(s, g, search, whole).ok()
+    };
+    let answers = |a: &Option<QueryResult>| a.as_ref().is_some_and(|a| a.is_solved());
+    let grow_trees =
+        |tree: &TreeParams, d: &Deadline| tree_stage(planning, (s, g), tree, o.seed, d, d);
+    let (answer, head_start, raced) = match (&o.trees, o.race) {
+        (Some(tree), Some(head_start)) if !in_query => {
+            let raced = race(
+                &deadline,
+                head_start,
+                ask_roadmap,
+                answers,
+                |d| grow_trees(tree, d),
+                trees_found,
+            );
+            (raced.first, raced.head_start.flatten(), raced.second)
+        }
+        _ => (planner.query_within(s, g, &deadline).ok(), None, None),
+    };
+    let mut calls: u64 = [&head_start, &answer]
+        .into_iter()
+        .flatten()
+        .map(|a| a.counts.intersect_calls())
+        .sum();
+    // the query's own trees (`QueryOptions::trees`, in turn) count as the trees'
+    by_trees += usize::from(
+        answer
+            .as_ref()
+            .is_some_and(|a| a.outcome == QueryOutcome::Trees),
+    );
+    let (mut path, mut raw, mut grown, mut shorten_s) = match answer.filter(|a| a.is_solved()) {
+        Some(a) => (Some(a.path), a.raw_path, a.trees, a.shorten_s),
+        None => (None, Vec::new(), None, 0.0),
+    };
+    let trees = raced.or_else(|| match (&path, &o.trees) {
+        (None, Some(tree)) if !in_query => Some(grow_trees(tree, &deadline)),
+        _ => None,
+    });
+    if let Some(Ok(found)) = trees {
+        calls += found.counts.intersect_calls();
+        if path.is_none() {
+            if let Some((found_raw, short)) = found.path {
+                path = Some(short);
+                raw = found_raw;
+            }
+            by_trees += usize::from(path.is_some());
+            grown = found.trees;
+            shorten_s = found.shorten_s;
+        }
+    }
+    Answered {
+        path,
+        raw,
+        grown,
+        shorten_s,
+        calls,
+        by_trees,
+    }
 }
 
 /// The start and goal of problem `p`'s request, in the group's joint order, if the request

@@ -144,14 +144,40 @@ fn beta_label(b: f64) -> String {
 
 /// The configurations of Tables A.1–A.4 with the seed's numbers.
 pub fn rows(budgets: Budgets) -> Vec<Row> {
-    let base = ViaPointOptions {
-        discoveries: false,
-        ..ViaPointOptions::seed_experiment()
+    let mut tables = Tables {
+        base: ViaPointOptions {
+            discoveries: false,
+            ..ViaPointOptions::seed_experiment()
+        },
+        budgets,
+        rows: Vec::new(),
     };
-    let mut rows = Vec::new();
-    let mut add = |table, label: String, via: ViaLimit, options: ViaPointOptions, published| {
+    tables.a1();
+    tables.a2();
+    tables.a3();
+    tables.a4();
+    tables.rows
+}
+
+/// The rows of the tables as they are listed, and what their configurations share.
+struct Tables {
+    base: ViaPointOptions,
+    budgets: Budgets,
+    rows: Vec<Row>,
+}
+
+impl Tables {
+    /// A row of `table` with the seed's numbers `published`.
+    fn add(
+        &mut self,
+        table: &'static str,
+        label: String,
+        via: ViaLimit,
+        options: ViaPointOptions,
+        published: Published,
+    ) {
         let spec = crate::local::LocalSpec::ViaPoint(options.clone()).to_string();
-        rows.push(Row {
+        self.rows.push(Row {
             table,
             label,
             via: if via == ViaLimit::All {
@@ -164,118 +190,143 @@ pub fn rows(budgets: Budgets) -> Vec<Row> {
             published,
             measured: Measured::default(),
         });
-    };
-    let plain = |beta: f64, via: ViaLimit| ViaPointOptions {
-        beta,
-        via,
-        depth: Depth::Deepen { max: MAX_DEPTH },
-        max_calls: Some(budgets.plain),
-        ..base.clone()
-    };
-    let reuse = |beta: f64, via: ViaLimit| ViaPointOptions {
-        beta,
-        via,
-        depth: Depth::DeepenReuse { max: MAX_DEPTH },
-        max_calls: Some(budgets.reuse),
-        ..base.clone()
-    };
-    let fixed = |beta: f64, via: ViaLimit, k: u32| ViaPointOptions {
-        beta,
-        via,
-        depth: Depth::Fixed(k),
-        max_calls: Some(budgets.plain),
-        ..base.clone()
-    };
-    let two = ViaLimit::Best(2);
-    let all = ViaLimit::All;
-    // Table A.1: variation of β with minimal recursion depth (iterative deepening)
-    for (b, two_p, all_p) in [
-        (
-            0.0,
-            p(9.0, 4.606, 3362.0, 194.4),
-            p(6.0, 3.812, 3688.0, 321.2),
-        ),
-        (
-            0.5,
-            p(7.0, 4.471, 1039.0, 167.0),
-            p(6.0, 3.812, 4246.0, 304.5),
-        ),
-        (
-            2.0 / 3.0,
-            p(8.0, 4.463, 1937.0, 167.6),
-            p(6.0, 3.812, 4367.0, 302.6),
-        ),
-        (
-            1.0,
-            p(9.0, 4.573, 7655.0, 194.8),
-            p(6.0, 3.812, 3808.0, 308.4),
-        ),
-        (2.0, p(20.0, 5.528, 2e7, 2e4), p(6.0, 3.812, 4545.0, 339.8)),
-    ] {
-        add("A.1", beta_label(b), two, plain(b, two), two_p);
-        add("A.1", beta_label(b), all, plain(b, all), all_p);
     }
-    // Table A.2: the same, re-using a tree of solved subproblems
-    for (b, two_p, all_p) in [
-        (
-            0.5,
-            p(7.0, 4.471, 557.0, 94.0),
-            p(6.0, 3.812, 3609.0, 236.8),
-        ),
-        (
-            2.0 / 3.0,
-            p(8.0, 4.463, 1084.0, 93.9),
-            p(6.0, 3.812, 3649.0, 234.5),
-        ),
-        (
-            1.0,
-            p(9.0, 4.573, 2939.0, 106.2),
-            p(6.0, 3.812, 3033.0, 234.6),
-        ),
-    ] {
-        add("A.2", beta_label(b), two, reuse(b, two), two_p);
-        add("A.2", beta_label(b), all, reuse(b, all), all_p);
-    }
-    // Table A.3: fixed recursion depth, nine with ≤ 2 via points, six with all
-    for (b, two_p, all_p) in [
-        (0.0, calls_only(3069.0, 94.74), calls_only(7306.0, 149.2)),
-        (0.4, calls_only(1933.0, 51.04), UNKNOWN),
-        (0.5, calls_only(1793.0, 47.26), calls_only(4178.0, 90.33)),
-        (
-            4.0 / 7.0,
-            calls_only(1802.0, 46.41),
-            calls_only(3961.0, 86.49),
-        ),
-        (
-            2.0 / 3.0,
-            calls_only(1837.0, 45.97),
-            calls_only(3633.0, 83.38),
-        ),
-        (1.0, calls_only(3159.0, 72.19), calls_only(2056.0, 90.52)),
-    ] {
-        add("A.3", beta_label(b), two, fixed(b, two, 9), two_p);
-        add("A.3", beta_label(b), all, fixed(b, all, 6), all_p);
-    }
-    // Table A.4: base points of the borderline (β = 2/3, ≤ 2 via points, re-use)
-    for (bp, pubd) in [
-        (BasePoint::StartOfFirst, p(10.0, 5.972, 9086.0, 547.6)),
-        (BasePoint::RandomInFirst, p(8.0, 4.612, 806.0, 106.8)),
-        (BasePoint::CentreOfFirst, p(8.0, 4.463, 1084.0, 93.9)),
-        (BasePoint::CentreOfRandom, p(7.0, 4.026, 440.0, 64.9)),
-        (BasePoint::CentreOfMiddle, p(7.0, 3.649, 591.0, 53.2)),
-        (BasePoint::CentreNearestMiddle, p(7.0, 3.616, 581.0, 51.3)),
-        (BasePoint::MiddleOfMotion, p(9.0, 4.380, 1359.0, 89.6)),
-        (BasePoint::RandomInMotion, p(12.0, 5.972, 5375.0, 211.0)),
-    ] {
-        let mut o = reuse(2.0 / 3.0, two);
-        o.base_point = bp;
-        if bp == BasePoint::StartOfFirst {
-            // the seed: "recursion depth had to be limited to 10"
-            o.depth = Depth::DeepenReuse { max: 10 };
+
+    /// Iterative deepening without re-use.
+    fn plain(&self, beta: f64, via: ViaLimit) -> ViaPointOptions {
+        ViaPointOptions {
+            beta,
+            via,
+            depth: Depth::Deepen { max: MAX_DEPTH },
+            max_calls: Some(self.budgets.plain),
+            ..self.base.clone()
         }
-        add("A.4", bp.description().to_string(), two, o, pubd);
     }
-    rows
+
+    /// Iterative deepening re-using a tree of solved subproblems.
+    fn reuse(&self, beta: f64, via: ViaLimit) -> ViaPointOptions {
+        ViaPointOptions {
+            beta,
+            via,
+            depth: Depth::DeepenReuse { max: MAX_DEPTH },
+            max_calls: Some(self.budgets.reuse),
+            ..self.base.clone()
+        }
+    }
+
+    /// A fixed recursion depth `k`.
+    fn fixed(&self, beta: f64, via: ViaLimit, k: u32) -> ViaPointOptions {
+        ViaPointOptions {
+            beta,
+            via,
+            depth: Depth::Fixed(k),
+            max_calls: Some(self.budgets.plain),
+            ..self.base.clone()
+        }
+    }
+
+    /// Table A.1: variation of β with minimal recursion depth (iterative deepening).
+    fn a1(&mut self) {
+        let (two, all) = (ViaLimit::Best(2), ViaLimit::All);
+        for (b, two_p, all_p) in [
+            (
+                0.0,
+                p(9.0, 4.606, 3362.0, 194.4),
+                p(6.0, 3.812, 3688.0, 321.2),
+            ),
+            (
+                0.5,
+                p(7.0, 4.471, 1039.0, 167.0),
+                p(6.0, 3.812, 4246.0, 304.5),
+            ),
+            (
+                2.0 / 3.0,
+                p(8.0, 4.463, 1937.0, 167.6),
+                p(6.0, 3.812, 4367.0, 302.6),
+            ),
+            (
+                1.0,
+                p(9.0, 4.573, 7655.0, 194.8),
+                p(6.0, 3.812, 3808.0, 308.4),
+            ),
+            (2.0, p(20.0, 5.528, 2e7, 2e4), p(6.0, 3.812, 4545.0, 339.8)),
+        ] {
+            self.add("A.1", beta_label(b), two, self.plain(b, two), two_p);
+            self.add("A.1", beta_label(b), all, self.plain(b, all), all_p);
+        }
+    }
+
+    /// Table A.2: the same, re-using a tree of solved subproblems.
+    fn a2(&mut self) {
+        let (two, all) = (ViaLimit::Best(2), ViaLimit::All);
+        for (b, two_p, all_p) in [
+            (
+                0.5,
+                p(7.0, 4.471, 557.0, 94.0),
+                p(6.0, 3.812, 3609.0, 236.8),
+            ),
+            (
+                2.0 / 3.0,
+                p(8.0, 4.463, 1084.0, 93.9),
+                p(6.0, 3.812, 3649.0, 234.5),
+            ),
+            (
+                1.0,
+                p(9.0, 4.573, 2939.0, 106.2),
+                p(6.0, 3.812, 3033.0, 234.6),
+            ),
+        ] {
+            self.add("A.2", beta_label(b), two, self.reuse(b, two), two_p);
+            self.add("A.2", beta_label(b), all, self.reuse(b, all), all_p);
+        }
+    }
+
+    /// Table A.3: fixed recursion depth, nine with ≤ 2 via points, six with all.
+    fn a3(&mut self) {
+        let (two, all) = (ViaLimit::Best(2), ViaLimit::All);
+        for (b, two_p, all_p) in [
+            (0.0, calls_only(3069.0, 94.74), calls_only(7306.0, 149.2)),
+            (0.4, calls_only(1933.0, 51.04), UNKNOWN),
+            (0.5, calls_only(1793.0, 47.26), calls_only(4178.0, 90.33)),
+            (
+                4.0 / 7.0,
+                calls_only(1802.0, 46.41),
+                calls_only(3961.0, 86.49),
+            ),
+            (
+                2.0 / 3.0,
+                calls_only(1837.0, 45.97),
+                calls_only(3633.0, 83.38),
+            ),
+            (1.0, calls_only(3159.0, 72.19), calls_only(2056.0, 90.52)),
+        ] {
+            self.add("A.3", beta_label(b), two, self.fixed(b, two, 9), two_p);
+            self.add("A.3", beta_label(b), all, self.fixed(b, all, 6), all_p);
+        }
+    }
+
+    /// Table A.4: base points of the borderline (β = 2/3, ≤ 2 via points, re-use).
+    fn a4(&mut self) {
+        let two = ViaLimit::Best(2);
+        for (bp, pubd) in [
+            (BasePoint::StartOfFirst, p(10.0, 5.972, 9086.0, 547.6)),
+            (BasePoint::RandomInFirst, p(8.0, 4.612, 806.0, 106.8)),
+            (BasePoint::CentreOfFirst, p(8.0, 4.463, 1084.0, 93.9)),
+            (BasePoint::CentreOfRandom, p(7.0, 4.026, 440.0, 64.9)),
+            (BasePoint::CentreOfMiddle, p(7.0, 3.649, 591.0, 53.2)),
+            (BasePoint::CentreNearestMiddle, p(7.0, 3.616, 581.0, 51.3)),
+            (BasePoint::MiddleOfMotion, p(9.0, 4.380, 1359.0, 89.6)),
+            (BasePoint::RandomInMotion, p(12.0, 5.972, 5375.0, 211.0)),
+        ] {
+            let mut o = self.reuse(2.0 / 3.0, two);
+            o.base_point = bp;
+            if bp == BasePoint::StartOfFirst {
+                // the seed: "recursion depth had to be limited to 10"
+                o.depth = Depth::DeepenReuse { max: 10 };
+            }
+            self.add("A.4", bp.description().to_string(), two, o, pubd);
+        }
+    }
 }
 
 /// Runs every row on problems `0..problems` of the set generated with `seed` and disc

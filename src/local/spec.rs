@@ -214,20 +214,6 @@ impl LocalSpec {
     }
 
     fn from_pairs(name: &str, kv: &[(String, String)]) -> Result<LocalSpec, String> {
-        let num = |k: &str, v: &str| -> Result<f64, String> {
-            v.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| format!("{k}={v} is not a number"))
-        };
-        let int = |k: &str, v: &str| -> Result<u64, String> {
-            v.parse::<u64>()
-                .map_err(|_| format!("{k}={v} is not a whole number"))
-        };
-        let boolean = |k: &str, v: &str| -> Result<bool, String> {
-            v.parse::<bool>()
-                .map_err(|_| format!("{k}={v} is not true or false"))
-        };
         match name {
             "straight" => {
                 if let Some((k, _)) = kv.first() {
@@ -239,7 +225,7 @@ impl LocalSpec {
                 let mut resolution = crate::oracle::sampled::OMPL_DEFAULT_RESOLUTION;
                 for (k, v) in kv {
                     match k.as_str() {
-                        "res" | "resolution" => resolution = num(k, v)?,
+                        "res" | "resolution" => resolution = parse_num(k, v)?,
                         _ => return Err(format!("unknown key `{k}` for sampled")),
                     }
                 }
@@ -248,107 +234,134 @@ impl LocalSpec {
                 }
                 Ok(LocalSpec::Sampled { resolution })
             }
-            "viapoint" | "via" => {
-                let mut o = ViaPointOptions::default();
-                let mut depth_kind: Option<String> = None;
-                let mut max: Option<u32> = None;
-                for (k, v) in kv {
-                    match k.as_str() {
-                        "depth" => depth_kind = Some(v.clone()),
-                        "max" => max = Some(int(k, v)? as u32),
-                        "beta" => {
-                            o.beta = parse_fraction(v)
-                                .ok_or_else(|| format!("beta={v} is not a number"))?;
-                            if o.beta < 0.0 {
-                                return Err("beta must be ≥ 0".into());
-                            }
-                        }
-                        "via" => {
-                            o.via = match v.as_str() {
-                                "all" => ViaLimit::All,
-                                _ => match int(k, v)? {
-                                    0 => return Err("via must be ≥ 1 or all".into()),
-                                    n => ViaLimit::Best(n as usize),
-                                },
-                            }
-                        }
-                        "base" => {
-                            o.base_point = BasePoint::from_name(v).ok_or_else(|| {
-                                let names: Vec<&str> =
-                                    BasePoint::ALL.iter().map(|b| b.name()).collect();
-                                format!("base={v}; expected one of {}", names.join(", "))
-                            })?
-                        }
-                        "dirs" => {
-                            o.directions = match v.as_str() {
-                                "axes" => Directions::Basis {
-                                    axis_preference: true,
-                                    rotations: rotations_of(&o.directions),
-                                },
-                                "basis" => Directions::Basis {
-                                    axis_preference: false,
-                                    rotations: rotations_of(&o.directions),
-                                },
-                                r => match r.strip_prefix("random:") {
-                                    Some(n) => Directions::Random {
-                                        count: int(k, n)?.max(1) as u32,
-                                    },
-                                    None => {
-                                        return Err(format!(
-                                            "dirs={v}; expected axes, basis or random:N"
-                                        ))
-                                    }
-                                },
-                            }
-                        }
-                        "rotations" => {
-                            let r = int(k, v)? as u32;
-                            if let Directions::Basis { rotations, .. } = &mut o.directions {
-                                *rotations = r;
-                            }
-                        }
-                        "split" => o.split_axes = boolean(k, v)?,
-                        "dodge" => o.dodge_other_groups = boolean(k, v)?,
-                        "search" => {
-                            o.search = match v.as_str() {
-                                "dfs" | "depth-first" => Search::DepthFirst,
-                                "bfs" | "breadth-first" => Search::BreadthFirst,
-                                _ => return Err(format!("search={v}; expected dfs or bfs")),
-                            }
-                        }
-                        "calls" => o.max_calls = if v == "none" { None } else { Some(int(k, v)?) },
-                        "seed" => o.seed = int(k, v)?,
-                        _ => return Err(format!("unknown key `{k}` for viapoint")),
-                    }
-                }
-                let default_max = o.depth.max();
-                o.depth = match depth_kind.as_deref() {
-                    None => match o.depth {
-                        Depth::Fixed(_) => o.depth,
-                        Depth::Deepen { .. } => Depth::Deepen {
-                            max: max.unwrap_or(default_max),
-                        },
-                        Depth::DeepenReuse { .. } => Depth::DeepenReuse {
-                            max: max.unwrap_or(default_max),
-                        },
-                    },
-                    Some("deepen") => Depth::Deepen {
-                        max: max.unwrap_or(default_max),
-                    },
-                    Some("deepen-reuse") | Some("reuse") => Depth::DeepenReuse {
-                        max: max.unwrap_or(default_max),
-                    },
-                    Some(n) => Depth::Fixed(n.parse::<u32>().map_err(|_| {
-                        format!("depth={n}; expected a number, deepen or deepen-reuse")
-                    })?),
-                };
-                Ok(LocalSpec::ViaPoint(o))
-            }
+            "viapoint" | "via" => Self::via_point_from_pairs(kv),
             _ => Err(format!(
                 "unknown method `{name}`; expected straight, sampled or viapoint"
             )),
         }
     }
+
+    /// The via-point planner's options from its `key=value` pairs, over the defaults.
+    fn via_point_from_pairs(kv: &[(String, String)]) -> Result<LocalSpec, String> {
+        let mut o = ViaPointOptions::default();
+        let mut depth_kind: Option<String> = None;
+        let mut max: Option<u32> = None;
+        for (k, v) in kv {
+            match k.as_str() {
+                "depth" => depth_kind = Some(v.clone()),
+                "max" => max = Some(parse_int(k, v)? as u32),
+                "beta" => {
+                    o.beta =
+                        parse_fraction(v).ok_or_else(|| format!("beta={v} is not a number"))?;
+                    if o.beta < 0.0 {
+                        return Err("beta must be ≥ 0".into());
+                    }
+                }
+                "via" => {
+                    o.via = match v.as_str() {
+                        "all" => ViaLimit::All,
+                        _ => match parse_int(k, v)? {
+                            0 => return Err("via must be ≥ 1 or all".into()),
+                            n => ViaLimit::Best(n as usize),
+                        },
+                    }
+                }
+                "base" => {
+                    o.base_point = BasePoint::from_name(v).ok_or_else(|| {
+                        let names: Vec<&str> = BasePoint::ALL.iter().map(|b| b.name()).collect();
+                        format!("base={v}; expected one of {}", names.join(", "))
+                    })?
+                }
+                "dirs" => {
+                    o.directions = match v.as_str() {
+                        "axes" => Directions::Basis {
+                            axis_preference: true,
+                            rotations: rotations_of(&o.directions),
+                        },
+                        "basis" => Directions::Basis {
+                            axis_preference: false,
+                            rotations: rotations_of(&o.directions),
+                        },
+                        r => match r.strip_prefix("random:") {
+                            Some(n) => Directions::Random {
+                                count: parse_int(k, n)?.max(1) as u32,
+                            },
+                            None => {
+                                return Err(format!("dirs={v}; expected axes, basis or random:N"))
+                            }
+                        },
+                    }
+                }
+                "rotations" => {
+                    let r = parse_int(k, v)? as u32;
+                    if let Directions::Basis { rotations, .. } = &mut o.directions {
+                        *rotations = r;
+                    }
+                }
+                "split" => o.split_axes = parse_bool(k, v)?,
+                "dodge" => o.dodge_other_groups = parse_bool(k, v)?,
+                "search" => {
+                    o.search = match v.as_str() {
+                        "dfs" | "depth-first" => Search::DepthFirst,
+                        "bfs" | "breadth-first" => Search::BreadthFirst,
+                        _ => return Err(format!("search={v}; expected dfs or bfs")),
+                    }
+                }
+                "calls" => {
+                    o.max_calls = if v == "none" {
+                        None
+                    } else {
+                        Some(parse_int(k, v)?)
+                    }
+                }
+                "seed" => o.seed = parse_int(k, v)?,
+                _ => return Err(format!("unknown key `{k}` for viapoint")),
+            }
+        }
+        let default_max = o.depth.max();
+        o.depth = match depth_kind.as_deref() {
+            None => match o.depth {
+                Depth::Fixed(_) => o.depth,
+                Depth::Deepen { .. } => Depth::Deepen {
+                    max: max.unwrap_or(default_max),
+                },
+                Depth::DeepenReuse { .. } => Depth::DeepenReuse {
+                    max: max.unwrap_or(default_max),
+                },
+            },
+            Some("deepen") => Depth::Deepen {
+                max: max.unwrap_or(default_max),
+            },
+            Some("deepen-reuse") | Some("reuse") => Depth::DeepenReuse {
+                max: max.unwrap_or(default_max),
+            },
+            Some(n) => Depth::Fixed(
+                n.parse::<u32>()
+                    .map_err(|_| format!("depth={n}; expected a number, deepen or deepen-reuse"))?,
+            ),
+        };
+        Ok(LocalSpec::ViaPoint(o))
+    }
+}
+
+/// `v`, the value of key `k`, as a finite number.
+fn parse_num(k: &str, v: &str) -> Result<f64, String> {
+    v.parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| format!("{k}={v} is not a number"))
+}
+
+/// `v`, the value of key `k`, as a whole number.
+fn parse_int(k: &str, v: &str) -> Result<u64, String> {
+    v.parse::<u64>()
+        .map_err(|_| format!("{k}={v} is not a whole number"))
+}
+
+/// `v`, the value of key `k`, as `true` or `false`.
+fn parse_bool(k: &str, v: &str) -> Result<bool, String> {
+    v.parse::<bool>()
+        .map_err(|_| format!("{k}={v} is not true or false"))
 }
 
 fn rotations_of(d: &Directions) -> u32 {

@@ -61,7 +61,7 @@ pub const SHORTCUT_WINDOW: usize = 32;
 /// at corners, and an extend's one straight edge of up to [`TreeParams::range`] left the paths
 /// 20 % longer (first 15 Panda problems of each family, length p50 of the returned paths;
 /// with 5 %: per family 6 % shorter to 13 % longer than staircases, 2 % and 1 % no shorter;
-/// all 700: +3 %, 2026-12-05).
+/// all 700: +3 %).
 pub const STRAIGHT_PIECE: f64 = 0.05;
 
 /// Most streams of [`TreeParams::streams`].
@@ -116,7 +116,7 @@ pub enum Stairs {
     /// first 15 Panda problems of each family, 104 / 105 solved at p50 90 ms where sliding
     /// solves 97 at 183 ms; alpha-1.5 seeds 1–4 all solved in 2.9–6.4 s where prefixes solve 3
     /// in 6.3–8.6 s, Twistycool seeds 1–2 in 6.3–6.8 s where prefixes solve none in 30 s
-    /// (2026-12-04, with the smaller tree extending). The default.
+    /// (with the smaller tree extending). The default.
     Whole,
 }
 
@@ -155,7 +155,7 @@ pub struct TreeParams {
     /// the tree of an end in a pocket (a goal in a shelf) gets almost every extend until it is
     /// out, while alternating lets the other tree's connects grow it by 10⁵ corners: over the
     /// 700 Panda problems, whole stairs solve 698 balanced against 689 alternating (trees
-    /// alone, 2026-12-04).
+    /// alone).
     pub balance: bool,
     /// Centring rounds per blocked stair (0: off, the default): a blocked stair moves the
     /// node to the middle of its free chords across the stair (`roadmap::centre`, a
@@ -195,7 +195,7 @@ pub struct TreeParams {
     /// conservative advancement (one yes/no call); the staircase only where it is not proved.
     /// The tree edge is then that straight motion. A stair is 1 % of the extent and a joint
     /// per piece, so a free extend of 20 % costs up to 140 calls as a staircase: over the
-    /// first 15 Panda problems of each family, the portfolio's p50 20.5 → 9–10 ms (2026-12-05).
+    /// first 15 Panda problems of each family, the portfolio's p50 20.5 → 9–10 ms.
     /// On by default; `--no-straight` turns it off with the straight shortcuts.
     pub straight: bool,
 }
@@ -600,24 +600,8 @@ impl Grower<'_> {
             stairs,
         } = step;
         if self.params.coarse && stairs > 1 {
-            // one stair all the way, yes/no: in open space the staircase buys nothing
-            if let Some(corners) = crate::local::check_direct(
-                self.space,
-                self.oracle,
-                self.groups,
-                from,
-                aim,
-                &mut self.counts,
-            )? {
-                let mut parent = near;
-                for c in corners {
-                    parent = tree.add(c, parent);
-                }
-                return Ok(if full {
-                    Extend::Reached(parent)
-                } else {
-                    Extend::Advanced(parent)
-                });
+            if let Some(end) = self.extend_coarse(tree, near, from, aim, full)? {
+                return Ok(end);
             }
         }
         let mut current = from.clone();
@@ -676,23 +660,7 @@ impl Grower<'_> {
                         centred += 1;
                         self.centred += 1;
                         let across = across_of(&motion, gi, g);
-                        let reach = CENTRE_REACH * self.space.extent();
-                        let corners = centre_round(
-                            self.space,
-                            self.oracle,
-                            self.groups,
-                            &current,
-                            &across,
-                            reach,
-                            self.params.centre_turn,
-                            &mut self.counts,
-                            self.deadline,
-                        )?;
-                        if !corners.is_empty() {
-                            for c in corners {
-                                parent = tree.add(c.clone(), parent);
-                                current = c;
-                            }
+                        if self.centre_across(tree, &across, &mut current, &mut parent)? {
                             moved = true;
                             stair_moved = true;
                             continue;
@@ -722,6 +690,70 @@ impl Grower<'_> {
         } else {
             Extend::Advanced(parent)
         })
+    }
+
+    /// One stair all the way, yes/no: in open space the staircase buys nothing. The end of the
+    /// extend when the direct motion from `from` to `aim` is free, its corners added after
+    /// `near`.
+    fn extend_coarse(
+        &mut self,
+        tree: &mut Tree,
+        near: u32,
+        from: &Config,
+        aim: &Config,
+        full: bool,
+    ) -> Result<Option<Extend>, OracleError> {
+        let Some(corners) = crate::local::check_direct(
+            self.space,
+            self.oracle,
+            self.groups,
+            from,
+            aim,
+            &mut self.counts,
+        )?
+        else {
+            return Ok(None);
+        };
+        let mut parent = near;
+        for c in corners {
+            parent = tree.add(c, parent);
+        }
+        Ok(Some(if full {
+            Extend::Reached(parent)
+        } else {
+            Extend::Advanced(parent)
+        }))
+    }
+
+    /// Centres `current` across a blocked stair (module `centre`), adding the corners after
+    /// `parent` (both moved along); whether it moved, so that the stair is tried again.
+    fn centre_across(
+        &mut self,
+        tree: &mut Tree,
+        across: &Across,
+        current: &mut Config,
+        parent: &mut u32,
+    ) -> Result<bool, OracleError> {
+        let reach = CENTRE_REACH * self.space.extent();
+        let corners = centre_round(
+            self.space,
+            self.oracle,
+            self.groups,
+            current,
+            across,
+            reach,
+            self.params.centre_turn,
+            &mut self.counts,
+            self.deadline,
+        )?;
+        if corners.is_empty() {
+            return Ok(false);
+        }
+        for c in corners {
+            *parent = tree.add(c.clone(), *parent);
+            *current = c;
+        }
+        Ok(true)
     }
 }
 

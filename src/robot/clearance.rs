@@ -1,5 +1,5 @@
-//! Conservative advancement ahead of the exact sweep of a single-joint move (issue 10: a move
-//! in microseconds, not milliseconds).
+//! Conservative advancement ahead of the exact sweep of a single-joint move (so that
+//! a move is answered in microseconds, not milliseconds).
 //!
 //! Most of a move's link–obstacle pairs stay well apart for most of the move, yet the exact
 //! sweep must look at every pair of faces whose cylindrical boxes meet, and near an object
@@ -535,45 +535,12 @@ pub(crate) fn apart_along(
     margin: f64,
     max_steps: usize,
 ) -> bool {
-    let mut simplex = VoronoiSimplex::new();
-    let (ca, cb) = (Climb::new(a), Climb::new(b));
-    // how far in `t` the pair is proved apart from `t` on, either way (0: not at all)
-    let step = |at: &mut dyn FnMut(f64) -> (Isometry3<f64>, Isometry3<f64>, Speed),
-                simplex: &mut VoronoiSimplex,
-                t: f64,
-                rest: f64,
-                dir: &mut Option<Vector3<f64>>|
-     -> f64 {
-        let (pa, pb, speed) = at(t);
-        let pos12 = pa.inv_mul(&pb);
-        let enough = fastest * rest + 2.0 * margin;
-        let Some((n, g)) = gap(&pos12, &ca, &cb, *dir, enough, simplex) else {
-            return 0.0;
-        };
-        *dir = Some(n);
-        let g = g - margin;
-        if g <= 0.0 {
-            return 0.0;
-        }
-        let by_whole = if fastest > 0.0 {
-            g / fastest
-        } else {
-            f64::INFINITY
-        };
-        let along = speed.along.map_or(0.0, |m| {
-            let n = pa.rotation * n;
-            Speed {
-                rate: m
-                    .bodies
-                    .iter()
-                    .map(|b| n.dot(&b.velocity).abs() + b.radius * n.cross(&b.spin).norm())
-                    .sum(),
-                growth: m.accel,
-                along: None,
-            }
-            .time_to_close(g)
-        });
-        by_whole.max(speed.time_to_close(g)).max(along)
+    let mut planes_of = Separation {
+        ca: Climb::new(a),
+        cb: Climb::new(b),
+        simplex: VoronoiSimplex::new(),
+        fastest,
+        margin,
     };
     let (mut lo, mut hi) = (range.lo, range.hi);
     // per front (0: from `lo` up, 1: from `hi` down): the last plane's direction, the last
@@ -596,13 +563,7 @@ pub(crate) fn apart_along(
         if ahead > 0.0 && ahead < rest {
             let t = if side == 0 { lo + ahead } else { hi - ahead };
             planes += 1;
-            let s = step(
-                at,
-                &mut simplex,
-                t,
-                (rest - ahead).max(ahead),
-                &mut dir[side],
-            );
+            let s = planes_of.step(at, t, (rest - ahead).max(ahead), &mut dir[side]);
             if s <= 0.0 {
                 return false;
             }
@@ -624,7 +585,7 @@ pub(crate) fn apart_along(
         if !moved && lo < hi {
             planes += 1;
             let t = if side == 0 { lo } else { hi };
-            let s = step(at, &mut simplex, t, rest, &mut dir[side]);
+            let s = planes_of.step(at, t, rest, &mut dir[side]);
             if s <= 0.0 {
                 return false;
             }
@@ -651,11 +612,8 @@ pub(crate) fn apart_along(
             if round < STALL * (hi - lo) {
                 probes += 1;
                 let t = lo + (hi - lo) * van_der_corput(probes);
-                let (pa, pb, _) = at(t);
-                let near = gap(&pa.inv_mul(&pb), &ca, &cb, from_probe, margin, &mut simplex);
-                match near {
-                    Some((n, g)) if g > margin => from_probe = Some(n),
-                    _ => return false,
+                if !planes_of.apart_at(at, t, &mut from_probe) {
+                    return false;
                 }
             }
             round = 0.0;
@@ -663,6 +621,89 @@ pub(crate) fn apart_along(
         side ^= 1;
     }
     false
+}
+
+/// The two bodies of [`apart_along`] and what its planes share: the bodies' support maps, the
+/// GJK simplex reused from plane to plane, the bound on the rate over the whole motion and the
+/// margin.
+struct Separation<'a> {
+    ca: Climb<'a>,
+    cb: Climb<'a>,
+    simplex: VoronoiSimplex,
+    fastest: f64,
+    margin: f64,
+}
+
+impl Separation<'_> {
+    /// How far in `t` the pair is proved apart from `t` on, either way (0: not at all), by a
+    /// separating plane at `t` (starting from the front's last direction `dir`, updated);
+    /// `rest` is what is left to prove, which bounds the gap worth finding.
+    #[inline]
+    fn step(
+        &mut self,
+        at: &mut dyn FnMut(f64) -> (Isometry3<f64>, Isometry3<f64>, Speed),
+        t: f64,
+        rest: f64,
+        dir: &mut Option<Vector3<f64>>,
+    ) -> f64 {
+        let (fastest, margin) = (self.fastest, self.margin);
+        let (pa, pb, speed) = at(t);
+        let pos12 = pa.inv_mul(&pb);
+        let enough = fastest * rest + 2.0 * margin;
+        let Some((n, g)) = gap(&pos12, &self.ca, &self.cb, *dir, enough, &mut self.simplex) else {
+            return 0.0;
+        };
+        *dir = Some(n);
+        let g = g - margin;
+        if g <= 0.0 {
+            return 0.0;
+        }
+        let by_whole = if fastest > 0.0 {
+            g / fastest
+        } else {
+            f64::INFINITY
+        };
+        let along = speed.along.map_or(0.0, |m| {
+            let n = pa.rotation * n;
+            Speed {
+                rate: m
+                    .bodies
+                    .iter()
+                    .map(|b| n.dot(&b.velocity).abs() + b.radius * n.cross(&b.spin).norm())
+                    .sum(),
+                growth: m.accel,
+                along: None,
+            }
+            .time_to_close(g)
+        });
+        by_whole.max(speed.time_to_close(g)).max(along)
+    }
+
+    /// Whether the hulls are more than the margin apart at `t` (a look between stalling
+    /// fronts), starting from the last look's direction `from`, updated.
+    fn apart_at(
+        &mut self,
+        at: &mut dyn FnMut(f64) -> (Isometry3<f64>, Isometry3<f64>, Speed),
+        t: f64,
+        from: &mut Option<Vector3<f64>>,
+    ) -> bool {
+        let (pa, pb, _) = at(t);
+        let near = gap(
+            &pa.inv_mul(&pb),
+            &self.ca,
+            &self.cb,
+            *from,
+            self.margin,
+            &mut self.simplex,
+        );
+        match near {
+            Some((n, g)) if g > self.margin => {
+                *from = Some(n);
+                true
+            }
+            _ => false,
+        }
+    }
 }
 
 /// A round of both fronts that proves less than this share of what is left between them is

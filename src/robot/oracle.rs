@@ -1,4 +1,4 @@
-//! The exact arm oracle for a **single-joint move** (issue 10; CHS §1.5 and §2.3.2): moving
+//! The exact arm oracle for a **single-joint move** (CHS §1.5 and §2.3.2): moving
 //! one revolute joint turns the whole distal part of the chain rigidly about the joint's axis,
 //! which stays fixed in the world; a prismatic joint translates it. So the collision intervals
 //! of the move are the rotation (translation) intervals of the distal links, as rigid bodies,
@@ -407,38 +407,71 @@ fn se3(pose: &Isometry3<f64>) -> Vec<f64> {
     vec![t.x, t.y, t.z, q[0], q[1], q[2], q[3]]
 }
 
+/// The scene's collision objects placed in the world (curved primitives circumscribed): each
+/// part's mesh with its ball, its exact solid where it has one (for the sure test), and its box.
+#[allow(clippy::type_complexity)]
+fn place_objects(
+    arm: &Arm,
+    objects: &[CollisionObject],
+) -> Result<(Vec<(TriMesh, Ball)>, Vec<Option<Solid>>, Vec<ObstacleBox>), RobotError> {
+    let mut environment = Vec::new();
+    let mut solids = Vec::new();
+    let mut env_boxes = Vec::new();
+    for o in objects {
+        let what = || format!("collision object {}", o.id);
+        let at = arm.frame_pose(&o.frame).map_err(|e| RobotError::Config {
+            what: what(),
+            message: e.to_string(),
+        })?;
+        for (pose, shape) in &o.parts {
+            let local = match shape {
+                ObjectShape::Primitive(p) => p.polytope().map_err(|e| RobotError::Config {
+                    what: what(),
+                    message: e.to_string(),
+                })?,
+                ObjectShape::Mesh(m) => m.clone(),
+            };
+            let in_world = at * pose;
+            let world = placed(&local, &in_world);
+            let ball = Ball::of(&world);
+            environment.push((world, ball));
+            env_boxes.push(ObstacleBox::of(&local, &in_world));
+            solids.push(match shape {
+                ObjectShape::Primitive(p) => Solid::of(p, &in_world),
+                ObjectShape::Mesh(_) => None,
+            });
+        }
+    }
+    Ok((environment, solids, env_boxes))
+}
+
+/// Each link's inner balls (found at load) in its link's frame, largest first, for the sure
+/// test.
+fn inner_balls(arm: &Arm) -> Vec<Vec<InnerBall>> {
+    (0..arm.model.urdf.links.len())
+        .map(|l| {
+            let mut balls: Vec<InnerBall> = arm
+                .shapes
+                .iter()
+                .filter(|s| s.link == l)
+                .flat_map(|s| {
+                    s.inner.iter().map(|b| InnerBall {
+                        centre: s.origin * b.centre,
+                        radius: b.radius,
+                    })
+                })
+                .collect();
+            balls.sort_by(|a, b| b.radius.total_cmp(&a.radius));
+            balls
+        })
+        .collect()
+}
+
 impl ArmOracle {
     /// The oracle of `arm` (with its group, other joint values, base and exempt pairs as set)
     /// among the scene's collision objects (curved primitives circumscribed).
     pub fn new(arm: &Arm, objects: &[CollisionObject]) -> Result<ArmOracle, RobotError> {
-        let mut environment = Vec::new();
-        let mut solids = Vec::new();
-        let mut env_boxes = Vec::new();
-        for o in objects {
-            let what = || format!("collision object {}", o.id);
-            let at = arm.frame_pose(&o.frame).map_err(|e| RobotError::Config {
-                what: what(),
-                message: e.to_string(),
-            })?;
-            for (pose, shape) in &o.parts {
-                let local = match shape {
-                    ObjectShape::Primitive(p) => p.polytope().map_err(|e| RobotError::Config {
-                        what: what(),
-                        message: e.to_string(),
-                    })?,
-                    ObjectShape::Mesh(m) => m.clone(),
-                };
-                let in_world = at * pose;
-                let world = placed(&local, &in_world);
-                let ball = Ball::of(&world);
-                environment.push((world, ball));
-                env_boxes.push(ObstacleBox::of(&local, &in_world));
-                solids.push(match shape {
-                    ObjectShape::Primitive(p) => Solid::of(p, &in_world),
-                    ObjectShape::Mesh(_) => None,
-                });
-            }
-        }
+        let (environment, solids, env_boxes) = place_objects(arm, objects)?;
         let link_meshes = (0..arm.model.urdf.links.len())
             .map(|l| {
                 merged(
@@ -511,24 +544,7 @@ impl ArmOracle {
             .iter()
             .map(|(m, _)| Cloud::of(&m.vertices))
             .collect();
-        // each element's balls (found at load) in its link's frame
-        let inner = (0..arm.model.urdf.links.len())
-            .map(|l| {
-                let mut balls: Vec<InnerBall> = arm
-                    .shapes
-                    .iter()
-                    .filter(|s| s.link == l)
-                    .flat_map(|s| {
-                        s.inner.iter().map(|b| InnerBall {
-                            centre: s.origin * b.centre,
-                            radius: b.radius,
-                        })
-                    })
-                    .collect();
-                balls.sort_by(|a, b| b.radius.total_cmp(&a.radius));
-                balls
-            })
-            .collect();
+        let inner = inner_balls(arm);
         let reach = straight::reach_of(&arm.model, &link_meshes);
         Ok(ArmOracle {
             arm: arm.clone(),

@@ -107,49 +107,8 @@ pub fn box_plot(title: &str, y_label: &str, data: &[BoxData]) -> String {
         .flat_map(|d| d.values.iter().copied())
         .filter(|x| x.is_finite())
         .collect();
-    // room below and to the right for the labels, written at 35° (about 7 px per character
-    // of 12-px sans-serif): the longest one sets the bottom margin, and each one must end
-    // inside the picture, starting from its own box
-    let label_px = |d: &BoxData| 7.0 * (d.label.chars().count() + 8) as f64;
-    let (cos, sin) = (35f64.to_radians().cos(), 35f64.to_radians().sin());
-    let (w_box, left, top) = (90.0, 90.0, 50.0);
-    let longest = data.iter().map(label_px).fold(0.0, f64::max);
-    let bottom = (longest * sin + 30.0).max(170.0);
-    let overhang = data
-        .iter()
-        .enumerate()
-        .map(|(i, d)| label_px(d) * cos - w_box * (data.len() - i) as f64 + w_box / 2.0)
-        .fold(0.0, f64::max);
-    let right = (overhang + 20.0).max(20.0);
-    let width = left + right + w_box * data.len().max(1) as f64;
-    let height = top + 260.0 + bottom;
-    let plot_h = height - top - bottom;
-    let (min, max) = all
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    let log = !all.is_empty() && min > 0.0 && max / min > 100.0;
-    let (lo, hi) = if all.is_empty() {
-        (0.0, 1.0)
-    } else if log {
-        (
-            10f64.powf(min.log10().floor()),
-            10f64.powf(max.log10().ceil()),
-        )
-    } else {
-        let lo = if min >= 0.0 { 0.0 } else { min };
-        let hi = if max > lo { max * 1.05 } else { lo + 1.0 };
-        (lo, hi)
-    };
-    let y = |v: f64| -> f64 {
-        let f = if log {
-            (v.log10() - lo.log10()) / (hi.log10() - lo.log10())
-        } else {
-            (v - lo) / (hi - lo)
-        };
-        top + plot_h * (1.0 - f)
-    };
+    let frame = PlotFrame::new(data, &all);
+    let (width, height) = (frame.width, frame.height);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -161,30 +120,128 @@ pub fn box_plot(title: &str, y_label: &str, data: &[BoxData]) -> String {
         width / 2.0,
         escape(title)
     );
-    // grid and y axis
-    for t in ticks(lo, hi, log) {
-        if t < lo - 1e-12 || t > hi * (1.0 + 1e-12) {
-            continue;
+    frame.y_axis(&mut s, y_label);
+    for (k, d) in data.iter().enumerate() {
+        frame.one_box(&mut s, k, d);
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+/// Where things go in a box plot: margins sized for the labels, and the value axis.
+struct PlotFrame {
+    w_box: f64,
+    left: f64,
+    top: f64,
+    right: f64,
+    width: f64,
+    height: f64,
+    plot_h: f64,
+    /// The value axis's range and whether it is logarithmic.
+    lo: f64,
+    hi: f64,
+    log: bool,
+}
+
+impl PlotFrame {
+    /// The frame for boxes `data` of the finite values `all`.
+    fn new(data: &[BoxData], all: &[f64]) -> PlotFrame {
+        // room below and to the right for the labels, written at 35° (about 7 px per character
+        // of 12-px sans-serif): the longest one sets the bottom margin, and each one must end
+        // inside the picture, starting from its own box
+        let label_px = |d: &BoxData| 7.0 * (d.label.chars().count() + 8) as f64;
+        let (cos, sin) = (35f64.to_radians().cos(), 35f64.to_radians().sin());
+        let (w_box, left, top) = (90.0, 90.0, 50.0);
+        let longest = data.iter().map(label_px).fold(0.0, f64::max);
+        let bottom = (longest * sin + 30.0).max(170.0);
+        let overhang = data
+            .iter()
+            .enumerate()
+            .map(|(i, d)| label_px(d) * cos - w_box * (data.len() - i) as f64 + w_box / 2.0)
+            .fold(0.0, f64::max);
+        let right = (overhang + 20.0).max(20.0);
+        let width = left + right + w_box * data.len().max(1) as f64;
+        let height = top + 260.0 + bottom;
+        let plot_h = height - top - bottom;
+        let (min, max) = all
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        let log = !all.is_empty() && min > 0.0 && max / min > 100.0;
+        let (lo, hi) = if all.is_empty() {
+            (0.0, 1.0)
+        } else if log {
+            (
+                10f64.powf(min.log10().floor()),
+                10f64.powf(max.log10().ceil()),
+            )
+        } else {
+            let lo = if min >= 0.0 { 0.0 } else { min };
+            let hi = if max > lo { max * 1.05 } else { lo + 1.0 };
+            (lo, hi)
+        };
+        PlotFrame {
+            w_box,
+            left,
+            top,
+            right,
+            width,
+            height,
+            plot_h,
+            lo,
+            hi,
+            log,
         }
-        let yy = y(t);
+    }
+
+    /// The height in the picture of value `v`.
+    fn y(&self, v: f64) -> f64 {
+        let (lo, hi) = (self.lo, self.hi);
+        let f = if self.log {
+            (v.log10() - lo.log10()) / (hi.log10() - lo.log10())
+        } else {
+            (v - lo) / (hi - lo)
+        };
+        self.top + self.plot_h * (1.0 - f)
+    }
+
+    /// The grid, the value axis and its label.
+    fn y_axis(&self, s: &mut String, y_label: &str) {
+        let (left, top, right, width, plot_h) =
+            (self.left, self.top, self.right, self.width, self.plot_h);
+        let (lo, hi, log) = (self.lo, self.hi, self.log);
+        let y = |v: f64| self.y(v);
+        // grid and y axis
+        for t in ticks(lo, hi, log) {
+            if t < lo - 1e-12 || t > hi * (1.0 + 1e-12) {
+                continue;
+            }
+            let yy = y(t);
+            let _ = writeln!(
+                s,
+                r##"<line x1="{left}" x2="{:.1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
+                width - right,
+                left - 6.0,
+                yy + 4.0,
+                tick_label(t)
+            );
+        }
         let _ = writeln!(
             s,
-            r##"<line x1="{left}" x2="{:.1}" y1="{yy:.1}" y2="{yy:.1}" stroke="#ddd"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-            width - right,
-            left - 6.0,
-            yy + 4.0,
-            tick_label(t)
+            r#"<line x1="{left}" x2="{left}" y1="{top}" y2="{:.1}" stroke="black"/><text transform="translate(18 {:.1}) rotate(-90)" text-anchor="middle">{}{}</text>"#,
+            top + plot_h,
+            top + plot_h / 2.0,
+            escape(y_label),
+            if log { " (log scale)" } else { "" }
         );
     }
-    let _ = writeln!(
-        s,
-        r#"<line x1="{left}" x2="{left}" y1="{top}" y2="{:.1}" stroke="black"/><text transform="translate(18 {:.1}) rotate(-90)" text-anchor="middle">{}{}</text>"#,
-        top + plot_h,
-        top + plot_h / 2.0,
-        escape(y_label),
-        if log { " (log scale)" } else { "" }
-    );
-    for (k, d) in data.iter().enumerate() {
+
+    /// Box `k` of the plot: the box and whiskers with the outliers, how many runs are missing,
+    /// and its label.
+    fn one_box(&self, s: &mut String, k: usize, d: &BoxData) {
+        let (w_box, left, top, plot_h) = (self.w_box, self.left, self.top, self.plot_h);
+        let y = |v: f64| self.y(v);
         let cx = left + w_box * (k as f64 + 0.5);
         let half = w_box * 0.3;
         if let Some((q1, med, q3, wlo, whi, outliers)) = box_stats(&d.values) {
@@ -237,8 +294,6 @@ pub fn box_plot(title: &str, y_label: &str, data: &[BoxData]) -> String {
             d.values.len()
         );
     }
-    s.push_str("</svg>\n");
-    s
 }
 
 /// File-name-safe form of a scene name.

@@ -17,7 +17,7 @@
 //! `correct_solution` whether the exact oracle found every returned path free. The rest are
 //! viaroad's own (oracle calls, queries solved, latencies …). `progress.time` is learning time.
 
-use super::report::{first_stage_solving, Report};
+use super::report::{first_stage_solving, Report, SceneReport};
 use super::run::{RunRecord, RunStop};
 use super::BenchError;
 use crate::roadmap::LearnParams;
@@ -252,114 +252,140 @@ fn fill(conn: &Connection, report: &Report) -> Result<(), rusqlite::Error> {
             )?;
         }
     }
-    let plan = &report.plan;
-    let stages = plan.schedule.stages();
     for scene in &report.scenes {
-        let i = &scene.info;
-        let setup = format!(
-            "viaroad bench local: local methods inside the same learner (OS94 with CHS feedback)\n\
-             scene: {} ({})\nqueries: {} ({} in all, {} scored, {} apart{}, {} invalid)\n\
-             solvable (solved by some run): {}\nnode stages: {:?}\ntarget share: {}\n\
-             learning time limit: {}\nqueries try the local method directly first: {}\ncommand: {}\n",
-            i.name,
-            i.source,
-            i.query_source,
-            i.queries,
-            i.scored.len(),
-            i.separate.len(),
-            i.separate_group
-                .as_deref()
-                .map(|g| format!(": {g}"))
-                .unwrap_or_default(),
-            i.invalid.len(),
-            scene.solvable.len(),
-            stages,
-            plan.target,
-            plan.time_limit
-                .map_or("none".to_string(), |t| format!("{t} s")),
-            plan.direct,
-            report.command
-        );
-        let total: f64 = scene.runs.iter().map(|r| r.wall_seconds).sum();
-        conn.execute(
-            "INSERT INTO experiments (name, totaltime, timelimit, memorylimit, runcount, version, \
-             hostname, cpuinfo, date, seed, setup) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
-            params![
-                i.name,
-                total,
-                plan.time_limit.unwrap_or(0.0),
-                0.0,
-                i64::from(plan.runs),
-                format!("viaroad {}", report.version),
-                report.host,
-                report.cpu,
-                report.date,
-                plan.seed.to_string(),
-                setup
-            ],
-        )?;
-        let experiment = conn.last_insert_rowid();
+        let experiment = insert_experiment(conn, report, scene)?;
         for r in &scene.runs {
-            let s = settings(&r.local_spec, r.feedback, &r.sampler, &r.seeding);
-            let existing: Option<i64> = conn
-                .query_row(
-                    "SELECT id FROM plannerConfigs WHERE (name = ?1 AND settings = ?2)",
-                    params![r.method, s],
-                    |row| row.get(0),
-                )
-                .ok();
-            let planner = match existing {
-                Some(id) => id,
-                None => {
-                    conn.execute(
-                        "INSERT INTO plannerConfigs VALUES (NULL, ?1, ?2)",
-                        params![r.method, s],
-                    )?;
-                    conn.last_insert_rowid()
-                }
-            };
-            let to_solvable = first_stage_solving(r, &scene.solvable, scene.solvable_needed)
-                .map(|st| (st.learn_seconds, st.nodes));
-            let props = run_properties(r, to_solvable);
-            let wanted: Vec<(&str, &str)> = props.iter().map(|(n, t, _)| (*n, *t)).collect();
-            add_columns(conn, "runs", &wanted)?;
-            let names: Vec<&str> = props.iter().map(|p| p.0).collect();
-            let sql = format!(
-                "INSERT INTO runs (experimentid, plannerid, {}) VALUES (?1, ?2, {})",
-                names.join(", "),
-                (3..names.len() + 3)
-                    .map(|k| format!("?{k}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            );
-            let mut values = vec![Value::Integer(experiment), Value::Integer(planner)];
-            values.extend(props.into_iter().map(|p| p.2));
-            conn.execute(&sql, rusqlite::params_from_iter(values))?;
-            let run_id = conn.last_insert_rowid();
-            add_columns(conn, "progress", &PROGRESS_COLUMNS)?;
-            for st in &r.stages {
-                conn.execute(
-                    "INSERT OR IGNORE INTO progress (runid, time, nodes, edges, components, \
-                     largest_component, intersect_calls, state_checks, pairs_tested, solved_share, \
-                     invalid_paths) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
-                    rusqlite::params_from_iter([
-                        Value::Integer(run_id),
-                        real(st.learn_seconds),
-                        int(st.nodes),
-                        int(st.edges),
-                        int(st.components),
-                        int(st.largest_component),
-                        int(st.counts.intersect_calls()),
-                        int(st.counts.state_checks),
-                        int(st.counts.pairs_tested),
-                        real(st.solved as f64 / r.scored.max(1) as f64),
-                        int(st.invalid_paths),
-                    ]),
-                )?;
-            }
+            insert_run(conn, experiment, scene, r)?;
         }
     }
-    // the views `ompl_benchmark_statistics.py` computes (no simplification time here)
+    create_views(conn)
+}
+
+/// One scene as an experiment, with the setup text OMPL's Planner Arena shows; its row id.
+fn insert_experiment(
+    conn: &Connection,
+    report: &Report,
+    scene: &SceneReport,
+) -> Result<i64, rusqlite::Error> {
+    let plan = &report.plan;
+    let stages = plan.schedule.stages();
+    let i = &scene.info;
+    let setup = format!(
+        "viaroad bench local: local methods inside the same learner (OS94 with CHS feedback)\n\
+         scene: {} ({})\nqueries: {} ({} in all, {} scored, {} apart{}, {} invalid)\n\
+         solvable (solved by some run): {}\nnode stages: {:?}\ntarget share: {}\n\
+         learning time limit: {}\nqueries try the local method directly first: {}\ncommand: {}\n",
+        i.name,
+        i.source,
+        i.query_source,
+        i.queries,
+        i.scored.len(),
+        i.separate.len(),
+        i.separate_group
+            .as_deref()
+            .map(|g| format!(": {g}"))
+            .unwrap_or_default(),
+        i.invalid.len(),
+        scene.solvable.len(),
+        stages,
+        plan.target,
+        plan.time_limit
+            .map_or("none".to_string(), |t| format!("{t} s")),
+        plan.direct,
+        report.command
+    );
+    let total: f64 = scene.runs.iter().map(|r| r.wall_seconds).sum();
+    conn.execute(
+        "INSERT INTO experiments (name, totaltime, timelimit, memorylimit, runcount, version, \
+         hostname, cpuinfo, date, seed, setup) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
+        params![
+            i.name,
+            total,
+            plan.time_limit.unwrap_or(0.0),
+            0.0,
+            i64::from(plan.runs),
+            format!("viaroad {}", report.version),
+            report.host,
+            report.cpu,
+            report.date,
+            plan.seed.to_string(),
+            setup
+        ],
+    )?;
+    Ok(conn.last_insert_rowid())
+}
+
+/// One run of a scene's experiment: its planner configuration (shared by equal settings), its
+/// row with a column per property (added as needed) and its progress rows, one per stage.
+fn insert_run(
+    conn: &Connection,
+    experiment: i64,
+    scene: &SceneReport,
+    r: &RunRecord,
+) -> Result<(), rusqlite::Error> {
+    let s = settings(&r.local_spec, r.feedback, &r.sampler, &r.seeding);
+    let existing: Option<i64> = conn
+        .query_row(
+            "SELECT id FROM plannerConfigs WHERE (name = ?1 AND settings = ?2)",
+            params![r.method, s],
+            |row| row.get(0),
+        )
+        .ok();
+    let planner = match existing {
+        Some(id) => id,
+        None => {
+            conn.execute(
+                "INSERT INTO plannerConfigs VALUES (NULL, ?1, ?2)",
+                params![r.method, s],
+            )?;
+            conn.last_insert_rowid()
+        }
+    };
+    let to_solvable = first_stage_solving(r, &scene.solvable, scene.solvable_needed)
+        .map(|st| (st.learn_seconds, st.nodes));
+    let props = run_properties(r, to_solvable);
+    let wanted: Vec<(&str, &str)> = props.iter().map(|(n, t, _)| (*n, *t)).collect();
+    add_columns(conn, "runs", &wanted)?;
+    let names: Vec<&str> = props.iter().map(|p| p.0).collect();
+    let sql = format!(
+        "INSERT INTO runs (experimentid, plannerid, {}) VALUES (?1, ?2, {})",
+        names.join(", "),
+        (3..names.len() + 3)
+            .map(|k| format!("?{k}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let mut values = vec![Value::Integer(experiment), Value::Integer(planner)];
+    values.extend(props.into_iter().map(|p| p.2));
+    conn.execute(&sql, rusqlite::params_from_iter(values))?;
+    let run_id = conn.last_insert_rowid();
+    add_columns(conn, "progress", &PROGRESS_COLUMNS)?;
+    for st in &r.stages {
+        conn.execute(
+            "INSERT OR IGNORE INTO progress (runid, time, nodes, edges, components, \
+             largest_component, intersect_calls, state_checks, pairs_tested, solved_share, \
+             invalid_paths) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
+            rusqlite::params_from_iter([
+                Value::Integer(run_id),
+                real(st.learn_seconds),
+                int(st.nodes),
+                int(st.edges),
+                int(st.components),
+                int(st.largest_component),
+                int(st.counts.intersect_calls()),
+                int(st.counts.state_checks),
+                int(st.counts.pairs_tested),
+                real(st.solved as f64 / r.scored.max(1) as f64),
+                int(st.invalid_paths),
+            ]),
+        )?;
+    }
+    Ok(())
+}
+
+/// The views `ompl_benchmark_statistics.py` computes (no simplification time here), which
+/// Planner Arena reads.
+fn create_views(conn: &Connection) -> Result<(), rusqlite::Error> {
     let s0 = "SELECT plannerid, plannerConfigs.name AS plannerName, experimentid, solved, \
               time AS total_time FROM plannerConfigs INNER JOIN experiments INNER JOIN runs \
               ON plannerConfigs.id=runs.plannerid AND experiments.id=runs.experimentid";

@@ -157,6 +157,225 @@ fn ccw(vertices: impl Iterator<Item = P>) -> Vec<P> {
     v
 }
 
+/// The robot's vertices in its own frame (none for a point robot): what the radius function
+/// is made of.
+fn robot_vertices(scene: &Scene) -> Result<Vec<P>, ConeError> {
+    Ok(match &scene.robot {
+        Robot::Point => Vec::new(),
+        Robot::Polygons(parts) => parts
+            .iter()
+            .flat_map(|p| p.vertices.iter().map(|v| [v.x, v.y]))
+            .collect(),
+        Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
+        Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
+    })
+}
+
+/// The obstacles as counter-clockwise polygons, a disc as the regular polygon around it (the
+/// cones are built from straight edges).
+fn obstacle_polygons(scene: &Scene) -> Result<Vec<Vec<P>>, ConeError> {
+    let mut polygons: Vec<Vec<P>> = Vec::new();
+    for o in &scene.obstacles {
+        match o {
+            Obstacle::Polygon(p) => polygons.push(ccw(p.vertices.iter().map(|v| [v.x, v.y]))),
+            Obstacle::Disc { centre, radius } if centre.len() == 2 => {
+                let r = radius / (std::f64::consts::PI / DISC_SIDES as f64).cos();
+                polygons.push(
+                    (0..DISC_SIDES)
+                        .map(|k| {
+                            let a = std::f64::consts::TAU * k as f64 / DISC_SIDES as f64;
+                            [centre[0] + r * a.cos(), centre[1] + r * a.sin()]
+                        })
+                        .collect(),
+                );
+            }
+            _ => return Err(ConeError::Unsupported("a 3D obstacle".into())),
+        }
+    }
+    Ok(polygons)
+}
+
+/// The edges that bound free space: the obstacles' and the walls of the scene's bounds. An edge
+/// two polygons share in opposite directions lies inside their union (the triangles of
+/// OMPL.app's footprints) and bounds no free space.
+fn free_space_edges(scene: &Scene, polygons: &[Vec<P>]) -> Vec<Edge> {
+    let mut directed: HashSet<[u64; 4]> = HashSet::new();
+    let key = |a: P, b: P| {
+        [
+            a[0].to_bits(),
+            a[1].to_bits(),
+            b[0].to_bits(),
+            b[1].to_bits(),
+        ]
+    };
+    for v in polygons {
+        for i in 0..v.len() {
+            directed.insert(key(v[i], v[(i + 1) % v.len()]));
+        }
+    }
+    let mut edges = Vec::new();
+    for v in polygons {
+        if v.len() < 3 {
+            continue;
+        }
+        for i in 0..v.len() {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            if directed.contains(&key(b, a)) {
+                continue;
+            }
+            edges.extend(Edge::new(a, b));
+        }
+    }
+    let (lo, hi) = (scene.space.lower(), scene.space.upper());
+    let walls = [
+        ([hi[0], lo[1]], [lo[0], lo[1]]),
+        ([hi[0], hi[1]], [hi[0], lo[1]]),
+        ([lo[0], hi[1]], [hi[0], hi[1]]),
+        ([lo[0], lo[1]], [lo[0], hi[1]]),
+    ];
+    edges.extend(walls.iter().filter_map(|&(a, b)| Edge::new(a, b)));
+    edges
+}
+
+/// The narrowest the robot can be sideways (a little less, against rounding): a cone never
+/// wider than that is no freeway.
+fn narrowest(radius: &RadiusFunction) -> f64 {
+    (0..720)
+        .map(|k| {
+            let xi = std::f64::consts::TAU * k as f64 / 720.0;
+            radius
+                .at(xi + std::f64::consts::FRAC_PI_2)
+                .max(radius.at(xi - std::f64::consts::FRAC_PI_2))
+        })
+        .fold(f64::INFINITY, f64::min)
+        * 0.99
+}
+
+/// What the search for cones between pairs of edges shares.
+struct ConeFinder<'a> {
+    edges: &'a [Edge],
+    /// The edges' boxes `[x_lo, y_lo, x_hi, y_hi]`, to reject far edges quickly.
+    boxes: &'a [[f64; 4]],
+    polygons: &'a [Vec<P>],
+    narrowest: f64,
+    margin: f64,
+    /// How far a cone is extended beyond its ends: past any point of the scene.
+    reach: f64,
+}
+
+impl ConeFinder<'_> {
+    /// Whether a pruned slice is a freeway: wider than the robot somewhere, and not inside an
+    /// obstacle.
+    fn keep(&self, c: &Cone) -> bool {
+        c.radius(c.lo).max(c.radius(c.hi)) > self.narrowest + self.margin && {
+            // no edge crosses a slice, so an obstacle that holds one of its points holds
+            // all of it (a cone between two faces of one block)
+            let m = c.point((c.lo + c.hi) / 2.0);
+            !self.polygons.iter().any(|v| contains(v, m))
+        }
+    }
+
+    /// The cones of every pair of edges, pruned, with their extensions; the joints between a
+    /// cone and its extensions (collinear cones that continue each other); how many candidate
+    /// cones there were.
+    fn all(&self) -> (Vec<Cone>, Vec<Crossing>, usize) {
+        let (edges, boxes, margin) = (self.edges, self.boxes, self.margin);
+        let mut cones = Vec::new();
+        let mut joints: Vec<Crossing> = Vec::new();
+        let mut candidates = 0;
+        for i in 0..edges.len() {
+            for j in i + 1..edges.len() {
+                let Some((cone, own)) = cone::candidate(edges, i, j) else {
+                    continue;
+                };
+                candidates += 1;
+                if cone.radius(cone.lo).max(cone.radius(cone.hi)) <= self.narrowest + margin {
+                    continue;
+                }
+                for slice in cone::prune(&cone, own, edges, boxes, margin) {
+                    if !self.keep(&slice) {
+                        continue;
+                    }
+                    let k = cones.len();
+                    cones.push(slice);
+                    self.extend(&cone, k, &mut cones, &mut joints);
+                }
+            }
+        }
+        (cones, joints, candidates)
+    }
+
+    /// "At each vertex of the two edges the cone is extended parallel to the spine" (§2.1): a
+    /// cone of constant radius beyond each end the slice `cones[k]` of `cone` reaches, pruned
+    /// like the others, and kept (joined to the slice) if it starts at the joint.
+    fn extend(&self, cone: &Cone, k: usize, cones: &mut Vec<Cone>, joints: &mut Vec<Crossing>) {
+        let (margin, reach) = (self.margin, self.reach);
+        let slice = cones[k];
+        for (end, from, to) in [
+            (cone.lo, cone.lo - reach, cone.lo),
+            (cone.hi, cone.hi, cone.hi + reach),
+        ] {
+            let at_end = if end == cone.lo { slice.lo } else { slice.hi };
+            if (at_end - end).abs() > margin {
+                continue;
+            }
+            let r = cone.radius(end);
+            let ext = Cone {
+                lo: from,
+                hi: to,
+                r0: r,
+                slope: 0.0,
+                ..*cone
+            };
+            let near = (end - 101.0 * margin, end + 101.0 * margin);
+            if let Some(e) = cone::prune(&ext, [near, near], self.edges, self.boxes, margin)
+                .into_iter()
+                .find(|e| self.keep(e))
+            {
+                joints.push(Crossing {
+                    a: k,
+                    sa: end.clamp(slice.lo, slice.hi),
+                    b: cones.len(),
+                    sb: end.clamp(e.lo, e.hi),
+                });
+                cones.push(e);
+            }
+        }
+    }
+}
+
+/// Coinciding edges (a wall of the bounds on an obstacle's face) give the same cone twice: each
+/// kept once, the joints renumbered, sorted, and those that became a cone's joint with itself
+/// or a repeat dropped.
+fn without_duplicates(
+    cones: Vec<Cone>,
+    mut joints: Vec<Crossing>,
+    margin: f64,
+) -> (Vec<Cone>, Vec<Crossing>) {
+    let mut seen: std::collections::HashMap<[u64; 5], usize> = Default::default();
+    let mut kept: Vec<Cone> = Vec::with_capacity(cones.len());
+    let renumber: Vec<usize> = cones
+        .iter()
+        .map(|c| {
+            let [a, b] = c.spine();
+            let r = |v: f64| (v / margin).round().to_bits();
+            let key = [r(a[0]), r(a[1]), r(b[0]), r(b[1]), r(c.radius(c.lo))];
+            *seen.entry(key).or_insert_with(|| {
+                kept.push(*c);
+                kept.len() - 1
+            })
+        })
+        .collect();
+    joints.iter_mut().for_each(|j| {
+        j.a = renumber[j.a];
+        j.b = renumber[j.b];
+    });
+    joints.retain(|j| j.a != j.b);
+    joints.sort_by(|x, y| (x.a, x.b).cmp(&(y.a, y.b)).then(x.sa.total_cmp(&y.sa)));
+    joints.dedup_by(|x, y| x.a == y.a && x.b == y.b);
+    (kept, joints)
+}
+
 impl Freeways {
     /// Whether [`build`](Self::build) can represent `scene`, without building anything: SE(2)
     /// with a polygonal robot or R² with a point, among polygons and discs. Otherwise
@@ -189,70 +408,9 @@ impl Freeways {
     pub fn build(scene: &Scene) -> Result<Freeways, ConeError> {
         Self::supports(scene)?;
         let oriented = matches!(scene.space.kind(), SpaceKind::Se2);
-        let robot_vertices: Vec<P> = match &scene.robot {
-            Robot::Point => Vec::new(),
-            Robot::Polygons(parts) => parts
-                .iter()
-                .flat_map(|p| p.vertices.iter().map(|v| [v.x, v.y]))
-                .collect(),
-            Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
-            Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
-        };
-        let mut polygons: Vec<Vec<P>> = Vec::new();
-        for o in &scene.obstacles {
-            match o {
-                Obstacle::Polygon(p) => polygons.push(ccw(p.vertices.iter().map(|v| [v.x, v.y]))),
-                Obstacle::Disc { centre, radius } if centre.len() == 2 => {
-                    let r = radius / (std::f64::consts::PI / DISC_SIDES as f64).cos();
-                    polygons.push(
-                        (0..DISC_SIDES)
-                            .map(|k| {
-                                let a = std::f64::consts::TAU * k as f64 / DISC_SIDES as f64;
-                                [centre[0] + r * a.cos(), centre[1] + r * a.sin()]
-                            })
-                            .collect(),
-                    );
-                }
-                _ => return Err(ConeError::Unsupported("a 3D obstacle".into())),
-            }
-        }
-        // obstacle edges; an edge two polygons share in opposite directions lies inside their
-        // union (the triangles of OMPL.app's footprints) and bounds no free space
-        let mut directed: HashSet<[u64; 4]> = HashSet::new();
-        let key = |a: P, b: P| {
-            [
-                a[0].to_bits(),
-                a[1].to_bits(),
-                b[0].to_bits(),
-                b[1].to_bits(),
-            ]
-        };
-        for v in &polygons {
-            for i in 0..v.len() {
-                directed.insert(key(v[i], v[(i + 1) % v.len()]));
-            }
-        }
-        let mut edges = Vec::new();
-        for v in &polygons {
-            if v.len() < 3 {
-                continue;
-            }
-            for i in 0..v.len() {
-                let (a, b) = (v[i], v[(i + 1) % v.len()]);
-                if directed.contains(&key(b, a)) {
-                    continue;
-                }
-                edges.extend(Edge::new(a, b));
-            }
-        }
-        let (lo, hi) = (scene.space.lower(), scene.space.upper());
-        let walls = [
-            ([hi[0], lo[1]], [lo[0], lo[1]]),
-            ([hi[0], hi[1]], [hi[0], lo[1]]),
-            ([lo[0], hi[1]], [hi[0], hi[1]]),
-            ([lo[0], lo[1]], [lo[0], hi[1]]),
-        ];
-        edges.extend(walls.iter().filter_map(|&(a, b)| Edge::new(a, b)));
+        let robot_vertices = robot_vertices(scene)?;
+        let polygons = obstacle_polygons(scene)?;
+        let edges = free_space_edges(scene, &polygons);
         let margin = 1e-6 * scene.space.extent().max(1e-9);
         let radius = RadiusFunction::new(&robot_vertices);
         let boxes: Vec<[f64; 4]> = edges
@@ -266,103 +424,16 @@ impl Freeways {
                 ]
             })
             .collect();
-        // the narrowest the robot can be sideways: a cone never wider than that is no freeway
-        let narrowest = (0..720)
-            .map(|k| {
-                let xi = std::f64::consts::TAU * k as f64 / 720.0;
-                radius
-                    .at(xi + std::f64::consts::FRAC_PI_2)
-                    .max(radius.at(xi - std::f64::consts::FRAC_PI_2))
-            })
-            .fold(f64::INFINITY, f64::min)
-            * 0.99;
-        let mut cones = Vec::new();
-        // collinear cones that continue each other (a cone and its parallel extension)
-        let mut joints: Vec<Crossing> = Vec::new();
-        let mut candidates = 0;
-        let reach = 2.0 * scene.space.extent();
-        let keep = |c: &Cone| {
-            c.radius(c.lo).max(c.radius(c.hi)) > narrowest + margin && {
-                // no edge crosses a slice, so an obstacle that holds one of its points holds
-                // all of it (a cone between two faces of one block)
-                let m = c.point((c.lo + c.hi) / 2.0);
-                !polygons.iter().any(|v| contains(v, m))
-            }
+        let finder = ConeFinder {
+            edges: &edges,
+            boxes: &boxes,
+            polygons: &polygons,
+            narrowest: narrowest(&radius),
+            margin,
+            reach: 2.0 * scene.space.extent(),
         };
-        for i in 0..edges.len() {
-            for j in i + 1..edges.len() {
-                let Some((cone, own)) = cone::candidate(&edges, i, j) else {
-                    continue;
-                };
-                candidates += 1;
-                if cone.radius(cone.lo).max(cone.radius(cone.hi)) <= narrowest + margin {
-                    continue;
-                }
-                for slice in cone::prune(&cone, own, &edges, &boxes, margin) {
-                    if !keep(&slice) {
-                        continue;
-                    }
-                    let k = cones.len();
-                    cones.push(slice);
-                    // "at each vertex of the two edges the cone is extended parallel to the
-                    // spine" (§2.1): a cone of constant radius beyond each end the slice
-                    // reaches, pruned like the others, and kept if it starts at the joint
-                    for (end, from, to) in [
-                        (cone.lo, cone.lo - reach, cone.lo),
-                        (cone.hi, cone.hi, cone.hi + reach),
-                    ] {
-                        let at_end = if end == cone.lo { slice.lo } else { slice.hi };
-                        if (at_end - end).abs() > margin {
-                            continue;
-                        }
-                        let r = cone.radius(end);
-                        let ext = Cone {
-                            lo: from,
-                            hi: to,
-                            r0: r,
-                            slope: 0.0,
-                            ..cone
-                        };
-                        let near = (end - 101.0 * margin, end + 101.0 * margin);
-                        if let Some(e) = cone::prune(&ext, [near, near], &edges, &boxes, margin)
-                            .into_iter()
-                            .find(|e| keep(e))
-                        {
-                            joints.push(Crossing {
-                                a: k,
-                                sa: end.clamp(slice.lo, slice.hi),
-                                b: cones.len(),
-                                sb: end.clamp(e.lo, e.hi),
-                            });
-                            cones.push(e);
-                        }
-                    }
-                }
-            }
-        }
-        // coinciding edges (a wall of the bounds on an obstacle's face) give the same cone twice
-        let mut seen: std::collections::HashMap<[u64; 5], usize> = Default::default();
-        let mut kept: Vec<Cone> = Vec::with_capacity(cones.len());
-        let renumber: Vec<usize> = cones
-            .iter()
-            .map(|c| {
-                let [a, b] = c.spine();
-                let r = |v: f64| (v / margin).round().to_bits();
-                let key = [r(a[0]), r(a[1]), r(b[0]), r(b[1]), r(c.radius(c.lo))];
-                *seen.entry(key).or_insert_with(|| {
-                    kept.push(*c);
-                    kept.len() - 1
-                })
-            })
-            .collect();
-        let cones = kept;
-        joints.iter_mut().for_each(|j| {
-            j.a = renumber[j.a];
-            j.b = renumber[j.b];
-        });
-        joints.retain(|j| j.a != j.b);
-        joints.sort_by(|x, y| (x.a, x.b).cmp(&(y.a, y.b)).then(x.sa.total_cmp(&y.sa)));
-        joints.dedup_by(|x, y| x.a == y.a && x.b == y.b);
+        let (cones, joints, candidates) = finder.all();
+        let (cones, joints) = without_duplicates(cones, joints, margin);
         let mut crossings = spine_crossings(&cones);
         crossings.extend(joints);
         Ok(Freeways {

@@ -99,7 +99,7 @@ struct Node {
 
 /// Everything a search allocates, kept between searches (one set per thread, see
 /// [`super::ViaPoint`]) so that in steady state a search allocates nothing but its answer
-/// (issue 11): the arena, the nodes (and their via lists, recycled), the motions asked about,
+/// (allocating per search cost more than the oracle's work): the arena, the nodes (and their via lists, recycled), the motions asked about,
 /// the oracle's answers and workspace, and the candidate lists.
 #[derive(Default)]
 pub(super) struct Buffers {
@@ -197,7 +197,7 @@ pub(super) struct Search<'a> {
 }
 
 /// A node's random stream, seeded only when a random choice is actually made: the default
-/// settings never draw, and seeding ChaCha per node cost more than the oracle (issue 11).
+/// settings never draw, and seeding ChaCha per node cost more than the oracle.
 /// The numbers drawn are the same as from `ChaCha8Rng::seed_from_u64(seed)`.
 /// Where the settings make no random choice at all, not even the seed is hashed (`seed` is
 /// `None`); [`draws_base`] and [`draws_directions`] decide that.
@@ -559,23 +559,7 @@ impl<'a> Search<'a> {
                 &mut cands,
             );
             if options.trace {
-                let blocked = self.b.nodes[id]
-                    .walk
-                    .as_ref()
-                    .and_then(|w| w.blocked.as_ref());
-                self.borderlines.push(Borderline {
-                    blocked: blocked_motion.clone(),
-                    collisions: blocked
-                        .and_then(|b| b.collisions.as_deref().cloned())
-                        .unwrap_or_default(),
-                    base: base.clone(),
-                    motion: motion.clone(),
-                    free: IntervalList::from_unsorted(sections.clone()),
-                    via_points: cands
-                        .iter()
-                        .map(|c| via_point(space, motion, c.t))
-                        .collect(),
-                });
+                self.record_borderline(id, &blocked_motion, &base, motion, &sections, &cands);
             }
             let n = pool.len();
             pool.extend(
@@ -589,22 +573,7 @@ impl<'a> Search<'a> {
         if let ViaLimit::Best(k) = options.via {
             pool.truncate(k);
         }
-        for &(k, _, t, _) in &pool {
-            let (motion, dodge_group) = &lines.as_slice()[k];
-            // the via point (`via_point`), written into scratch rather than a new vector
-            motion.write_at(t, &mut scratch);
-            space.normalize(&mut scratch);
-            let q = self.push_pt(&scratch);
-            if self.recording {
-                self.b.vias_found.push(q);
-            }
-            self.b.nodes[id].vias.push(Via {
-                q,
-                group: *dodge_group,
-                left: None,
-                right: None,
-            });
-        }
+        self.push_vias(id, &pool, &lines, &mut scratch);
         self.b.nodes[id].rounds += 1;
         self.b.pool = pool;
         self.b.buf = scratch;
@@ -616,6 +585,65 @@ impl<'a> Search<'a> {
         self.b.blocked_motion = blocked_motion;
         self.b.lines = lines;
         Ok(true)
+    }
+
+    /// Keeps a borderline of node `id`'s blocked motion for the trace: what it crossed, its
+    /// free sections and the via points they gave.
+    fn record_borderline(
+        &mut self,
+        id: NodeId,
+        blocked_motion: &Motion,
+        base: &Config,
+        motion: &Motion,
+        sections: &[Interval],
+        cands: &[Candidate],
+    ) {
+        let space = self.space;
+        let blocked = self.b.nodes[id]
+            .walk
+            .as_ref()
+            .and_then(|w| w.blocked.as_ref());
+        self.borderlines.push(Borderline {
+            blocked: blocked_motion.clone(),
+            collisions: blocked
+                .and_then(|b| b.collisions.as_deref().cloned())
+                .unwrap_or_default(),
+            base: base.clone(),
+            motion: motion.clone(),
+            free: IntervalList::from_unsorted(sections.to_vec()),
+            via_points: cands
+                .iter()
+                .map(|c| via_point(space, motion, c.t))
+                .collect(),
+        });
+    }
+
+    /// Adds the via points of the candidates kept (`pool`: borderline index, order, parameter,
+    /// value) to node `id`, each written into `scratch` rather than a new vector.
+    #[inline]
+    fn push_vias(
+        &mut self,
+        id: NodeId,
+        pool: &[(usize, usize, f64, f64)],
+        lines: &Lines,
+        scratch: &mut Config,
+    ) {
+        for &(k, _, t, _) in pool {
+            let (motion, dodge_group) = &lines.as_slice()[k];
+            // the via point (`via_point`)
+            motion.write_at(t, scratch);
+            self.space.normalize(scratch);
+            let q = self.push_pt(scratch);
+            if self.recording {
+                self.b.vias_found.push(q);
+            }
+            self.b.nodes[id].vias.push(Via {
+                q,
+                group: *dodge_group,
+                left: None,
+                right: None,
+            });
+        }
     }
 
     /// The left (`cur → q`) or right (`q → z`) child of via point `i`.
@@ -1030,7 +1058,7 @@ mod tests {
 
     #[test]
     fn strategies_said_not_to_draw_do_not_draw() {
-        // the lazily seeded node streams skip hashing for these (issue 11): if one of them drew,
+        // the lazily seeded node streams skip hashing for these: if one of them drew,
         // the search would use a stream of the wrong seed
         let hits = IntervalList::from_unsorted(vec![
             Interval { lo: 0.1, hi: 0.2 },

@@ -186,10 +186,6 @@ pub(super) fn triangle_radii(tri: &[P; 3]) -> (f64, f64) {
     (lo, hi)
 }
 
-/// Runs over every primitive pair a turn of the robot about `centre` can collide in, for the
-/// turned angles `φ ∈ window` (length at most `2π`) from orientation `theta`, and hands every
-/// pair's collision set (in `φ`) to `sink`, stopping when it breaks. Counts pairs in `pairs`.
-///
 /// Reusable buffers of a rotation sweep (the candidates the tree returns, the robot's
 /// reference points), kept in the oracle's per-thread scratch space.
 #[derive(Default)]
@@ -200,6 +196,10 @@ pub(super) struct Buffers {
     points: Vec<(P, f64)>,
 }
 
+/// Runs over every primitive pair a turn of the robot about `centre` can collide in, for the
+/// turned angles `φ ∈ window` (length at most `2π`) from orientation `theta`, and hands every
+/// pair's collision set (in `φ`) to `sink`, stopping when it breaks. Counts pairs in `pairs`.
+///
 /// Enveloping: one query of the obstacle tree per kind of primitive with the annulus the robot
 /// sweeps, then, per robot primitive, its own annulus against the candidates' distances.
 pub(super) fn sweep(
@@ -211,148 +211,224 @@ pub(super) fn sweep(
     bufs: &mut Buffers,
     sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
-    let Buffers {
-        cands,
-        refs,
-        tris,
-        points,
-    } = bufs;
-    let body = &oracle.body;
-    let world = &oracle.world;
-    let env = oracle.enveloping;
     let tol = oracle.tolerance_at(centre);
-    let slack = 4.0 * tol;
-    // robot points relative to the centre at φ = 0; obstacle points relative to the centre
-    let turn = super::placement([0.0, 0.0], theta);
-    let h = HalfAngle::new(window);
-    let rel = |p: P| [p[0] - centre[0], p[1] - centre[1]];
-    let norm = |p: P| (p[0] * p[0] + p[1] * p[1]).sqrt();
-    let overlap = |lo: f64, hi: f64, r: (f64, f64)| lo - slack <= r.1 && r.0 <= hi + slack;
-
-    // edge against edge; a robot edge sweeps the annulus of its distances from the centre
-    cands.clear();
-    let keep_edge = |j: usize| {
-        let [c, d] = world.edges[j];
-        let (c, d) = (rel(c), rel(d));
-        (j, [c, d], (segment_distance(c, d), norm(c).max(norm(d))))
+    let turning = Turning {
+        oracle,
+        centre,
+        env: oracle.enveloping,
+        tol,
+        slack: 4.0 * tol,
+        // robot points relative to the centre at φ = 0; obstacle points relative to the centre
+        turn: super::placement([0.0, 0.0], theta),
+        h: HalfAngle::new(window),
     };
-    if env {
-        let ring = Annulus {
-            centre,
-            r_lo: body.edge_inner_radius - slack,
-            r_hi: body.radius + slack,
-        };
-        let _ = world.edge_tree.query::<()>(
-            |bx| ring.overlaps(bx),
-            |j| {
-                cands.push(keep_edge(j));
-                ControlFlow::Continue(())
-            },
-        );
-    } else {
-        cands.extend((0..world.edges.len()).map(keep_edge));
+    turning.edges(&mut bufs.cands, pairs, sink)?;
+    turning.robot_refs(&mut bufs.refs, &mut bufs.tris, pairs, sink)?;
+    turning.obstacle_refs(&mut bufs.points, pairs, sink)
+}
+
+/// What the three kinds of primitive pairs of one turn share.
+struct Turning<'a, F> {
+    oracle: &'a Polygons,
+    centre: P,
+    env: bool,
+    tol: f64,
+    slack: f64,
+    /// A robot point at φ = 0 relative to the centre.
+    turn: F,
+    h: HalfAngle,
+}
+
+impl<F: Fn(P) -> P> Turning<'_, F> {
+    /// An obstacle point relative to the centre.
+    #[inline]
+    fn rel(&self, p: P) -> P {
+        [p[0] - self.centre[0], p[1] - self.centre[1]]
     }
-    for ((edge, &le), &(lo, hi)) in body.edges.iter().zip(&body.edge_len).zip(&body.edge_radii) {
-        let (a, b) = (turn(edge[0]), turn(edge[1]));
-        for &(j, [c, d], radii) in cands.iter() {
-            if env && !overlap(lo, hi, radii) {
-                continue;
-            }
-            *pairs += 1;
-            emit(
-                edge_edge(a, b, le, c, d, world.edge_len[j], tol, &h),
-                &h,
-                sink,
-            )?;
+
+    /// Whether the distances `[lo, hi]` from the centre meet the range `r`, within the slack.
+    #[inline]
+    fn overlap(&self, lo: f64, hi: f64, r: (f64, f64)) -> bool {
+        lo - self.slack <= r.1 && r.0 <= hi + self.slack
+    }
+
+    /// An annulus about the centre, widened by the slack, for the obstacle trees.
+    fn ring(&self, r_lo: f64, r_hi: f64) -> Annulus {
+        Annulus {
+            centre: self.centre,
+            r_lo: r_lo - self.slack,
+            r_hi: r_hi + self.slack,
         }
     }
 
-    // the reference vertex of every robot part on its circle, against obstacle triangles
-    refs.clear();
-    refs.extend(body.refs.iter().map(|&r| {
-        let v = turn(r);
-        (v, norm(v))
-    }));
-    tris.clear();
-    let keep_tri = |j: usize| {
-        let t = world.tris[j];
-        let tri = [rel(t[0]), rel(t[1]), rel(t[2])];
-        (j, tri, triangle_radii(&tri))
-    };
-    if env {
-        let (lo, hi) = refs
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, r)| {
-                (lo.min(r), hi.max(r))
-            });
-        let ring = Annulus {
-            centre,
-            r_lo: lo - slack,
-            r_hi: hi + slack,
-        };
-        let _ = world.tri_tree.query::<()>(
-            |bx| ring.overlaps(bx),
-            |j| {
-                tris.push(keep_tri(j));
-                ControlFlow::Continue(())
-            },
+    /// Edge against edge; a robot edge sweeps the annulus of its distances from the centre.
+    fn edges(
+        &self,
+        cands: &mut Vec<(usize, [P; 2], (f64, f64))>,
+        pairs: &mut u64,
+        sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let (body, world, env, tol, h) = (
+            &self.oracle.body,
+            &self.oracle.world,
+            self.env,
+            self.tol,
+            &self.h,
         );
-    } else {
-        tris.extend((0..world.tris.len()).map(keep_tri));
-    }
-    for &(v, rho) in refs.iter() {
-        for &(j, tri, radii) in tris.iter() {
-            if env && !overlap(rho, rho, radii) {
-                continue;
-            }
-            *pairs += 1;
-            emit(
-                point_in_triangle(v, &tri, &world.tri_len[j], tol, &h),
-                &h,
-                sink,
-            )?;
+        cands.clear();
+        let keep_edge = |j: usize| {
+            let [c, d] = world.edges[j];
+            let (c, d) = (self.rel(c), self.rel(d));
+            (j, [c, d], (segment_distance(c, d), norm(c).max(norm(d))))
+        };
+        if env {
+            let ring = self.ring(body.edge_inner_radius, body.radius);
+            let _ = world.edge_tree.query::<()>(
+                |bx| ring.overlaps(bx),
+                |j| {
+                    cands.push(keep_edge(j));
+                    ControlFlow::Continue(())
+                },
+            );
+        } else {
+            cands.extend((0..world.edges.len()).map(keep_edge));
         }
+        for ((edge, &le), &(lo, hi)) in body.edges.iter().zip(&body.edge_len).zip(&body.edge_radii)
+        {
+            let (a, b) = ((self.turn)(edge[0]), (self.turn)(edge[1]));
+            for &(j, [c, d], radii) in cands.iter() {
+                if env && !self.overlap(lo, hi, radii) {
+                    continue;
+                }
+                *pairs += 1;
+                emit(
+                    edge_edge(a, b, le, c, d, world.edge_len[j], tol, h),
+                    h,
+                    sink,
+                )?;
+            }
+        }
+        ControlFlow::Continue(())
     }
 
-    // the reference vertex of every obstacle, against the robot's triangles
-    if body.tris.is_empty() {
-        return ControlFlow::Continue(());
-    }
-    points.clear();
-    let keep_point = |j: usize| {
-        let w = rel(world.refs[j]);
-        (w, norm(w))
-    };
-    if env {
-        let ring = Annulus {
-            centre,
-            r_lo: body.tri_inner_radius - slack,
-            r_hi: body.radius + slack,
-        };
-        let _ = world.ref_tree.query::<()>(
-            |bx| ring.overlaps(bx),
-            |j| {
-                points.push(keep_point(j));
-                ControlFlow::Continue(())
-            },
+    /// The reference vertex of every robot part on its circle, against obstacle triangles.
+    fn robot_refs(
+        &self,
+        refs: &mut Vec<(P, f64)>,
+        tris: &mut Vec<(usize, [P; 3], (f64, f64))>,
+        pairs: &mut u64,
+        sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let (body, world, env, tol, h) = (
+            &self.oracle.body,
+            &self.oracle.world,
+            self.env,
+            self.tol,
+            &self.h,
         );
-    } else {
-        points.extend((0..world.refs.len()).map(keep_point));
-    }
-    if points.is_empty() {
-        return ControlFlow::Continue(());
-    }
-    for ((tri, lens), &(lo, hi)) in body.tris.iter().zip(&body.tri_len).zip(&body.tri_radii) {
-        let placed = [turn(tri[0]), turn(tri[1]), turn(tri[2])];
-        for &(w, rho) in points.iter() {
-            if env && !overlap(lo, hi, (rho, rho)) {
-                continue;
-            }
-            *pairs += 1;
-            emit(triangle_contains(&placed, lens, w, tol, &h), &h, sink)?;
+        refs.clear();
+        refs.extend(body.refs.iter().map(|&r| {
+            let v = (self.turn)(r);
+            (v, norm(v))
+        }));
+        tris.clear();
+        let keep_tri = |j: usize| {
+            let t = world.tris[j];
+            let tri = [self.rel(t[0]), self.rel(t[1]), self.rel(t[2])];
+            (j, tri, triangle_radii(&tri))
+        };
+        if env {
+            let (lo, hi) = refs
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, r)| {
+                    (lo.min(r), hi.max(r))
+                });
+            let ring = self.ring(lo, hi);
+            let _ = world.tri_tree.query::<()>(
+                |bx| ring.overlaps(bx),
+                |j| {
+                    tris.push(keep_tri(j));
+                    ControlFlow::Continue(())
+                },
+            );
+        } else {
+            tris.extend((0..world.tris.len()).map(keep_tri));
         }
+        for &(v, rho) in refs.iter() {
+            for &(j, tri, radii) in tris.iter() {
+                if env && !self.overlap(rho, rho, radii) {
+                    continue;
+                }
+                *pairs += 1;
+                emit(
+                    point_in_triangle(v, &tri, &world.tri_len[j], tol, h),
+                    h,
+                    sink,
+                )?;
+            }
+        }
+        ControlFlow::Continue(())
     }
-    ControlFlow::Continue(())
+
+    /// The reference vertex of every obstacle, against the robot's triangles.
+    fn obstacle_refs(
+        &self,
+        points: &mut Vec<(P, f64)>,
+        pairs: &mut u64,
+        sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let (body, world, env, tol, h) = (
+            &self.oracle.body,
+            &self.oracle.world,
+            self.env,
+            self.tol,
+            &self.h,
+        );
+        if body.tris.is_empty() {
+            return ControlFlow::Continue(());
+        }
+        points.clear();
+        let keep_point = |j: usize| {
+            let w = self.rel(world.refs[j]);
+            (w, norm(w))
+        };
+        if env {
+            let ring = self.ring(body.tri_inner_radius, body.radius);
+            let _ = world.ref_tree.query::<()>(
+                |bx| ring.overlaps(bx),
+                |j| {
+                    points.push(keep_point(j));
+                    ControlFlow::Continue(())
+                },
+            );
+        } else {
+            points.extend((0..world.refs.len()).map(keep_point));
+        }
+        if points.is_empty() {
+            return ControlFlow::Continue(());
+        }
+        for ((tri, lens), &(lo, hi)) in body.tris.iter().zip(&body.tri_len).zip(&body.tri_radii) {
+            let placed = [
+                (self.turn)(tri[0]),
+                (self.turn)(tri[1]),
+                (self.turn)(tri[2]),
+            ];
+            for &(w, rho) in points.iter() {
+                if env && !self.overlap(lo, hi, (rho, rho)) {
+                    continue;
+                }
+                *pairs += 1;
+                emit(triangle_contains(&placed, lens, w, tol, h), h, sink)?;
+            }
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+/// Distance of `p` from the origin.
+#[inline]
+fn norm(p: P) -> f64 {
+    (p[0] * p[0] + p[1] * p[1]).sqrt()
 }
 
 #[cfg(test)]

@@ -194,10 +194,6 @@ impl Frame {
     }
 }
 
-/// Runs over every primitive pair a translation of the robot by `t·m`, `t ∈ range`, from the
-/// placement `(centre, theta)` can collide in, and hands every pair's collision interval to
-/// `sink` (stopping when it breaks). Counts the pairs evaluated in `pairs`.
-///
 /// Reusable buffers of a translation sweep (the robot placed, the candidates the tree returns),
 /// kept in the oracle's per-thread scratch space.
 #[derive(Default)]
@@ -208,6 +204,10 @@ pub(super) struct Buffers {
     points: Vec<(P, Ranges)>,
 }
 
+/// Runs over every primitive pair a translation of the robot by `t·m`, `t ∈ range`, from the
+/// placement `(centre, theta)` can collide in, and hands every pair's collision interval to
+/// `sink` (stopping when it breaks). Counts the pairs evaluated in `pairs`.
+///
 /// Enveloping: one query of the obstacle tree with the box the whole robot sweeps, then, per
 /// robot primitive, the box it sweeps itself against the candidates' projections.
 #[allow(clippy::too_many_arguments)]
@@ -227,133 +227,201 @@ pub(super) fn sweep(
         refs,
         points,
     } = bufs;
-    let body = &oracle.body;
-    let world = &oracle.world;
-    let env = oracle.enveloping;
     let tol = oracle.tolerance_at(centre);
     let place = super::placement(centre, theta);
-    let speed = (m[0] * m[0] + m[1] * m[1]).sqrt();
-    // frame of the motion; a static test uses the world axes
-    let frame = if speed > 0.0 {
-        let u = [m[0] / speed, m[1] / speed];
-        Frame {
-            u,
-            n: [-u[1], u[0]],
-            s_lo: range.lo * speed,
-            s_hi: range.hi * speed,
-            slack: 4.0 * tol,
-        }
-    } else {
-        Frame {
-            u: [1.0, 0.0],
-            n: [0.0, 1.0],
-            s_lo: 0.0,
-            s_hi: 0.0,
-            slack: 4.0 * tol,
-        }
-    };
-    let full = Span::within(range);
+    let frame = Frame::of_motion(m, range, tol);
     vertices.clear();
-    vertices.extend(body.vertices.iter().map(|&v| place(v)));
+    vertices.extend(oracle.body.vertices.iter().map(|&v| place(v)));
     let robot = frame.boxed(&frame.swept(vertices));
-    let unculled = Ranges {
-        u: (0.0, 0.0),
-        n: (0.0, 0.0),
+    let sliding = Sliding {
+        oracle,
+        env: oracle.enveloping,
+        tol,
+        m,
+        place,
+        frame,
+        full: Span::within(range),
+        robot,
     };
+    sliding.edges(cands, pairs, sink)?;
+    sliding.robot_refs(refs, cands, pairs, sink)?;
+    sliding.obstacle_refs(points, pairs, sink)
+}
 
-    // edge against edge
-    cands.clear();
-    if env {
-        let _ = world.edge_tree.query::<()>(
-            |bx| robot.overlaps(bx),
-            |j| {
-                cands.push((j, frame.bounds(&world.edges[j])));
-                ControlFlow::Continue(())
-            },
-        );
-    } else {
-        cands.extend((0..world.edges.len()).map(|j| (j, unculled)));
-    }
-    for (edge, &le) in body.edges.iter().zip(&body.edge_len) {
-        let (a, b) = (place(edge[0]), place(edge[1]));
-        let swept = frame.swept(&[a, b]);
-        for &(j, r) in cands.iter() {
-            if env && !swept.meets(&r) {
-                continue;
+impl Frame {
+    /// The frame of the motion `m` over `range`; a static test uses the world axes.
+    fn of_motion(m: P, range: Interval, tol: f64) -> Frame {
+        let speed = (m[0] * m[0] + m[1] * m[1]).sqrt();
+        if speed > 0.0 {
+            let u = [m[0] / speed, m[1] / speed];
+            Frame {
+                u,
+                n: [-u[1], u[0]],
+                s_lo: range.lo * speed,
+                s_hi: range.hi * speed,
+                slack: 4.0 * tol,
             }
-            *pairs += 1;
-            let [c, d] = world.edges[j];
-            if let Some(iv) = edge_edge(a, b, le, m, c, d, world.edge_len[j], tol, full) {
-                sink(iv)?;
+        } else {
+            Frame {
+                u: [1.0, 0.0],
+                n: [0.0, 1.0],
+                s_lo: 0.0,
+                s_hi: 0.0,
+                slack: 4.0 * tol,
             }
         }
     }
+}
 
-    // a reference vertex of every robot part in the obstacles' triangles
-    refs.clear();
-    refs.extend(body.refs.iter().map(|&r| place(r)));
-    cands.clear();
-    if env {
-        let paths = frame.boxed(&frame.swept(refs));
-        let _ = world.tri_tree.query::<()>(
-            |bx| paths.overlaps(bx),
-            |j| {
-                cands.push((j, frame.bounds(&world.tris[j])));
-                ControlFlow::Continue(())
-            },
-        );
-    } else {
-        cands.extend((0..world.tris.len()).map(|j| (j, unculled)));
-    }
-    for &p in refs.iter() {
-        let path = frame.swept(&[p]);
-        for &(j, r) in cands.iter() {
-            if env && !path.meets(&r) {
-                continue;
-            }
-            *pairs += 1;
-            let (tri, lens) = (&world.tris[j], &world.tri_len[j]);
-            if let Some(iv) = point_in_triangle(p, m, tri, lens, tol, full) {
-                sink(iv)?;
+/// Ranges that meet every other: what a candidate gets when nothing is culled.
+const UNCULLED: Ranges = Ranges {
+    u: (0.0, 0.0),
+    n: (0.0, 0.0),
+};
+
+/// What the three kinds of primitive pairs of one translation share.
+struct Sliding<'a, F> {
+    oracle: &'a Polygons,
+    env: bool,
+    tol: f64,
+    m: P,
+    /// A robot point placed at the start of the motion.
+    place: F,
+    frame: Frame,
+    full: Span,
+    /// The box the whole robot sweeps.
+    robot: SweptBox,
+}
+
+impl<F: Fn(P) -> P> Sliding<'_, F> {
+    /// Edge against edge.
+    fn edges(
+        &self,
+        cands: &mut Vec<(usize, Ranges)>,
+        pairs: &mut u64,
+        sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let (body, world, env, frame) =
+            (&self.oracle.body, &self.oracle.world, self.env, &self.frame);
+        cands.clear();
+        if env {
+            let _ = world.edge_tree.query::<()>(
+                |bx| self.robot.overlaps(bx),
+                |j| {
+                    cands.push((j, frame.bounds(&world.edges[j])));
+                    ControlFlow::Continue(())
+                },
+            );
+        } else {
+            cands.extend((0..world.edges.len()).map(|j| (j, UNCULLED)));
+        }
+        for (edge, &le) in body.edges.iter().zip(&body.edge_len) {
+            let (a, b) = ((self.place)(edge[0]), (self.place)(edge[1]));
+            let swept = frame.swept(&[a, b]);
+            for &(j, r) in cands.iter() {
+                if env && !swept.meets(&r) {
+                    continue;
+                }
+                *pairs += 1;
+                let [c, d] = world.edges[j];
+                let len = world.edge_len[j];
+                if let Some(iv) = edge_edge(a, b, le, self.m, c, d, len, self.tol, self.full) {
+                    sink(iv)?;
+                }
             }
         }
+        ControlFlow::Continue(())
     }
 
-    // a reference vertex of every obstacle in the robot's triangles (moving the other way)
-    if body.tris.is_empty() {
-        return ControlFlow::Continue(());
-    }
-    points.clear();
-    if env {
-        let _ = world.ref_tree.query::<()>(
-            |bx| robot.overlaps(bx),
-            |j| {
-                let w = world.refs[j];
-                points.push((w, frame.bounds(&[w])));
-                ControlFlow::Continue(())
-            },
-        );
-    } else {
-        points.extend(world.refs.iter().map(|&w| (w, unculled)));
-    }
-    if points.is_empty() {
-        return ControlFlow::Continue(());
-    }
-    let back = [-m[0], -m[1]];
-    for (tri, lens) in body.tris.iter().zip(&body.tri_len) {
-        let placed = [place(tri[0]), place(tri[1]), place(tri[2])];
-        let swept = frame.swept(&placed);
-        for &(w, r) in points.iter() {
-            if env && !swept.meets(&r) {
-                continue;
-            }
-            *pairs += 1;
-            if let Some(iv) = point_in_triangle(w, back, &placed, lens, tol, full) {
-                sink(iv)?;
+    /// A reference vertex of every robot part in the obstacles' triangles.
+    fn robot_refs(
+        &self,
+        refs: &mut Vec<P>,
+        cands: &mut Vec<(usize, Ranges)>,
+        pairs: &mut u64,
+        sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let (body, world, env, frame) =
+            (&self.oracle.body, &self.oracle.world, self.env, &self.frame);
+        refs.clear();
+        refs.extend(body.refs.iter().map(|&r| (self.place)(r)));
+        cands.clear();
+        if env {
+            let paths = frame.boxed(&frame.swept(refs));
+            let _ = world.tri_tree.query::<()>(
+                |bx| paths.overlaps(bx),
+                |j| {
+                    cands.push((j, frame.bounds(&world.tris[j])));
+                    ControlFlow::Continue(())
+                },
+            );
+        } else {
+            cands.extend((0..world.tris.len()).map(|j| (j, UNCULLED)));
+        }
+        for &p in refs.iter() {
+            let path = frame.swept(&[p]);
+            for &(j, r) in cands.iter() {
+                if env && !path.meets(&r) {
+                    continue;
+                }
+                *pairs += 1;
+                let (tri, lens) = (&world.tris[j], &world.tri_len[j]);
+                if let Some(iv) = point_in_triangle(p, self.m, tri, lens, self.tol, self.full) {
+                    sink(iv)?;
+                }
             }
         }
+        ControlFlow::Continue(())
     }
-    ControlFlow::Continue(())
+
+    /// A reference vertex of every obstacle in the robot's triangles (moving the other way).
+    fn obstacle_refs(
+        &self,
+        points: &mut Vec<(P, Ranges)>,
+        pairs: &mut u64,
+        sink: &mut impl FnMut(Interval) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let (body, world, env, frame) =
+            (&self.oracle.body, &self.oracle.world, self.env, &self.frame);
+        if body.tris.is_empty() {
+            return ControlFlow::Continue(());
+        }
+        points.clear();
+        if env {
+            let _ = world.ref_tree.query::<()>(
+                |bx| self.robot.overlaps(bx),
+                |j| {
+                    let w = world.refs[j];
+                    points.push((w, frame.bounds(&[w])));
+                    ControlFlow::Continue(())
+                },
+            );
+        } else {
+            points.extend(world.refs.iter().map(|&w| (w, UNCULLED)));
+        }
+        if points.is_empty() {
+            return ControlFlow::Continue(());
+        }
+        let back = [-self.m[0], -self.m[1]];
+        for (tri, lens) in body.tris.iter().zip(&body.tri_len) {
+            let placed = [
+                (self.place)(tri[0]),
+                (self.place)(tri[1]),
+                (self.place)(tri[2]),
+            ];
+            let swept = frame.swept(&placed);
+            for &(w, r) in points.iter() {
+                if env && !swept.meets(&r) {
+                    continue;
+                }
+                *pairs += 1;
+                if let Some(iv) = point_in_triangle(w, back, &placed, lens, self.tol, self.full) {
+                    sink(iv)?;
+                }
+            }
+        }
+        ControlFlow::Continue(())
+    }
 }
 
 #[cfg(test)]

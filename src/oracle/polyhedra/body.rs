@@ -182,6 +182,127 @@ fn components(faces: &[[u32; 3]], boxes: &[Aabb]) -> Vec<Component> {
         .collect()
 }
 
+/// Welds the finite vertices of `mesh` into `vertices` (equal coordinates, one vertex: shared
+/// edges must be found by index); the index of each of the mesh's vertices, `None` when not
+/// finite.
+fn weld(mesh: &TriMesh, vertices: &mut Vec<V3>) -> Vec<Option<u32>> {
+    let mut weld: FastMap<[u64; 3], u32> = FastMap::default();
+    let mut index: Vec<Option<u32>> = Vec::with_capacity(mesh.vertices.len());
+    for v in &mesh.vertices {
+        let p = V3::new(v.x, v.y, v.z);
+        if !p.iter().all(|c| c.is_finite()) {
+            index.push(None);
+            continue;
+        }
+        let id = *weld.entry(key(&p)).or_insert_with(|| {
+            vertices.push(p);
+            (vertices.len() - 1) as u32
+        });
+        index.push(Some(id));
+    }
+    index
+}
+
+/// The usable triangles of `mesh` (welded `index`): each geometric triangle once into `faces`
+/// across all parts (`seen_face`), and, for the part, its distinct triangles in first-seen
+/// order with those of odd multiplicity (what the containment test counts: a triangle given
+/// twice cancels out).
+fn count_triangles(
+    mesh: &TriMesh,
+    index: &[Option<u32>],
+    vertices: &[V3],
+    faces: &mut Vec<[u32; 3]>,
+    seen_face: &mut FastMap<[u32; 3], ()>,
+) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+    let mut multiplicity: FastMap<[u32; 3], (u32, [u32; 3])> = FastMap::default();
+    let mut order: Vec<[u32; 3]> = Vec::new();
+    for t in &mesh.triangles {
+        let ids: Option<Vec<u32>> = t
+            .iter()
+            .map(|&i| index.get(i as usize).copied().flatten())
+            .collect();
+        let Some(ids) = ids else { continue };
+        let tri = [ids[0], ids[1], ids[2]];
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            continue;
+        }
+        let [a, b, c] = tri.map(|i| vertices[i as usize]);
+        if (b - a).cross(&(c - a)).norm_squared() == 0.0 {
+            continue;
+        }
+        let k = sorted(tri);
+        let e = multiplicity.entry(k).or_insert_with(|| {
+            order.push(k);
+            (0, tri)
+        });
+        e.0 += 1;
+        if seen_face.insert(k, ()).is_none() {
+            faces.push(tri);
+        }
+    }
+    let parity: Vec<[u32; 3]> = order
+        .iter()
+        .filter_map(|k| {
+            let (count, tri) = multiplicity[k];
+            (count % 2 == 1).then_some(tri)
+        })
+        .collect();
+    (order, parity)
+}
+
+/// One part of a body: its bounds (box and ball over all its triangles `order`) and what its
+/// containment test needs (the triangles of odd multiplicity `parity`, their tree and
+/// connected components).
+fn part(mesh: &TriMesh, order: &[[u32; 3]], parity: Vec<[u32; 3]>, vertices: &[V3]) -> Part {
+    let boxes: Vec<Aabb> = parity
+        .iter()
+        .map(|t| Aabb::of_points(t.iter().map(|&i| &vertices[i as usize])))
+        .collect();
+    let aabb = order.iter().fold(Aabb::EMPTY, |b, t| {
+        b.merge(&Aabb::of_points(t.iter().map(|&i| &vertices[i as usize])))
+    });
+    let centre = aabb.centre();
+    let radius = order
+        .iter()
+        .flatten()
+        .map(|&i| (vertices[i as usize] - centre).norm())
+        .fold(0.0, f64::max);
+    let solid = mesh.is_closed() && !parity.is_empty();
+    let components = components(&parity, &boxes);
+    Part {
+        solid,
+        parity_bvh: Bvh::build(boxes.clone()),
+        parity: parity.into(),
+        aabb,
+        sphere: (centre, radius),
+        components,
+    }
+}
+
+/// Unique edges of `faces`, each owned by the first face using it (so that each is tested
+/// once): the edges, and for each face the start of its run in the owned list, then that list.
+#[allow(clippy::type_complexity)]
+fn owned_edges(faces: &[[u32; 3]]) -> (Vec<[u32; 2]>, Vec<u32>, Vec<u32>) {
+    let mut edge_id: FastMap<(u32, u32), u32> = FastMap::default();
+    let mut edges: Vec<[u32; 2]> = Vec::new();
+    let mut owned_start = Vec::with_capacity(faces.len() + 1);
+    let mut owned = Vec::new();
+    for t in faces {
+        owned_start.push(owned.len() as u32);
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            if let std::collections::hash_map::Entry::Vacant(e) = edge_id.entry(key) {
+                e.insert(edges.len() as u32);
+                owned.push(edges.len() as u32);
+                edges.push([a, b]);
+            }
+        }
+    }
+    owned_start.push(owned.len() as u32);
+    (edges, owned_start, owned)
+}
+
 impl Body {
     /// Prepares `meshes`, each a separate part. Triangles with an index out of range or a
     /// coordinate that is not finite are skipped (the fields of [`TriMesh`] are public, so its
@@ -192,97 +313,12 @@ impl Body {
         let mut parts = Vec::with_capacity(meshes.len());
         let mut seen_face: FastMap<[u32; 3], ()> = FastMap::default();
         for mesh in meshes {
-            let mut weld: FastMap<[u64; 3], u32> = FastMap::default();
-            let mut index: Vec<Option<u32>> = Vec::with_capacity(mesh.vertices.len());
-            for v in &mesh.vertices {
-                let p = V3::new(v.x, v.y, v.z);
-                if !p.iter().all(|c| c.is_finite()) {
-                    index.push(None);
-                    continue;
-                }
-                let id = *weld.entry(key(&p)).or_insert_with(|| {
-                    vertices.push(p);
-                    (vertices.len() - 1) as u32
-                });
-                index.push(Some(id));
-            }
-            let mut multiplicity: FastMap<[u32; 3], (u32, [u32; 3])> = FastMap::default();
-            let mut order: Vec<[u32; 3]> = Vec::new();
-            for t in &mesh.triangles {
-                let ids: Option<Vec<u32>> = t
-                    .iter()
-                    .map(|&i| index.get(i as usize).copied().flatten())
-                    .collect();
-                let Some(ids) = ids else { continue };
-                let tri = [ids[0], ids[1], ids[2]];
-                if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
-                    continue;
-                }
-                let [a, b, c] = tri.map(|i| vertices[i as usize]);
-                if (b - a).cross(&(c - a)).norm_squared() == 0.0 {
-                    continue;
-                }
-                let k = sorted(tri);
-                let e = multiplicity.entry(k).or_insert_with(|| {
-                    order.push(k);
-                    (0, tri)
-                });
-                e.0 += 1;
-                if seen_face.insert(k, ()).is_none() {
-                    faces.push(tri);
-                }
-            }
-            let parity: Vec<[u32; 3]> = order
-                .iter()
-                .filter_map(|k| {
-                    let (count, tri) = multiplicity[k];
-                    (count % 2 == 1).then_some(tri)
-                })
-                .collect();
-            let boxes: Vec<Aabb> = parity
-                .iter()
-                .map(|t| Aabb::of_points(t.iter().map(|&i| &vertices[i as usize])))
-                .collect();
-            let aabb = order.iter().fold(Aabb::EMPTY, |b, t| {
-                b.merge(&Aabb::of_points(t.iter().map(|&i| &vertices[i as usize])))
-            });
-            let centre = aabb.centre();
-            let radius = order
-                .iter()
-                .flatten()
-                .map(|&i| (vertices[i as usize] - centre).norm())
-                .fold(0.0, f64::max);
-            let solid = mesh.is_closed() && !parity.is_empty();
-            let components = components(&parity, &boxes);
-            parts.push(Part {
-                solid,
-                parity_bvh: Bvh::build(boxes.clone()),
-                parity: parity.into(),
-                aabb,
-                sphere: (centre, radius),
-                components,
-            });
+            let index = weld(mesh, &mut vertices);
+            let (order, parity) =
+                count_triangles(mesh, &index, &vertices, &mut faces, &mut seen_face);
+            parts.push(part(mesh, &order, parity, &vertices));
         }
-
-        // unique edges, each owned by the first face using it
-        let mut edge_id: FastMap<(u32, u32), u32> = FastMap::default();
-        let mut edges: Vec<[u32; 2]> = Vec::new();
-        let mut owned_start = Vec::with_capacity(faces.len() + 1);
-        let mut owned = Vec::new();
-        for t in &faces {
-            owned_start.push(owned.len() as u32);
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                let key = (a.min(b), a.max(b));
-                if let std::collections::hash_map::Entry::Vacant(e) = edge_id.entry(key) {
-                    e.insert(edges.len() as u32);
-                    owned.push(edges.len() as u32);
-                    edges.push([a, b]);
-                }
-            }
-        }
-        owned_start.push(owned.len() as u32);
-
+        let (edges, owned_start, owned) = owned_edges(&faces);
         let boxes: Vec<Aabb> = faces
             .iter()
             .map(|t| Aabb::of_points(t.iter().map(|&i| &vertices[i as usize])))

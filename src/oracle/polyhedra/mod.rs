@@ -43,7 +43,7 @@
 //! reference point at the origin). Obstacle faces are brought into it only when the tree
 //! returns them.
 //!
-//! # Entry points for a robot arm (issue 10)
+//! # Entry points for a robot arm
 //!
 //! The arm oracle needs, per joint, "the rotation intervals of a rigid body (a set of link
 //! meshes) about an arbitrary fixed axis against static meshes" and "translation along an
@@ -356,7 +356,7 @@ impl Polyhedra {
     /// configuration `pose` (`[x, y, z, qx, qy, qz, qw]`) turning by `t · angle` about the
     /// world `axis` through the world point `pivot`, which need not be the robot's reference
     /// point (CHS §2.3.2's rotation about a fixed axis, for a body that is not built about the
-    /// axis: a link of a robot arm turned by a joint above it, issue 10). The robot's faces and
+    /// axis: a link of a robot arm turned by a joint above it). The robot's faces and
     /// tree are reused, moved so that the pivot becomes the reference point, instead of being
     /// built again; the obstacles are shared. With the pivot at the reference point this is
     /// [`CollisionOracle::intervals`] of `Change::Rotation { axis, angle }`.
@@ -376,7 +376,7 @@ impl Polyhedra {
 
     /// Runs `f` with an empty [`Gathered`] of this thread's scratch space: the collision pieces,
     /// in `t ∈ [0, 1]`, of one motion asked of several oracles (the links of an arm turned by
-    /// one joint, issue 10), each call skipping what the earlier ones already found.
+    /// one joint), each call skipping what the earlier ones already found.
     ///
     /// A turn is solved, pair by pair, only in the part of the pair's window not yet known to
     /// collide (`Hits::uncovered`): the union cannot change, and the pairs deep inside a

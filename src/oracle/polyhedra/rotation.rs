@@ -31,6 +31,7 @@ use crate::oracle::CallCounts;
 use nalgebra::Vector3;
 use std::cell::Cell;
 use std::f64::consts::PI;
+use std::ops::ControlFlow;
 
 type V3 = Vector3<f64>;
 
@@ -228,31 +229,18 @@ pub(crate) fn sweep(
     caches: &mut Caches,
     counts: &mut CallCounts,
 ) {
-    let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
-    let margin = 4.0 * tol.dist;
+    let (robot, obst) = (&ph.robot, &ph.obstacles);
+    let margin = 4.0 * ph.tol.dist;
     let axis = pose.body_dir(axis_w).normalize();
     let turning = AngleRange::new(phis.lo, phis.hi);
-    // first level: the robot's ball about the reference point does not move while it turns
-    let reach = robot.radius + margin;
-    if ph.enveloping
-        && !obst
-            .parts
-            .iter()
-            .any(|p| (pose.pos - p.sphere.0).norm() <= reach + p.sphere.1)
-    {
+    if !turn_may_reach(ph, pose, axis_w, &turning, margin) {
         return;
     }
-    let swept_world = swept_box(pose, &robot.aabb, robot.radius, axis_w, &turning).grown(margin);
-    if !swept_world.overlaps(&obst.aabb) {
-        return;
-    }
-
     let cyl = CylFrame::new(&axis);
-    let whole = Spans::single(phis);
     let Caches {
-        cyl_boxes: robot_boxes,
-        nodes: robot_nodes,
-        swept: robot_swept,
+        cyl_boxes,
+        nodes,
+        swept,
         vertex_arcs,
         robot_edges,
         obst_edges,
@@ -262,40 +250,146 @@ pub(crate) fn sweep(
         pieces,
         ..
     } = caches;
-    robot_boxes.reset(robot.faces.len());
+    cyl_boxes.reset(robot.faces.len());
     robot_edges.reset(robot.edges.len());
     obst_edges.reset(obst.edges.len());
-    // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
-    // cylindrical box) for φ in `w`; returns whether to go on
-    let mut pair = |r: u32,
-                    o: u32,
-                    of: &Face,
-                    obox: &CylBox,
-                    w: Interval,
-                    sink: &mut Hits,
-                    counts: &mut CallCounts|
-     -> bool {
+    let mut pairs = FacePairs {
+        ph,
+        axis,
+        margin,
+        cyl,
+        whole: Spans::single(phis),
+        robot_boxes: cyl_boxes,
+        robot_edges,
+        obst_edges,
+    };
+    if ph.enveloping {
+        let memos = DescentMemos {
+            robot_nodes: nodes,
+            robot_swept: swept,
+            vertex_arcs,
+            obst_nodes,
+            obst_world,
+            obst_faces,
+        };
+        descend_both(
+            &mut pairs, memos, pose, axis_w, &turning, phis, sink, counts,
+        );
+    } else {
+        'all: for o in 0..obst.faces.len() as u32 {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = cyl.box_of(&of.v, margin);
+            for r in 0..robot.faces.len() as u32 {
+                if !pairs.pair(r, o, &of, &obox, phis, sink, counts) {
+                    break 'all;
+                }
+            }
+        }
+    }
+    if !sink.done() {
+        containment::rotation(ph, pose, axis_w, phis, sink, pieces, counts);
+    }
+}
+
+/// Whether the turning robot can touch an obstacle at all: the first level of the descent,
+/// cheap enough to rule out most far-away turns at once. The robot's ball about the reference
+/// point does not move while it turns (enveloping only); then the world box the robot sweeps
+/// must meet the obstacles' box.
+fn turn_may_reach(
+    ph: &Polyhedra,
+    pose: &Pose,
+    axis_w: &V3,
+    turning: &AngleRange,
+    margin: f64,
+) -> bool {
+    let (robot, obst) = (&ph.robot, &ph.obstacles);
+    let reach = robot.radius + margin;
+    if ph.enveloping
+        && !obst
+            .parts
+            .iter()
+            .any(|p| (pose.pos - p.sphere.0).norm() <= reach + p.sphere.1)
+    {
+        return false;
+    }
+    let swept_world = swept_box(pose, &robot.aabb, robot.radius, axis_w, turning).grown(margin);
+    swept_world.overlaps(&obst.aabb)
+}
+
+/// What every pair of faces of one turn shares: the axis in the robot's frame, its cylindrical
+/// frame, and the per-face and per-edge cylindrical boxes, computed once per call and reused by
+/// all the pairs.
+struct FacePairs<'a> {
+    ph: &'a Polyhedra,
+    /// The axis in the robot's frame.
+    axis: V3,
+    margin: f64,
+    cyl: CylFrame,
+    /// The whole turn, the window of every pair when not enveloping.
+    whole: Spans,
+    robot_boxes: &'a mut Memo<CylBox>,
+    robot_edges: &'a mut Memo<CylBox>,
+    obst_edges: &'a mut Memo<CylBox>,
+}
+
+/// The memos of the descent of both trees, apart from those of the pairs of faces (which the
+/// descent lends to [`FacePairs`] while it holds these).
+struct DescentMemos<'a> {
+    robot_nodes: &'a mut Memo<NodeBounds>,
+    robot_swept: &'a mut Memo<Aabb>,
+    vertex_arcs: &'a mut Memo<Aabb>,
+    obst_nodes: &'a mut Memo<ObstNodeBounds>,
+    obst_world: &'a mut Memo<Aabb>,
+    obst_faces: &'a mut Memo<(Face, CylBox)>,
+}
+
+/// A pair's window, narrowed again whenever the sink has learnt of new collisions since: the
+/// pair is solved only where it can still change the union.
+struct PairWindow {
+    spans: Spans,
+    /// The sink's generation the window was last narrowed at.
+    known: u64,
+    enveloping: bool,
+}
+
+impl PairWindow {
+    /// Narrows the window to what is not yet known to collide; whether anything is left.
+    #[inline]
+    fn narrow(&mut self, sink: &Hits) -> bool {
+        if self.enveloping && sink.generation() != self.known {
+            self.known = sink.generation();
+            self.spans = sink.uncovered(&self.spans, CLIP_OVERLAP);
+        }
+        !self.spans.is_empty()
+    }
+}
+
+impl FacePairs<'_> {
+    /// Robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its
+    /// cylindrical box) for φ in `w`; returns whether to go on.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn pair(
+        &mut self,
+        r: u32,
+        o: u32,
+        of: &Face,
+        obox: &CylBox,
+        w: Interval,
+        sink: &mut Hits,
+        counts: &mut CallCounts,
+    ) -> bool {
         if sink.interrupted() {
             return false;
         }
+        let (ph, robot, tol, axis) = (self.ph, &self.ph.robot, &self.ph.tol, self.axis);
         let rc = robot.corners(r);
-        let mut rbox = None;
-        let pair_window = if ph.enveloping {
-            let b = *robot_boxes.get_or_insert_with(r as usize, || cyl.box_of(&rc, margin));
-            if !b.fixed_overlap(obox) {
-                return true;
-            }
-            rbox = Some(b);
-            match b.turn_window(obox) {
-                Some((start, length)) => arc_in_window(Arc { start, length }, w),
-                None => Spans::single(w),
-            }
-        } else {
-            whole
+        let Some((pair_window, rbox)) = self.face_window(r, &rc, obox, w) else {
+            return true;
         };
         // only where the pair can change the union: not inside what is known to collide
-        let mut known = sink.generation();
-        let mut pair_window = if ph.enveloping {
+        let known = sink.generation();
+        let pair_window = if ph.enveloping {
             sink.uncovered(&pair_window, CLIP_OVERLAP)
         } else {
             pair_window
@@ -314,231 +408,331 @@ pub(crate) fn sweep(
             return true;
         }
         let around = Around::new(hull);
-        // an edge meets a face only where its ends are not both strictly on one side of the
-        // face's plane (the predicate's first atoms, with their slack doubled): if all three
-        // corners of a face stay on one side for the whole window, its edges are skipped
-        // how far a face's corners stay on one side of the other face's plane over the window,
-        // in units of the predicate's slack (0: they may reach it)
-        let one_side = |corners: &[V3; 3], face: &Face, axis: &V3| -> f64 {
-            let th = tol.dist * face.n_norm;
-            let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
-            let above = b.iter().map(|(lo, _)| *lo).fold(f64::INFINITY, f64::min);
-            let below = b.iter().map(|(_, hi)| -*hi).fold(f64::INFINITY, f64::min);
-            (above.max(below) / th).max(0.0)
-        };
         // the robot face off the obstacle face's plane: no robot edge reaches that face, and
         // (well off, beyond the in-plane slack of the determinants too) no obstacle edge, which
         // lies in that plane, reaches the robot face
         let rf = robot.face(r);
         let robot_off = if ph.enveloping {
-            one_side(&rc, of, &axis)
+            off_plane(&rc, of, &axis, &around, tol)
         } else {
             0.0
         };
         if ph.enveloping && robot_off > OFF_FAR {
             return true;
         }
-        // a face whose corners all stay outside the prism over the other face (beyond the plane
-        // through one of its edges, perpendicular to it) cannot meet it either
-        let outside = |corners: &[V3; 3], face: &Face, axis: &V3| -> bool {
-            let e = face.edges();
-            (0..3).any(|i| {
-                let m = face.n.cross(&e[i]);
-                let th = OFF_FAR * tol.dist * face.n_norm * face.e_len[i];
-                let c = m.dot(&face.v[i]);
-                corners
-                    .iter()
-                    .all(|x| around.bounds(&lin(&m, x, axis).plus(-c)).1 < -th)
-            })
-        };
-        if ph.enveloping && (outside(&rc, of, &axis) || outside(&of.v, rf, &-axis)) {
+        if ph.enveloping
+            && (outside_prism(&rc, of, &axis, &around, tol)
+                || outside_prism(&of.v, rf, &-axis, &around, tol))
+        {
             return true;
         }
-        // the window again, narrowed by what the pair's own edges found so far
-        let mut narrow = |win: &mut Spans, sink: &Hits| -> bool {
-            if ph.enveloping && sink.generation() != known {
-                known = sink.generation();
-                *win = sink.uncovered(win, CLIP_OVERLAP);
-            }
-            !win.is_empty()
+        let mut window = PairWindow {
+            spans: pair_window,
+            known,
+            enveloping: ph.enveloping,
         };
         if robot_off <= OFF_NEAR {
-            for &e in robot.owned_edges(r) {
-                if !narrow(&mut pair_window, sink) {
-                    return true;
+            if let ControlFlow::Break(go_on) =
+                self.robot_edges_on(r, of, obox, w, &around, &mut window, sink, counts)
+            {
+                return go_on;
+            }
+        }
+        if ph.enveloping && off_plane(&of.v, rf, &-axis, &around, tol) > OFF_NEAR {
+            return true;
+        }
+        self.obstacle_edges_on(
+            o,
+            of,
+            rf,
+            rbox.as_ref(),
+            w,
+            &around,
+            &mut window,
+            sink,
+            counts,
+        )
+    }
+
+    /// The window of robot face `r` (corners `rc`) against an obstacle face's box `obox` within
+    /// `w`, with the robot face's cylindrical box when enveloping; `None` when the boxes never
+    /// meet, whatever the angle.
+    #[inline]
+    fn face_window(
+        &mut self,
+        r: u32,
+        rc: &[V3; 3],
+        obox: &CylBox,
+        w: Interval,
+    ) -> Option<(Spans, Option<CylBox>)> {
+        if !self.ph.enveloping {
+            return Some((self.whole, None));
+        }
+        let (cyl, margin) = (&self.cyl, self.margin);
+        let b = *self
+            .robot_boxes
+            .get_or_insert_with(r as usize, || cyl.box_of(rc, margin));
+        if !b.fixed_overlap(obox) {
+            return None;
+        }
+        let spans = match b.turn_window(obox) {
+            Some((start, length)) => arc_in_window(Arc { start, length }, w),
+            None => Spans::single(w),
+        };
+        Some((spans, Some(b)))
+    }
+
+    /// The edges of robot face `r`, turning by `+φ`, against the obstacle face `of`. Breaks
+    /// with whether to go on when the pair is done: its window emptied (`true`) or the sink
+    /// asked to stop (`false`).
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn robot_edges_on(
+        &mut self,
+        r: u32,
+        of: &Face,
+        obox: &CylBox,
+        w: Interval,
+        around: &Around,
+        window: &mut PairWindow,
+        sink: &mut Hits,
+        counts: &mut CallCounts,
+    ) -> ControlFlow<bool> {
+        let (ph, robot, tol) = (self.ph, &self.ph.robot, &self.ph.tol);
+        let (cyl, margin) = (&self.cyl, self.margin);
+        for &e in robot.owned_edges(r) {
+            if !window.narrow(sink) {
+                return ControlFlow::Break(true);
+            }
+            let (p, q) = robot.edge(e);
+            // the edge's own cylindrical box against the obstacle face's: a narrower window
+            // than the face's, or none
+            if ph.enveloping {
+                let eb = self
+                    .robot_edges
+                    .get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
+                if !edge_reaches(eb, obox, &window.spans, w) {
+                    continue;
                 }
-                let (p, q) = robot.edge(e);
-                // the edge's own cylindrical box against the obstacle face's: a narrower
-                // window than the face's, or none
-                if ph.enveloping {
-                    let eb = robot_edges
-                        .get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
-                    if !edge_reaches(eb, obox, &pair_window, w) {
-                        continue;
-                    }
-                }
-                counts.pairs_tested += 1;
-                for iv in
-                    edge_face_around(&p, &q, of, &axis, &pair_window, &around, &tol).as_slice()
-                {
-                    if sink.add(*iv).is_break() {
-                        return false;
-                    }
+            }
+            counts.pairs_tested += 1;
+            for iv in
+                edge_face_around(&p, &q, of, &self.axis, &window.spans, around, tol).as_slice()
+            {
+                if sink.add(*iv).is_break() {
+                    return ControlFlow::Break(false);
                 }
             }
         }
-        if ph.enveloping && one_side(&of.v, rf, &-axis) > OFF_NEAR {
-            return true;
-        }
+        ControlFlow::Continue(())
+    }
+
+    /// The edges of obstacle face `o` (`of` in the robot's frame), turning by `−φ`, against
+    /// robot face `rf` (cylindrical box `rbox` when enveloping); returns whether to go on.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn obstacle_edges_on(
+        &mut self,
+        o: u32,
+        of: &Face,
+        rf: &Face,
+        rbox: Option<&CylBox>,
+        w: Interval,
+        around: &Around,
+        window: &mut PairWindow,
+        sink: &mut Hits,
+        counts: &mut CallCounts,
+    ) -> bool {
+        let (obst, tol) = (&self.ph.obstacles, &self.ph.tol);
+        let (cyl, margin) = (&self.cyl, self.margin);
         let ids = obst.faces[o as usize];
         for &e in obst.owned_edges(o) {
-            if !narrow(&mut pair_window, sink) {
+            if !window.narrow(sink) {
                 return true;
             }
             let [a, b] = obst.edges[e as usize];
             let pos = |v: u32| ids.iter().position(|&i| i == v).unwrap_or(0);
             let (p, q) = (of.v[pos(a)], of.v[pos(b)]);
             // the obstacle edge's cylindrical box: the robot face turned by +φ must reach it
-            if let Some(rb) = &rbox {
-                let eb =
-                    obst_edges.get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
-                if !edge_reaches(rb, eb, &pair_window, w) {
+            if let Some(rb) = rbox {
+                let eb = self
+                    .obst_edges
+                    .get_or_insert_with(e as usize, || cyl.box_of(&[p, q, q], margin));
+                if !edge_reaches(rb, eb, &window.spans, w) {
                     continue;
                 }
             }
             counts.pairs_tested += 1;
-            for iv in edge_face_around(&p, &q, rf, &-axis, &pair_window, &around, &tol).as_slice() {
+            for iv in
+                edge_face_around(&p, &q, rf, &-self.axis, &window.spans, around, tol).as_slice()
+            {
                 if sink.add(*iv).is_break() {
                     return false;
                 }
             }
         }
         true
+    }
+}
+
+/// How far a face's `corners` stay on one side of `face`'s plane over the window summarised by
+/// `around`, in units of the predicate's slack (0: they may reach it). An edge meets a face only
+/// where its ends are not both strictly on one side of the face's plane (the predicate's first
+/// atoms, with their slack doubled): if all three corners of a face stay on one side for the
+/// whole window, its edges are skipped.
+#[inline]
+fn off_plane(corners: &[V3; 3], face: &Face, axis: &V3, around: &Around, tol: &Tolerance) -> f64 {
+    let th = tol.dist * face.n_norm;
+    let b = corners.map(|x| around.bounds(&lin(&face.n, &x, axis).plus(-face.offset)));
+    let above = b.iter().map(|(lo, _)| *lo).fold(f64::INFINITY, f64::min);
+    let below = b.iter().map(|(_, hi)| -*hi).fold(f64::INFINITY, f64::min);
+    (above.max(below) / th).max(0.0)
+}
+
+/// Whether a face's `corners` all stay outside the prism over `face` (beyond the plane through
+/// one of its edges, perpendicular to it) over the window summarised by `around`: then the two
+/// faces cannot meet either.
+#[inline]
+fn outside_prism(
+    corners: &[V3; 3],
+    face: &Face,
+    axis: &V3,
+    around: &Around,
+    tol: &Tolerance,
+) -> bool {
+    let e = face.edges();
+    (0..3).any(|i| {
+        let m = face.n.cross(&e[i]);
+        let th = OFF_FAR * tol.dist * face.n_norm * face.e_len[i];
+        let c = m.dot(&face.v[i]);
+        corners
+            .iter()
+            .all(|x| around.bounds(&lin(&m, x, axis).plus(-c)).1 < -th)
+    })
+}
+
+/// Both trees at once, in cylindrical coordinates about the axis (CHS §2.3.2): height and
+/// radius of a node do not change while the robot turns, so nodes whose ranges miss are pruned
+/// for the whole turn; away from the axis both nodes have an angular sector, and the robot's,
+/// turned by φ, meets the obstacle's only for φ in a window that narrows on the way down. Robot
+/// nodes are bounded in the robot's frame, obstacle nodes in the world (the same cylinder, its
+/// frame turned by the pose). Besides, each robot node's ball (about its box's centre) swept
+/// along its arc gives a world box for the whole turn (computed once per node and call), and
+/// each robot face its swept world box (the arcs of its corners).
+///
+/// Per call, every obstacle node's bounds and every obstacle face brought into the robot's
+/// frame (with its cylindrical box) are computed once (`obst_nodes`, `obst_faces`): the same
+/// values every time, so the same answer, bit for bit. Each pair of nodes hands the robot
+/// node's cylindrical bounds down with its window, so that at the leaves an obstacle face whose
+/// height or radius range misses the robot leaf's is skipped for all of the leaf's faces at once
+/// (each face's own range lies inside the leaf's, so `CylBox::fixed_overlap` would rule out
+/// every one of those pairs anyway).
+#[allow(clippy::too_many_arguments)]
+fn descend_both(
+    pairs: &mut FacePairs,
+    memos: DescentMemos,
+    pose: &Pose,
+    axis_w: &V3,
+    turning: &AngleRange,
+    phis: Interval,
+    sink: &mut Hits,
+    counts: &mut CallCounts,
+) {
+    let ph = pairs.ph;
+    let (robot, obst, margin, cyl) = (&ph.robot, &ph.obstacles, pairs.margin, pairs.cyl);
+    let DescentMemos {
+        robot_nodes,
+        robot_swept,
+        vertex_arcs,
+        obst_nodes,
+        obst_world,
+        obst_faces,
+    } = memos;
+    let world_cyl = cyl.rotated(&pose.rot);
+    robot_nodes.reset(robot.bvh.node_count());
+    robot_swept.reset(robot.faces.len());
+    vertex_arcs.reset(robot.vertices.len());
+    obst_nodes.reset(obst.bvh.node_count());
+    obst_world.reset(obst.faces.len());
+    obst_faces.reset(obst.faces.len());
+    let unbounded = CylBounds::everything();
+    // a first-collision question: node pairs whose window starts after the earliest piece found
+    // so far are pruned (`cutoff`), and the earlier window is descended first
+    let prefix = sink.is_prefix();
+    let cutoff = Cell::new(f64::INFINITY);
+    let test = |a: u32, b: u32, rb: &Aabb, ob: &Aabb, (w, _): (Interval, CylBounds)| {
+        let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
+            let half = 0.5 * (rb.hi - rb.lo);
+            let n = cyl.node_bounds(&rb.centre(), &half, margin);
+            let c = pose.rot * rb.centre();
+            let ball = half.norm() * (1.0 + 1e-12) + margin;
+            let swept = turning.arc_box(&c, axis_w).grown(ball).shifted(&pose.pos);
+            (n, n.sector(), swept)
+        });
+        if !swept.overlaps(ob) {
+            return None;
+        }
+        let (on, osector) = *obst_nodes.get_or_insert_with(b as usize, || {
+            let on =
+                world_cyl.node_bounds(&(ob.centre() - pose.pos), &(0.5 * (ob.hi - ob.lo)), margin);
+            (on, on.sector())
+        });
+        if !rn.fixed_overlap(&on) {
+            return None;
+        }
+        let w = match (rsector, osector) {
+            (Some(m), Some(f)) => sector_window(m, f, w)?,
+            _ => w,
+        };
+        Some((w, rn))
     };
-    if ph.enveloping {
-        // both trees at once, in cylindrical coordinates about the axis (CHS §2.3.2): height
-        // and radius of a node do not change while the robot turns, so nodes whose ranges miss
-        // are pruned for the whole turn; away from the axis both nodes have an angular sector,
-        // and the robot's, turned by φ, meets the obstacle's only for φ in a window that
-        // narrows on the way down. Robot nodes are bounded in the robot's frame, obstacle
-        // nodes in the world (the same cylinder, its frame turned by the pose).
-        // Besides, each robot node's ball (about its box's centre) swept along its arc gives
-        // a world box for the whole turn (computed once per node and call), and each robot
-        // face its swept world box (the arcs of its corners).
-        //
-        // Per call, every obstacle node's bounds and every obstacle face brought into the
-        // robot's frame (with its cylindrical box) are computed once (`obst_nodes`,
-        // `obst_faces`): the same values as before, so the same answer, bit for bit. Each pair
-        // of nodes hands the robot node's cylindrical bounds down with its window, so that at
-        // the leaves an obstacle face whose height or radius range misses the robot leaf's is
-        // skipped for all of the leaf's faces at once (each face's own range lies inside the
-        // leaf's, so `CylBox::fixed_overlap` would rule out every one of those pairs anyway).
-        let world_cyl = cyl.rotated(&pose.rot);
-        robot_nodes.reset(robot.bvh.node_count());
-        robot_swept.reset(robot.faces.len());
-        vertex_arcs.reset(robot.vertices.len());
-        obst_nodes.reset(obst.bvh.node_count());
-        obst_world.reset(obst.faces.len());
-        obst_faces.reset(obst.faces.len());
-        let unbounded = CylBounds::everything();
-        // a first-collision question: node pairs whose window starts after the earliest piece
-        // found so far are pruned (`cutoff`), and the earlier window is descended first
-        let prefix = sink.is_prefix();
-        let cutoff = Cell::new(f64::INFINITY);
-        let test = |a: u32, b: u32, rb: &Aabb, ob: &Aabb, (w, _): (Interval, CylBounds)| {
-            let (rn, rsector, swept) = *robot_nodes.get_or_insert_with(a as usize, || {
-                let half = 0.5 * (rb.hi - rb.lo);
-                let n = cyl.node_bounds(&rb.centre(), &half, margin);
-                let c = pose.rot * rb.centre();
-                let ball = half.norm() * (1.0 + 1e-12) + margin;
-                let swept = turning.arc_box(&c, axis_w).grown(ball).shifted(&pose.pos);
-                (n, n.sector(), swept)
+    let leaves = |ri: &[u32], oi: &[u32], (w, rn): (Interval, CylBounds)| {
+        if sink.covers(w) {
+            return true;
+        }
+        for &o in oi {
+            let (of, obox) = obst_faces.get_or_insert_with(o as usize, || {
+                let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+                let obox = cyl.box_of(&of.v, margin);
+                (of, obox)
             });
-            if !swept.overlaps(ob) {
-                return None;
+            if !rn.fixed_overlap_box(obox) {
+                continue;
             }
-            let (on, osector) = *obst_nodes.get_or_insert_with(b as usize, || {
-                let on = world_cyl.node_bounds(
-                    &(ob.centre() - pose.pos),
-                    &(0.5 * (ob.hi - ob.lo)),
-                    margin,
-                );
-                (on, on.sector())
-            });
-            if !rn.fixed_overlap(&on) {
-                return None;
-            }
-            let w = match (rsector, osector) {
-                (Some(m), Some(f)) => sector_window(m, f, w)?,
-                _ => w,
+            let owbox = *obst_world
+                .get_or_insert_with(o as usize, || Aabb::of_points(obst.corners(o).iter()));
+            let mut face_swept_box = |r: u32| {
+                *robot_swept.get_or_insert_with(r as usize, || {
+                    face_swept(pose, robot, r, axis_w, turning, margin, vertex_arcs)
+                })
             };
-            Some((w, rn))
-        };
-        let leaves = |ri: &[u32], oi: &[u32], (w, rn): (Interval, CylBounds)| {
-            if sink.covers(w) {
-                return true;
+            if !ri.iter().any(|&r| face_swept_box(r).overlaps(&owbox)) {
+                continue;
             }
-            for &o in oi {
-                let (of, obox) = obst_faces.get_or_insert_with(o as usize, || {
-                    let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-                    let obox = cyl.box_of(&of.v, margin);
-                    (of, obox)
-                });
-                if !rn.fixed_overlap_box(obox) {
+            for &r in ri {
+                if !face_swept_box(r).overlaps(&owbox) {
                     continue;
                 }
-                let owbox = *obst_world
-                    .get_or_insert_with(o as usize, || Aabb::of_points(obst.corners(o).iter()));
-                if !ri.iter().any(|&r| {
-                    robot_swept
-                        .get_or_insert_with(r as usize, || {
-                            face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
-                        })
-                        .overlaps(&owbox)
-                }) {
-                    continue;
-                }
-                for &r in ri {
-                    let swept = robot_swept.get_or_insert_with(r as usize, || {
-                        face_swept(pose, robot, r, axis_w, &turning, margin, vertex_arcs)
-                    });
-                    if !swept.overlaps(&owbox) {
-                        continue;
-                    }
-                    if !pair(r, o, of, obox, w, sink, counts) {
-                        return false;
-                    }
-                }
-            }
-            if prefix {
-                note_earliest(sink, &cutoff);
-            }
-            true
-        };
-        descend_pairs(
-            &robot.bvh,
-            &obst.bvh,
-            (phis, unbounded),
-            prefix,
-            &cutoff,
-            |(w, _): &(Interval, CylBounds)| w.lo,
-            test,
-            leaves,
-        );
-    } else {
-        'all: for o in 0..obst.faces.len() as u32 {
-            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-            let obox = cyl.box_of(&of.v, margin);
-            for r in 0..robot.faces.len() as u32 {
-                if !pair(r, o, &of, &obox, phis, sink, counts) {
-                    break 'all;
+                if !pairs.pair(r, o, of, obox, w, sink, counts) {
+                    return false;
                 }
             }
         }
-    }
-    if !sink.done() {
-        containment::rotation(ph, pose, axis_w, phis, sink, pieces, counts);
-    }
+        if prefix {
+            note_earliest(sink, &cutoff);
+        }
+        true
+    };
+    descend_pairs(
+        &robot.bvh,
+        &obst.bvh,
+        (phis, unbounded),
+        prefix,
+        &cutoff,
+        |(w, _): &(Interval, CylBounds)| w.lo,
+        test,
+        leaves,
+    );
 }
 
 /// Whether a box `m` turning by `+φ` can meet the fixed box `f` (one of them an edge's, the

@@ -17,6 +17,7 @@ use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
 use super::predicate::Tolerance;
 use super::Aabb;
 use super::{containment, descend_pairs, note_earliest, Caches, Hits, Polyhedra, Pose};
+use crate::geometry::kernel::memo::Memo;
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
 use nalgebra::Vector3;
@@ -120,69 +121,118 @@ pub(crate) fn sweep(
     caches: &mut Caches,
     counts: &mut CallCounts,
 ) {
-    let (robot, obst, tol) = (&ph.robot, &ph.obstacles, ph.tol);
-    let margin = 4.0 * tol.dist;
-    let dir = pose.body_dir(dir_w);
-    let speed = dir.norm();
-    // nothing can happen while the robot's box, moving, misses the obstacles' box; this also
-    // makes an unbounded line bounded
-    let robot_world = pose.world_box(&robot.aabb);
-    let Some(mut window) = robot_world
-        .sweep_range(dir_w, &obst.aabb.grown(margin))
-        .and_then(|w| w.meet(&range))
-    else {
+    let Some(window) = reachable_window(ph, pose, dir_w, range) else {
         return;
     };
-    if ph.enveloping {
-        // first level: the robot's ball about its reference point against each obstacle's ball
-        let hull = obst
-            .parts
-            .iter()
-            .filter_map(|p| {
-                sphere_sweep(
-                    &pose.pos,
-                    dir_w,
-                    robot.radius + margin,
-                    &p.sphere.0,
-                    p.sphere.1,
-                )
-            })
-            .reduce(|a, b| Interval {
-                lo: a.lo.min(b.lo),
-                hi: a.hi.max(b.hi),
-            });
-        match hull.and_then(|h| h.meet(&window)) {
-            Some(w) => window = w,
-            None => return,
-        }
-    }
-
-    let frame = MotionFrame::new(&dir);
+    let dir = pose.body_dir(dir_w);
     let Caches {
-        frame_boxes: robot_boxes,
+        frame_boxes,
         placed,
         pieces,
         ..
     } = caches;
-    robot_boxes.reset(robot.faces.len());
-    // robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its box in
-    // the motion frame) for λ in `w`; returns whether to go on
-    let mut pair = |r: u32,
-                    o: u32,
-                    of: &Face,
-                    obox: &FrameBox,
-                    w: Interval,
-                    sink: &mut Hits,
-                    counts: &mut CallCounts|
-     -> bool {
+    frame_boxes.reset(ph.robot.faces.len());
+    let mut pairs = FacePairs {
+        ph,
+        dir,
+        speed: dir.norm(),
+        margin: 4.0 * ph.tol.dist,
+        frame: MotionFrame::new(&dir),
+        robot_boxes: frame_boxes,
+    };
+    if ph.enveloping && ph.robot.faces.len() <= super::SMALL_ROBOT {
+        descend_obstacles(&mut pairs, pose, dir_w, window, sink, counts);
+    } else if ph.enveloping {
+        descend_both(&mut pairs, placed, pose, dir_w, window, sink, counts);
+    } else {
+        'all: for o in 0..ph.obstacles.faces.len() as u32 {
+            let of = Face::new(ph.obstacles.corners(o).map(|x| pose.body_point(&x)));
+            let obox = pairs.frame.box_of(&of.v);
+            for r in 0..ph.robot.faces.len() as u32 {
+                if !pairs.pair(r, o, &of, &obox, window, sink, counts) {
+                    break 'all;
+                }
+            }
+        }
+    }
+    if !sink.done() {
+        containment::translation(ph, pose, dir_w, window, sink, pieces, counts);
+    }
+}
+
+/// The part of `range` in which the robot can touch an obstacle at all: nothing can happen while
+/// the robot's box, moving, misses the obstacles' box, which also makes an unbounded line
+/// bounded; then (enveloping) the robot's ball about its reference point against each
+/// obstacle's ball. `None` when the motion is free throughout.
+fn reachable_window(ph: &Polyhedra, pose: &Pose, dir_w: &V3, range: Interval) -> Option<Interval> {
+    let (robot, obst) = (&ph.robot, &ph.obstacles);
+    let margin = 4.0 * ph.tol.dist;
+    let window = pose
+        .world_box(&robot.aabb)
+        .sweep_range(dir_w, &obst.aabb.grown(margin))
+        .and_then(|w| w.meet(&range))?;
+    if !ph.enveloping {
+        return Some(window);
+    }
+    let hull = obst
+        .parts
+        .iter()
+        .filter_map(|p| {
+            sphere_sweep(
+                &pose.pos,
+                dir_w,
+                robot.radius + margin,
+                &p.sphere.0,
+                p.sphere.1,
+            )
+        })
+        .reduce(|a, b| Interval {
+            lo: a.lo.min(b.lo),
+            hi: a.hi.max(b.hi),
+        });
+    hull.and_then(|h| h.meet(&window))
+}
+
+/// What every pair of faces of one translation shares: the motion in the robot's frame and the
+/// per-face boxes of its frame, computed once per call and reused by all the pairs.
+struct FacePairs<'a> {
+    ph: &'a Polyhedra,
+    /// The motion's direction in the robot's frame.
+    dir: V3,
+    speed: f64,
+    margin: f64,
+    frame: MotionFrame,
+    robot_boxes: &'a mut Memo<FrameBox>,
+}
+
+impl FacePairs<'_> {
+    /// Robot face `r` against obstacle face `o` (`of`: in the robot's frame, `obox`: its box in
+    /// the motion frame) for λ in `w`; returns whether to go on.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn pair(
+        &mut self,
+        r: u32,
+        o: u32,
+        of: &Face,
+        obox: &FrameBox,
+        w: Interval,
+        sink: &mut Hits,
+        counts: &mut CallCounts,
+    ) -> bool {
         if sink.interrupted() {
             return false;
         }
+        let (ph, robot, obst, tol) = (self.ph, &self.ph.robot, &self.ph.obstacles, self.ph.tol);
+        let dir = self.dir;
         let rc = robot.corners(r);
         let pair_window = if ph.enveloping {
-            let rbox = robot_boxes.get_or_insert_with(r as usize, || frame.box_of(&rc));
+            let frame = &self.frame;
+            let rbox = self
+                .robot_boxes
+                .get_or_insert_with(r as usize, || frame.box_of(&rc));
             match rbox
-                .sweep_window(obox, speed, margin)
+                .sweep_window(obox, self.speed, self.margin)
                 .and_then(|x| x.meet(&w))
             {
                 Some(x) => x,
@@ -234,101 +284,110 @@ pub(crate) fn sweep(
             }
         }
         true
-    };
-    if ph.enveloping && robot.faces.len() <= super::SMALL_ROBOT {
-        // a robot of a few leaves: the obstacle tree descended with the robot's box moving
-        // along the motion, each node and face entered only for the λ at which the moving box
-        // meets it (exact for two boxes, so conservative for their contents; far tighter than
-        // the box around the whole sweep once the motion is long and not axis-parallel), then
-        // the robot's tree likewise with each obstacle face's box, for that face's λ only
-        let robot_world = pose.world_box(&robot.aabb);
-        // (a node or face whose window is known to collide already is skipped: the union
-        // cannot change)
-        let _ = obst.bvh.query_windows(
-            sink,
-            |sink, b| {
-                let w = robot_world
-                    .sweep_range(dir_w, &b.grown(margin))?
-                    .meet(&window)?;
-                (!sink.covers(w)).then_some(w)
-            },
-            |sink, o, wo| {
-                let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-                let obox = frame.box_of(&of.v);
-                let b = Aabb::of_points(of.v.iter()).grown(margin);
-                let go_on = robot.bvh.visit(
-                    |rb| rb.sweep_range(&dir, &b).and_then(|x| x.meet(&wo)).is_some(),
-                    |r| pair(r, o, &of, &obox, wo, sink, counts),
-                );
-                if go_on {
-                    ControlFlow::Continue(())
-                } else {
-                    ControlFlow::Break(())
-                }
-            },
-        );
-    } else if ph.enveloping {
-        // both trees at once: a robot node's box, placed at the pose (world frame) and moved
-        // by λ·dir_w, against an obstacle node's box grown by the margin gives the λ for
-        // which the two may meet (exact for two boxes, so conservative for their contents);
-        // the window only narrows on the way down, and a pair of leaves passes it on to the
-        // per-face boxes of the motion frame
-        let dir_body = dir;
-        placed.reset(robot.bvh.node_count());
-        // a first-collision question: node pairs whose window starts after the earliest piece
-        // found so far are pruned (`cutoff`), and the earlier window is descended first
-        let prefix = sink.is_prefix();
-        let cutoff = Cell::new(f64::INFINITY);
-        let test = |a: u32, _: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
-            let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
-            let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
-            // the same test in the robot's frame (the obstacle box turned into it), which
-            // is tight where the first one is loose
-            rb.sweep_range(&dir_body, &pose.body_box(ob).grown(margin))?
-                .meet(&w)
-        };
-        let leaves = |ri: &[u32], oi: &[u32], w: Interval| {
-            if sink.covers(w) {
-                return true;
-            }
-            for &o in oi {
-                let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-                let obox = frame.box_of(&of.v);
-                for &r in ri {
-                    if !pair(r, o, &of, &obox, w, sink, counts) {
-                        return false;
-                    }
-                }
-            }
-            if prefix {
-                note_earliest(sink, &cutoff);
-            }
-            true
-        };
-        descend_pairs(
-            &robot.bvh,
-            &obst.bvh,
-            window,
-            prefix,
-            &cutoff,
-            |w| w.lo,
-            test,
-            leaves,
-        );
-    } else {
-        'all: for o in 0..obst.faces.len() as u32 {
+    }
+}
+
+/// A robot of a few leaves: the obstacle tree descended with the robot's box moving along the
+/// motion, each node and face entered only for the λ at which the moving box meets it (exact for
+/// two boxes, so conservative for their contents; far tighter than the box around the whole
+/// sweep once the motion is long and not axis-parallel), then the robot's tree likewise with
+/// each obstacle face's box, for that face's λ only.
+fn descend_obstacles(
+    pairs: &mut FacePairs,
+    pose: &Pose,
+    dir_w: &V3,
+    window: Interval,
+    sink: &mut Hits,
+    counts: &mut CallCounts,
+) {
+    let ph = pairs.ph;
+    let (robot, obst, margin) = (&ph.robot, &ph.obstacles, pairs.margin);
+    let robot_world = pose.world_box(&robot.aabb);
+    // (a node or face whose window is known to collide already is skipped: the union cannot
+    // change)
+    let _ = obst.bvh.query_windows(
+        sink,
+        |sink, b| {
+            let w = robot_world
+                .sweep_range(dir_w, &b.grown(margin))?
+                .meet(&window)?;
+            (!sink.covers(w)).then_some(w)
+        },
+        |sink, o, wo| {
             let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
-            let obox = frame.box_of(&of.v);
-            for r in 0..robot.faces.len() as u32 {
-                if !pair(r, o, &of, &obox, window, sink, counts) {
-                    break 'all;
+            let obox = pairs.frame.box_of(&of.v);
+            let b = Aabb::of_points(of.v.iter()).grown(margin);
+            let dir = pairs.dir;
+            let go_on = robot.bvh.visit(
+                |rb| rb.sweep_range(&dir, &b).and_then(|x| x.meet(&wo)).is_some(),
+                |r| pairs.pair(r, o, &of, &obox, wo, sink, counts),
+            );
+            if go_on {
+                ControlFlow::Continue(())
+            } else {
+                ControlFlow::Break(())
+            }
+        },
+    );
+}
+
+/// Both trees at once: a robot node's box, placed at the pose (world frame) and moved by
+/// λ·dir_w, against an obstacle node's box grown by the margin gives the λ for which the two may
+/// meet (exact for two boxes, so conservative for their contents); the window only narrows on
+/// the way down, and a pair of leaves passes it on to the per-face boxes of the motion frame.
+fn descend_both(
+    pairs: &mut FacePairs,
+    placed: &mut Memo<Aabb>,
+    pose: &Pose,
+    dir_w: &V3,
+    window: Interval,
+    sink: &mut Hits,
+    counts: &mut CallCounts,
+) {
+    let ph = pairs.ph;
+    let (robot, obst, margin) = (&ph.robot, &ph.obstacles, pairs.margin);
+    let dir_body = pairs.dir;
+    placed.reset(robot.bvh.node_count());
+    // a first-collision question: node pairs whose window starts after the earliest piece found
+    // so far are pruned (`cutoff`), and the earlier window is descended first
+    let prefix = sink.is_prefix();
+    let cutoff = Cell::new(f64::INFINITY);
+    let test = |a: u32, _: u32, rb: &Aabb, ob: &Aabb, w: Interval| {
+        let placed = placed.get_or_insert_with(a as usize, || pose.world_box(rb));
+        let w = placed.sweep_range(dir_w, &ob.grown(margin))?.meet(&w)?;
+        // the same test in the robot's frame (the obstacle box turned into it), which is tight
+        // where the first one is loose
+        rb.sweep_range(&dir_body, &pose.body_box(ob).grown(margin))?
+            .meet(&w)
+    };
+    let leaves = |ri: &[u32], oi: &[u32], w: Interval| {
+        if sink.covers(w) {
+            return true;
+        }
+        for &o in oi {
+            let of = Face::new(obst.corners(o).map(|x| pose.body_point(&x)));
+            let obox = pairs.frame.box_of(&of.v);
+            for &r in ri {
+                if !pairs.pair(r, o, &of, &obox, w, sink, counts) {
+                    return false;
                 }
             }
         }
-    }
-    if !sink.done() {
-        containment::translation(ph, pose, dir_w, window, sink, pieces, counts);
-    }
+        if prefix {
+            note_earliest(sink, &cutoff);
+        }
+        true
+    };
+    descend_pairs(
+        &robot.bvh,
+        &obst.bvh,
+        window,
+        prefix,
+        &cutoff,
+        |w| w.lo,
+        test,
+        leaves,
+    );
 }
 
 #[cfg(test)]

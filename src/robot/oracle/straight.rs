@@ -1,5 +1,5 @@
 //! Straight motions of several joints at once, certified by conservative advancement: the
-//! shortcuts a staircase of single-joint moves cannot take (the cage's workcell, 2026-12-05:
+//! shortcuts a staircase of single-joint moves cannot take (in the cage's workcell
 //! the kept answers' staircases cost 6–23 ms of shortening and lose 5 % of their length).
 //!
 //! No exact intervals here, only a proof: along `q(t) = q0 + t (q1 − q0)` a point of link `l`
@@ -22,7 +22,7 @@
 //! bounded over the whole motion by `Σ_k |Δ_k| R_kl (|Δ_k| + 2 Σ_{j<k} |Δ_j|)`
 //! ([`ArmOracle::moving`], [`clearance::Along`]). Each plane steps by the better of the two.
 //! In the Panda's cage workcell the proofs near the bars took half the planes, and the query
-//! p50 fell from 1.3–2.3 ms to 0.4–0.5 ms (2026-12-05).
+//! p50 fell from 1.3–2.3 ms to 0.4–0.5 ms.
 //!
 //! Every link–obstacle and non-exempt link–link pair whose balls, grown by the motion's bound,
 //! meet is proved apart from both ends plane after plane, or the motion is not certified. Near
@@ -40,7 +40,7 @@ use nalgebra::Isometry3;
 /// Separating planes sought per pair and window, from both ends together, before a motion is
 /// given up as not proved. A pair that passes close to an obstacle needs many: in the Panda's
 /// cage workcell 24 proved too little (query p50 18.6 ms, the goals no longer attached), 48
-/// 1.7–1.9 ms, 96–384 1.2–1.3 ms with shorter paths (2026-12-05).
+/// 1.7–1.9 ms, 96–384 1.2–1.3 ms with shorter paths.
 const MAX_PLANES: usize = 128;
 
 /// How far a link's points may move in half a piece of time at most, where the pieces are
@@ -118,6 +118,161 @@ pub(super) fn reach_of(
         .collect()
 }
 
+/// One straight motion of the arm: how far and how fast each joint moves, for bounds on how
+/// fast the links' points move.
+struct Straight<'a> {
+    oracle: &'a ArmOracle,
+    q0: &'a [f64],
+    q1: &'a [f64],
+    /// Each joint's change over the motion ([`ArmOracle::joint_deltas`]).
+    delta: Vec<f64>,
+    /// Each joint's rate: the size of its change.
+    rate: Vec<f64>,
+}
+
+/// The motion in pieces of time, short enough that each link's ball, grown by how far its
+/// points may move in half a piece, keeps close to it: a pair is asked only over the pieces in
+/// which its balls (an obstacle's box) meet.
+struct Pieces {
+    n: usize,
+    /// Each piece's grown balls, link by link (`None`: no geometry).
+    balls: Vec<Vec<Option<Ball>>>,
+}
+
+impl Pieces {
+    /// The runs of consecutive pieces in which `near(piece)` holds, as ranges of `t`.
+    fn runs(&self, near: &dyn Fn(usize) -> bool) -> Vec<Interval> {
+        let n = self.n;
+        let mut out: Vec<Interval> = Vec::new();
+        for p in (0..n).filter(|&p| near(p)) {
+            let (lo, hi) = (p as f64 / n as f64, (p + 1) as f64 / n as f64);
+            match out.last_mut() {
+                Some(last) if last.hi == lo => last.hi = hi,
+                _ => out.push(Interval { lo, hi }),
+            }
+        }
+        out
+    }
+}
+
+impl Straight<'_> {
+    /// A bound on how fast link `l`'s points move, by the joints between it and the root that
+    /// are not also `except`'s (the common ones carry both links alike).
+    fn speed(&self, l: usize, except: Option<usize>) -> f64 {
+        let o = self.oracle;
+        o.reach[l]
+            .iter()
+            .filter(|(k, _)| except.is_none_or(|e| !o.reach[e].iter().any(|(m, _)| m == k)))
+            .map(|&(k, f)| self.rate[k] * f)
+            .sum()
+    }
+
+    /// The group's joint values at `t`.
+    fn values(&self, t: f64) -> Vec<f64> {
+        self.q0
+            .iter()
+            .zip(self.q1)
+            .map(|(a, b)| a + t * (b - a))
+            .collect()
+    }
+
+    /// The link poses at `t`.
+    fn place(&self, t: f64, poses: &mut [Isometry3<f64>]) {
+        let arm = &self.oracle.arm;
+        arm.model
+            .link_poses_into(&arm.base, &arm.full_values(&self.values(t)), poses);
+    }
+
+    /// Whether the sure test finds a collision at a few points along the motion, halving the
+    /// step each round.
+    fn surely_collides_somewhere(&self) -> bool {
+        let mut k = 2;
+        while k <= SURE_SAMPLES {
+            for i in (1..k).step_by(2) {
+                if self
+                    .oracle
+                    .surely_collides(&self.values(i as f64 / k as f64))
+                {
+                    return true;
+                }
+            }
+            k *= 2;
+        }
+        false
+    }
+
+    /// The motion cut into pieces, each link's ball placed at the middle of each piece and
+    /// grown by how far its points may move in half a piece.
+    fn pieces(&self, poses: &mut [Isometry3<f64>]) -> Pieces {
+        let o = self.oracle;
+        let fastest_link = (0..o.link_meshes.len())
+            .map(|l| self.speed(l, None))
+            .fold(0.0, f64::max);
+        let n = ((fastest_link / PIECE_GROWTH).ceil() as usize).clamp(1, MAX_PIECES);
+        let mut balls: Vec<Vec<Option<Ball>>> = Vec::with_capacity(n);
+        for p in 0..n {
+            self.place((p as f64 + 0.5) / n as f64, poses);
+            balls.push(
+                o.link_meshes
+                    .iter()
+                    .enumerate()
+                    .map(|(l, m)| {
+                        m.as_ref().map(|(_, b)| {
+                            let mut b = b.placed(&poses[l]);
+                            b.radius += self.speed(l, None) / (2 * n) as f64;
+                            b
+                        })
+                    })
+                    .collect(),
+            );
+        }
+        Pieces { n, balls }
+    }
+
+    /// How fast link `l`'s points may move at the poses of a moment, by the joints between it
+    /// and the root that are not also `except`'s (the common ones carry both links alike): each
+    /// joint's rate times the distance of the link's ball from its axis then, which grows at
+    /// most as fast as the joints after it move the link (their bounds).
+    fn tight(&self, l: usize, except: Option<usize>, poses: &[Isometry3<f64>]) -> Speed {
+        let o = self.oracle;
+        let model = &o.arm.model;
+        let mut speed = Speed {
+            rate: 0.0,
+            growth: 0.0,
+            along: None,
+        };
+        let Some((_, own)) = &o.link_meshes[l] else {
+            return speed;
+        };
+        let shared = |k: usize| except.is_some_and(|e| o.reach[e].iter().any(|(m, _)| *m == k));
+        let centre = poses[l] * nalgebra::Point3::from(own.centre);
+        // the joints after the one at hand, by their bounds
+        let mut drift = 0.0;
+        for &(k, f) in o.reach[l].iter().rev() {
+            if shared(k) {
+                // the chains share a prefix: every joint before this one is shared too
+                break;
+            }
+            if self.rate[k] != 0.0 {
+                let joint = &model.urdf.joints[k];
+                if matches!(joint.kind, JointKind::Prismatic { .. }) {
+                    speed.rate += self.rate[k] * f;
+                } else {
+                    // the axis at this moment, through the joint's child frame
+                    let frame = &poses[model.joint_links[k].1];
+                    let axis = frame.rotation * joint.axis.into_inner();
+                    let off = centre - nalgebra::Point3::from(frame.translation.vector);
+                    let from_axis = (off.cross(&axis).norm() + own.radius) * (1.0 + 1e-9);
+                    speed.rate += self.rate[k] * from_axis.min(f);
+                    speed.growth += self.rate[k] * drift;
+                }
+            }
+            drift += self.rate[k] * f;
+        }
+        speed
+    }
+}
+
 impl ArmOracle {
     /// Whether the straight motion from `q0` to `q1` (group configurations; any number of
     /// joints moving at once, each linearly in `t`) is proved free of collision by conservative
@@ -134,119 +289,42 @@ impl ArmOracle {
         self.arm.check_config(q0, "configuration")?;
         self.arm.check_config(q1, "configuration")?;
         counts.segment_calls += 1;
-        let model = &self.arm.model;
         let delta = self.joint_deltas(q0, q1);
-        let rate: Vec<f64> = delta.iter().map(|d| d.abs()).collect();
-        let speed = |l: usize, except: Option<usize>| -> f64 {
-            self.reach[l]
-                .iter()
-                .filter(|(k, _)| except.is_none_or(|o| !self.reach[o].iter().any(|(m, _)| m == k)))
-                .map(|&(k, f)| rate[k] * f)
-                .sum()
+        let motion = Straight {
+            oracle: self,
+            q0,
+            q1,
+            rate: delta.iter().map(|d| d.abs()).collect(),
+            delta,
         };
-        let values =
-            |t: f64| -> Vec<f64> { q0.iter().zip(q1).map(|(a, b)| a + t * (b - a)).collect() };
         // a motion through an obstacle is found by the sure test at a few points along it
         // (~1 µs each) before advancement creeps up to the contact plane by plane
-        if self.sure_test {
-            let mut k = 2;
-            while k <= SURE_SAMPLES {
-                for i in (1..k).step_by(2) {
-                    if self.surely_collides(&values(i as f64 / k as f64)) {
-                        return Ok(false);
-                    }
-                }
-                k *= 2;
-            }
+        if self.sure_test && motion.surely_collides_somewhere() {
+            return Ok(false);
         }
-        let full = |t: f64| self.arm.full_values(&values(t));
-        let mut poses = vec![Isometry3::identity(); model.urdf.links.len()];
-        let place = |t: f64, poses: &mut [Isometry3<f64>]| {
-            model.link_poses_into(&self.arm.base, &full(t), poses);
-        };
-        // the motion in pieces of time, short enough that each link's ball, grown by how far
-        // its points may move in half a piece, keeps close to it: a pair is asked only over
-        // the pieces in which its balls (an obstacle's box) meet
-        let fastest_link = (0..self.link_meshes.len())
-            .map(|l| speed(l, None))
-            .fold(0.0, f64::max);
-        let n = ((fastest_link / PIECE_GROWTH).ceil() as usize).clamp(1, MAX_PIECES);
-        let mut balls: Vec<Vec<Option<Ball>>> = Vec::with_capacity(n);
-        for p in 0..n {
-            place((p as f64 + 0.5) / n as f64, &mut poses);
-            balls.push(
-                self.link_meshes
-                    .iter()
-                    .enumerate()
-                    .map(|(l, m)| {
-                        m.as_ref().map(|(_, b)| {
-                            let mut b = b.placed(&poses[l]);
-                            b.radius += speed(l, None) / (2 * n) as f64;
-                            b
-                        })
-                    })
-                    .collect(),
-            );
+        let mut poses = vec![Isometry3::identity(); self.arm.model.urdf.links.len()];
+        let pieces = motion.pieces(&mut poses);
+        if !self.self_pairs_apart(&motion, &pieces, &mut poses, counts)? {
+            return Ok(false);
         }
-        // the runs of consecutive pieces in which `near(piece)` holds, as ranges of `t`
-        let runs = |near: &dyn Fn(usize) -> bool| -> Vec<Interval> {
-            let mut out: Vec<Interval> = Vec::new();
-            for p in (0..n).filter(|&p| near(p)) {
-                let (lo, hi) = (p as f64 / n as f64, (p + 1) as f64 / n as f64);
-                match out.last_mut() {
-                    Some(last) if last.hi == lo => last.hi = hi,
-                    _ => out.push(Interval { lo, hi }),
-                }
-            }
-            out
-        };
-        // how fast link `l`'s points may move at the poses of a moment, by the joints between
-        // it and the root that are not also `except`'s (the common ones carry both links
-        // alike): each joint's rate times the distance of the link's ball from its axis then,
-        // which grows at most as fast as the joints after it move the link (their bounds)
-        let tight = |l: usize, except: Option<usize>, poses: &[Isometry3<f64>]| -> Speed {
-            let mut speed = Speed {
-                rate: 0.0,
-                growth: 0.0,
-                along: None,
-            };
-            let Some((_, own)) = &self.link_meshes[l] else {
-                return speed;
-            };
-            let shared =
-                |k: usize| except.is_some_and(|o| self.reach[o].iter().any(|(m, _)| *m == k));
-            let centre = poses[l] * nalgebra::Point3::from(own.centre);
-            // the joints after the one at hand, by their bounds
-            let mut drift = 0.0;
-            for &(k, f) in self.reach[l].iter().rev() {
-                if shared(k) {
-                    // the chains share a prefix: every joint before this one is shared too
-                    break;
-                }
-                if rate[k] != 0.0 {
-                    let joint = &model.urdf.joints[k];
-                    if matches!(joint.kind, JointKind::Prismatic { .. }) {
-                        speed.rate += rate[k] * f;
-                    } else {
-                        // the axis at this moment, through the joint's child frame
-                        let frame = &poses[model.joint_links[k].1];
-                        let axis = frame.rotation * joint.axis.into_inner();
-                        let off = centre - nalgebra::Point3::from(frame.translation.vector);
-                        let from_axis = (off.cross(&axis).norm() + own.radius) * (1.0 + 1e-9);
-                        speed.rate += rate[k] * from_axis.min(f);
-                        speed.growth += rate[k] * drift;
-                    }
-                }
-                drift += rate[k] * f;
-            }
-            speed
-        };
+        self.environment_apart(&motion, &pieces, &mut poses, counts)
+    }
+
+    /// Whether every pair of links that may collide is proved apart along the motion, over the
+    /// pieces of time in which their grown balls meet.
+    fn self_pairs_apart(
+        &self,
+        motion: &Straight,
+        pieces: &Pieces,
+        poses: &mut [Isometry3<f64>],
+        counts: &mut CallCounts,
+    ) -> Result<bool, RobotError> {
         for &(a, b) in &self.arm.self_pairs {
-            let near = |p: usize| match (&balls[p][a], &balls[p][b]) {
+            let near = |p: usize| match (&pieces.balls[p][a], &pieces.balls[p][b]) {
                 (Some(ba), Some(bb)) => ba.meets(bb),
                 _ => false,
             };
-            let windows = runs(&near);
+            let windows = pieces.runs(&near);
             if windows.is_empty() {
                 continue;
             }
@@ -258,14 +336,17 @@ impl ArmOracle {
                 return Ok(false);
             };
             counts.pairs_tested += 1;
-            let relative = speed(a, Some(b)) + speed(b, Some(a));
+            let relative = motion.speed(a, Some(b)) + motion.speed(b, Some(a));
             let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
             let mut at = |t: f64| {
-                place(t, &mut poses);
-                let (sa, sb) = (tight(a, Some(b), &poses), tight(b, Some(a), &poses));
+                motion.place(t, poses);
+                let (sa, sb) = (
+                    motion.tight(a, Some(b), poses),
+                    motion.tight(b, Some(a), poses),
+                );
                 let along = self
-                    .moving(a, Some(b), &delta, &poses)
-                    .zip(self.moving(b, Some(a), &delta, &poses))
+                    .moving(a, Some(b), &motion.delta, poses)
+                    .zip(self.moving(b, Some(a), &motion.delta, poses))
                     .map(|((ma, xa), (mb, xb))| clearance::Along {
                         bodies: [ma, mb],
                         accel: xa + xb,
@@ -284,29 +365,41 @@ impl ArmOracle {
                 }
             }
         }
+        Ok(true)
+    }
+
+    /// Whether every link is proved apart from every obstacle along the motion, over the pieces
+    /// of time in which the link's grown ball meets the obstacle's box.
+    fn environment_apart(
+        &self,
+        motion: &Straight,
+        pieces: &Pieces,
+        poses: &mut [Isometry3<f64>],
+        counts: &mut CallCounts,
+    ) -> Result<bool, RobotError> {
         for l in 0..self.link_meshes.len() {
             if self.link_meshes[l].is_none() {
                 continue;
             }
-            let fastest = speed(l, None);
+            let fastest = motion.speed(l, None);
             let mut at = |t: f64| {
-                place(t, &mut poses);
-                let mut speed = tight(l, None, &poses);
-                speed.along =
-                    self.moving(l, None, &delta, &poses)
-                        .map(|(m, accel)| clearance::Along {
-                            bodies: [m, clearance::Moving::default()],
-                            accel,
-                        });
+                motion.place(t, poses);
+                let mut speed = motion.tight(l, None, poses);
+                speed.along = self
+                    .moving(l, None, &motion.delta, poses)
+                    .map(|(m, accel)| clearance::Along {
+                        bodies: [m, clearance::Moving::default()],
+                        accel,
+                    });
                 (poses[l], Isometry3::identity(), speed)
             };
             for (i, (_, ob)) in self.environment.iter().enumerate() {
                 let near = |p: usize| {
-                    balls[p][l].as_ref().is_some_and(|b| {
+                    pieces.balls[p][l].as_ref().is_some_and(|b| {
                         b.meets(ob) && (!self.culling || self.env_boxes[i].meets_ball(b))
                     })
                 };
-                let windows = runs(&near);
+                let windows = pieces.runs(&near);
                 if windows.is_empty() {
                     continue;
                 }
