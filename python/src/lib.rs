@@ -1,6 +1,7 @@
 //! `viaroad._viaroad`: the library from Python (issue 12), through its public API only:
-//! [`Scene`], [`Roadmap`], [`QueryPlanner`], [`Learner`]. Long work (learning, queries)
-//! releases the interpreter, so other Python threads run meanwhile; errors are exceptions of
+//! [`Scene`], [`Roadmap`], [`QueryPlanner`], [`Learner`]. Long work (learning, queries,
+//! sampling) releases the interpreter, so other Python threads run meanwhile, and Ctrl-C stops
+//! it ([`interrupt`]); counts are held to [`viaroad::limits`]; errors are exceptions of
 //! the `ViaroadError` hierarchy carrying the command line's one-line messages, never a crash
 //! of the interpreter.
 
