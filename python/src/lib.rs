@@ -1,27 +1,31 @@
 //! `viaroad._viaroad`: the library from Python (issue 12), through its public API only:
-//! [`Scene`], [`Roadmap`], [`QueryPlanner`], [`Learner`]. Long work (learning, queries)
-//! releases the interpreter, so other Python threads run meanwhile; errors are exceptions of
+//! [`Scene`], [`Roadmap`], [`QueryPlanner`], [`Learner`]. Long work (learning, queries,
+//! sampling) releases the interpreter, so other Python threads run meanwhile, and Ctrl-C stops
+//! it ([`interrupt`]); counts are held to [`viaroad::limits`]; errors are exceptions of
 //! the `ViaroadError` hierarchy carrying the command line's one-line messages, never a crash
 //! of the interpreter.
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::create_exception;
-use pyo3::exceptions::PyException;
+use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyDict, PyInt, PyTuple};
+use rayon::prelude::*;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use viaroad::deadline::Deadline;
+use viaroad::limits::{MAX_NODES, MAX_QUERIES};
 use viaroad::local::LocalSpec;
 use viaroad::oracle::{CallCounts, CollisionOracle, CountedOracle};
 use viaroad::roadmap::{
-    Budget, LearnParams, Learner, Progress, QueryOptions, QueryPlanner, QueryResult,
-    Roadmap as RustRoadmap,
+    Budget, LearnParams, Learner, Progress, QueryError as RustQueryError, QueryOptions,
+    QueryPlanner, QueryResult, Roadmap as RustRoadmap,
 };
 use viaroad::scene::{Scene as RustScene, SceneError as RustSceneError};
 use viaroad::space::Config;
+
+mod interrupt;
+use interrupt::{interruptible, interruptible_with};
 
 create_exception!(
     viaroad,
@@ -105,8 +109,14 @@ fn config(py: Python<'_>, what: &str, q: &Bound<'_, PyAny>) -> PyResult<Config> 
     Ok(a.as_array().to_vec())
 }
 
-/// Configurations from an `(n, dof)` array or a sequence of sequences.
-fn configs(py: Python<'_>, what: &str, qs: &Bound<'_, PyAny>) -> PyResult<Vec<Config>> {
+/// Configurations from an `(n, dof)` array or a sequence of sequences; more than `max` rows
+/// is a `ValueError` (`why` says why there is a bound), before the rows are copied.
+fn configs(
+    py: Python<'_>,
+    what: &str,
+    qs: &Bound<'_, PyAny>,
+    (max, why): (usize, &str),
+) -> PyResult<Vec<Config>> {
     let np = py.import("numpy")?;
     let arr = np
         .call_method1("asarray", (qs, "float64"))
@@ -120,6 +130,12 @@ fn configs(py: Python<'_>, what: &str, qs: &Bound<'_, PyAny>) -> PyResult<Vec<Co
             "{what}: expected an (n, dof) array of configurations, got shape {shape}"
         ))
     })?;
+    let rows = a.as_array().nrows();
+    if rows > max {
+        return Err(PyValueError::new_err(format!(
+            "{what}: {rows} rows is more than the {max} viaroad accepts: {why}"
+        )));
+    }
     Ok(a.as_array()
         .rows()
         .into_iter()
@@ -138,6 +154,44 @@ fn path_array<'py>(py: Python<'py>, path: &[Config], dof: usize) -> PyResult<Py<
 fn file_path(p: &Bound<'_, PyAny>) -> PyResult<PathBuf> {
     p.extract::<PathBuf>()
         .map_err(|_| pyo3::exceptions::PyTypeError::new_err("expected a str or os.PathLike path"))
+}
+
+/// A count argument checked against one of [`viaroad::limits`]' bounds before anything is
+/// allocated or looped over, as the command line checks its flags: outside `min..=max` (an int
+/// too large for any machine included) it is `err` with a message naming the bound and why
+/// there is one. Not an int at all is a `TypeError`.
+fn count(
+    n: &Bound<'_, PyAny>,
+    what: &str,
+    (min, max): (usize, usize),
+    why: &str,
+    err: fn(String) -> PyErr,
+) -> PyResult<usize> {
+    let v = match n.extract::<i128>() {
+        Ok(v) => v,
+        // an int beyond 128 bits: only its sign matters
+        Err(_) if n.is_instance_of::<PyInt>() => {
+            if n.lt(0)? {
+                i128::MIN
+            } else {
+                i128::MAX
+            }
+        }
+        Err(e) => return Err(e),
+    };
+    if v < min as i128 {
+        return Err(err(if min == 0 {
+            format!("{what} must not be negative, got {n}")
+        } else {
+            format!("{what} must be at least {min}, got {n}")
+        }));
+    }
+    if v > max as i128 {
+        return Err(err(format!(
+            "{what} {n} is more than the {max} viaroad accepts: {why}"
+        )));
+    }
+    Ok(v as usize)
 }
 
 /// A JSON value as the Python object `json.loads` makes of it.
@@ -282,19 +336,31 @@ impl Scene {
 
     /// `n` random collision-free configurations as an `(n, dof)` array, drawn uniformly from a
     /// stream seeded with `seed` (reproducible); raises `ViaroadError` if 100 000 draws in a
-    /// row find none.
+    /// row find none, and `ValueError` for more than the ends of the most queries
+    /// `Roadmap.query_many` answers at once. Ctrl-C stops it.
     #[pyo3(signature = (n, seed = 0))]
     fn sample_free<'py>(
         &self,
         py: Python<'py>,
-        n: usize,
+        n: &Bound<'py, PyAny>,
         seed: u64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         use rand_free::draw;
-        let data = self.data.clone();
-        let flat = py
-            .detach(move || draw(&data.scene, data.oracle.as_ref(), n, seed))
-            .map_err(ViaroadError::new_err)?;
+        let n = count(
+            n,
+            "n",
+            (0, 2 * MAX_QUERIES),
+            "the configurations are all held at once (the ends of the most queries a batch \
+             answers)",
+            PyValueError::new_err,
+        )?;
+        let data = &self.data;
+        let flat = interruptible(py, |watch| {
+            draw(&data.scene, data.oracle.as_ref(), n, seed, &|| {
+                watch.cancelled()
+            })
+        })?
+        .map_err(ViaroadError::new_err)?;
         let dof = self.data.scene.space.dim();
         PyArray1::from_vec(py, flat).reshape([n, dof])
     }
@@ -317,11 +383,13 @@ mod rand_free {
     /// Draws per free configuration before giving up (an almost empty free space).
     const MAX_DRAWS: usize = 100_000;
 
+    /// `n` free configurations, flat; fewer once `stop` says so (the caller then raises).
     pub fn draw(
         scene: &RustScene,
         oracle: &dyn CollisionOracle,
         n: usize,
         seed: u64,
+        stop: &dyn Fn() -> bool,
     ) -> Result<Vec<f64>, String> {
         let mut rng =
             <rand_chacha::ChaCha8Rng as rand_chacha::rand_core::SeedableRng>::seed_from_u64(seed);
@@ -329,6 +397,9 @@ mod rand_free {
         for _ in 0..n {
             let mut found = false;
             for _ in 0..MAX_DRAWS {
+                if stop() {
+                    return Ok(out);
+                }
                 let mut q = scene.space.sample_uniform(&mut rng);
                 scene.space.normalize(&mut q);
                 if oracle.is_free(&q, &mut CallCounts::default()) {
@@ -499,16 +570,16 @@ impl Roadmap {
     /// is given), reproducibly from `seed` (a node budget gives the same roadmap whatever the
     /// thread count). `local` is a local-method spec as `viaroad build --local` takes it
     /// (default: the roadmap's via-point planner). `progress`, if given, is called after each
-    /// round with a dict (`rounds`, `nodes`, `edges`, `components`, `seconds`); an exception
-    /// it raises, or Ctrl-C, stops learning and is raised here. The interpreter is released
-    /// while learning.
+    /// round with a dict (`rounds`, `nodes`, `edges`, `components`, `seconds`) on the calling
+    /// thread; an exception it raises, or Ctrl-C, stops learning and is raised here. The
+    /// interpreter is released while learning.
     #[staticmethod]
     #[pyo3(signature = (scene, *, time = None, nodes = None, seed = 1, local = None, progress = None))]
     fn build(
         py: Python<'_>,
         scene: &Scene,
         time: Option<f64>,
-        nodes: Option<usize>,
+        nodes: Option<&Bound<'_, PyAny>>,
         seed: u64,
         local: Option<&str>,
         progress: Option<Py<PyAny>>,
@@ -529,14 +600,17 @@ impl Roadmap {
                 ))
             })?),
         };
-        if let Some(n) = nodes {
-            if n == 0 || n > viaroad::limits::MAX_NODES {
-                return Err(LearnError::new_err(format!(
-                    "nodes must be between 1 and {}, got {n}",
-                    viaroad::limits::MAX_NODES
-                )));
-            }
-        }
+        let nodes = nodes
+            .map(|n| {
+                count(
+                    n,
+                    "nodes",
+                    (1, MAX_NODES),
+                    "a roadmap is held in memory",
+                    LearnError::new_err,
+                )
+            })
+            .transpose()?;
         let budget = Budget {
             nodes: if nodes.is_none() && time.is_none() {
                 Some(1000)
@@ -545,11 +619,21 @@ impl Roadmap {
             },
             time,
         };
-        let data = scene.data.clone();
-        let cancel = Arc::new(AtomicBool::new(false));
-        let deadline = Deadline::none().with_cancel(cancel.clone());
-        let mut raised: Option<PyErr> = None;
-        let learnt = py.detach(|| {
+        let data = &scene.data;
+        let on_progress = |py: Python<'_>, p: Progress| -> PyResult<()> {
+            if let Some(cb) = &progress {
+                let d = PyDict::new(py);
+                d.set_item("rounds", p.rounds)?;
+                d.set_item("nodes", p.nodes)?;
+                d.set_item("edges", p.edges)?;
+                d.set_item("components", p.components)?;
+                d.set_item("seconds", p.elapsed.as_secs_f64())?;
+                cb.call1(py, (d,))?;
+            }
+            Ok(())
+        };
+        let wants_progress = progress.is_some();
+        let learnt = interruptible_with(py, on_progress, |watch| {
             let method = spec.build();
             let learner = Learner::for_scene(&data.scene, data.oracle.as_ref(), method.as_ref())
                 .with_attempt_cap(budget.time.map(Learner::attempt_cap_for));
@@ -557,36 +641,14 @@ impl Roadmap {
                 &LearnParams::default(),
                 &budget,
                 seed,
-                &deadline,
+                &watch.deadline(),
                 &mut |p: &Progress| {
-                    if raised.is_some() {
-                        return;
-                    }
-                    let r = Python::attach(|py| -> PyResult<()> {
-                        py.check_signals()?;
-                        if let Some(cb) = &progress {
-                            let d = PyDict::new(py);
-                            d.set_item("rounds", p.rounds)?;
-                            d.set_item("nodes", p.nodes)?;
-                            d.set_item("edges", p.edges)?;
-                            d.set_item("components", p.components)?;
-                            d.set_item("seconds", p.elapsed.as_secs_f64())?;
-                            cb.call1(py, (d,))?;
-                        }
-                        Ok(())
-                    });
-                    if let Err(e) = r {
-                        raised = Some(e);
-                        cancel.store(true, Ordering::SeqCst);
+                    if wants_progress {
+                        watch.send(p.clone());
                     }
                 },
             )
-        });
-        if let Some(e) = raised {
-            return Err(e);
-        }
-        // Ctrl-C between the last progress call and the end still stops the caller
-        py.check_signals()?;
+        })?;
         let learnt = learnt.map_err(|e| LearnError::new_err(one_line(&e)))?;
         Ok(Roadmap {
             scene: scene.data.clone(),
@@ -637,7 +699,8 @@ impl Roadmap {
     /// roadmap cannot join start and goal, it grows a copy of the roadmap for the rest of it
     /// if `grow`; for an arm, two trees out of it, racing its search after 2 ms, as
     /// `viaroad query`), `None` for no limit and no growing. Raises `QueryError` for a start or goal
-    /// of the wrong length, outside the bounds or in collision. Releases the interpreter.
+    /// of the wrong length, outside the bounds or in collision. Releases the interpreter;
+    /// Ctrl-C stops it.
     #[pyo3(signature = (start, goal, *, shorten = "fast", time = Some(QueryOptions::DEFAULT_TIME.as_secs_f64()), grow = true))]
     fn query(
         &self,
@@ -655,11 +718,11 @@ impl Roadmap {
         let mut options = planner.options().clone();
         options.landmarks = 0;
         let planner = planner.with_options(options);
-        let (result, ms) = py.detach(|| {
+        let (result, ms) = interruptible(py, |watch| {
             let began = Instant::now();
-            let r = planner.query(&start, &goal);
+            let r = planner.query_within(&start, &goal, &watch.deadline());
             (r, began.elapsed().as_secs_f64() * 1e3)
-        });
+        })?;
         let result = result.map_err(|e| QueryError::new_err(one_line(&e)))?;
         PyQueryResult::new(py, self.roadmap.space().dim(), &Ok(result), ms)
     }
@@ -667,7 +730,9 @@ impl Roadmap {
     /// Answers `n` queries, `starts` and `goals` `(n, dof)` arrays, in parallel on all cores
     /// (the interpreter released); a list of `QueryResult` in input order. A query that cannot
     /// be asked gets a result with `error` set instead of raising, so one bad row does not
-    /// lose the others' answers.
+    /// lose the others' answers. More rows than `viaroad.limits`' most queries raise
+    /// `ValueError`. Ctrl-C stops the batch within about one query's time: the queries
+    /// running give up, those not begun are skipped, and `KeyboardInterrupt` is raised.
     #[pyo3(signature = (starts, goals, *, shorten = "fast", time = Some(QueryOptions::DEFAULT_TIME.as_secs_f64()), grow = true))]
     fn query_many(
         &self,
@@ -678,8 +743,12 @@ impl Roadmap {
         time: Option<f64>,
         grow: bool,
     ) -> PyResult<Vec<PyQueryResult>> {
-        let starts = configs(py, "starts", starts)?;
-        let goals = configs(py, "goals", goals)?;
+        let bound = (
+            MAX_QUERIES,
+            "every answer, paths included, is held until the batch ends",
+        );
+        let starts = configs(py, "starts", starts, bound)?;
+        let goals = configs(py, "goals", goals, bound)?;
         if starts.len() != goals.len() {
             return Err(QueryError::new_err(format!(
                 "{} starts but {} goals",
@@ -689,13 +758,33 @@ impl Roadmap {
         }
         let pairs: Vec<(Config, Config)> = starts.into_iter().zip(goals).collect();
         let planner = self.planner(shorten, time, grow)?;
-        let answers = py.detach(|| planner.query_batch(&pairs));
+        let answers = interruptible(py, |watch| {
+            let deadline = watch.deadline();
+            pairs
+                .par_iter()
+                .map(|(s, g)| {
+                    // once interrupted, the queries not begun are skipped
+                    if watch.cancelled() {
+                        return None;
+                    }
+                    let began = Instant::now();
+                    let r = planner.query_within(s, g, &deadline);
+                    Some((r, began.elapsed()))
+                })
+                .collect::<Vec<Option<(Result<QueryResult, RustQueryError>, Duration)>>>()
+        })?;
         let dof = self.roadmap.space().dim();
         answers
-            .iter()
+            .into_iter()
             .map(|a| {
-                let r = a.result.clone().map_err(|e| one_line(&e));
-                PyQueryResult::new(py, dof, &r, a.elapsed.as_secs_f64() * 1e3)
+                let (r, elapsed) = match a {
+                    Some((r, elapsed)) => (r.map_err(|e| one_line(&e)), elapsed),
+                    None => (
+                        Err("not asked: the batch was interrupted".into()),
+                        Duration::ZERO,
+                    ),
+                };
+                PyQueryResult::new(py, dof, &r, elapsed.as_secs_f64() * 1e3)
             })
             .collect()
     }

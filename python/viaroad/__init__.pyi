@@ -55,7 +55,8 @@ class Scene:
     def intervals(self, q_from: ArrayLike1, q_to: ArrayLike1) -> npt.NDArray[np.float64]:
         """The exact collision intervals of the straight motion `q_from` -> `q_to` as an (m, 2) array of [lo, hi] in t in [0, 1]."""
     def sample_free(self, n: int, seed: int = 0) -> npt.NDArray[np.float64]:
-        """`n` seeded uniform collision-free configurations, an (n, dof) array."""
+        """`n` seeded uniform collision-free configurations, an (n, dof) array; `ValueError` for
+        `n` beyond 2 000 000 (the ends of the most queries `query_many` takes). Ctrl-C stops it."""
 
 class QueryResult:
     """The answer to one query."""
@@ -91,7 +92,9 @@ class Roadmap:
         local: Optional[str] = None,
         progress: Optional[Callable[[dict], None]] = None,
     ) -> "Roadmap":
-        """Learns a roadmap until `nodes` nodes or `time` seconds (1000 nodes if neither); releases the GIL; `LearnError`."""
+        """Learns a roadmap until `nodes` nodes (at most 10 000 000) or `time` seconds (1000 nodes
+        if neither); releases the GIL; `LearnError`. `progress` runs on the calling thread; its
+        exception, or Ctrl-C, stops learning."""
     @staticmethod
     def load(path: PathLike, scene: Scene) -> "Roadmap":
         """Reads a roadmap file learnt for `scene`; `RoadmapError`."""
@@ -111,7 +114,8 @@ class Roadmap:
         grow: bool = True,
     ) -> QueryResult:
         """Answers one query; `QueryError` for an invalid start or goal. An arm grows trees out of
-        the roadmap, racing its search, where `grow` (as `viaroad query`). Releases the GIL."""
+        the roadmap, racing its search, where `grow` (as `viaroad query`). Releases the GIL;
+        Ctrl-C stops it."""
     def query_many(
         self,
         starts: ArrayLike2,
@@ -121,4 +125,6 @@ class Roadmap:
         time: Optional[float] = 10.0,
         grow: bool = True,
     ) -> list[QueryResult]:
-        """Answers (n, dof) queries in parallel; invalid rows get `error` set instead of raising."""
+        """Answers (n, dof) queries in parallel; invalid rows get `error` set instead of raising.
+        `ValueError` for more than 1 000 000 rows. Ctrl-C stops the batch within about one
+        query's time (`KeyboardInterrupt`)."""
