@@ -87,7 +87,10 @@ def interrupted(setup, call, *, before_signal=1.0):
     child exits 3 on KeyboardInterrupt, 0 if `call` ended before the signal."""
     code = "\n".join(
         [
-            "import sys, time",
+            "import signal, sys, time",
+            # a child started from a non-interactive shell's background job inherits SIGINT
+            # ignored, and Python then installs no KeyboardInterrupt handler: restore it
+            "signal.signal(signal.SIGINT, signal.default_int_handler)",
             "import numpy as np",
             "import viaroad",
             textwrap.dedent(setup),
