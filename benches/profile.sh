@@ -3,7 +3,7 @@
 # one criterion bench, sampled with DWARF call graphs on the release build (Cargo.toml's
 # release profile keeps line tables, so frames have file:line), then a flat and a call-graph
 # report as text, and a flame graph if `inferno` (cargo install inferno) is on the PATH.
-# See the README's "Profiling" section.
+# See docs/profiling.md.
 set -euo pipefail
 
 usage() {

@@ -1,4 +1,4 @@
-//! Inputs the loaders' fuzzer (`fuzz/`, see the README's "Fuzzing") found, minimized and kept
+//! Inputs the loaders' fuzzer (`fuzz/`, see docs/reliability.md, "Fuzzing") found, minimized and kept
 //! here inline: each must now be refused with a typed error, never a panic, a hang or an
 //! allocation far beyond the input's size.
 
