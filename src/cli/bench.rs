@@ -34,7 +34,7 @@ pub enum BenchCommand {
     /// advancement); prints queries, solved, invalid (must be 0) and times. Exits with an
     /// error if any path is invalid.
     Validity(ValidityArgs),
-    /// MotionBenchMaker problems for an arm (issue 10): per problem valid start/goal, solved,
+    /// MotionBenchMaker problems for an arm: per problem valid start/goal, solved,
     /// time, roadmap size, oracle calls, raw and shortened length, the path re-checked by the
     /// independent arm checker; a summary like VAMP's `evaluate_mbm` ("Solved / Valid /
     /// Total"). `--workcell`: one roadmap per family answering all its requests.
@@ -195,10 +195,7 @@ pub struct MbmArgs {
     /// `--trees-first`; with `--trees-first 0` before the trees, or a roadmap, take over;
     /// racing, beside them). Its calls sweep whole joint ranges (≈ 1–3 ms each on the Panda
     /// problems against ≈ 50 µs for a tree's stair), so it is kept for what the trees do not
-    /// solve soon: over the 700 Panda problems, with it first, 60 calls solved 668 at p50 236 ms
-    /// and 300 calls 676 at p50 373 ms (2026-12-04, `benches/results/2026-12-04-direct-budget/`);
-    /// with the trees first, 700 at p50 39 ms (2026-12-05,
-    /// `benches/results/2026-12-05-trees-first/`). 0: the direct path only, then the trees.
+    /// solve soon. 0: the direct path only, then the trees.
     #[arg(long, default_value_t = 300)]
     pub direct_calls: u64,
     /// At most this many problems per family.
@@ -209,8 +206,7 @@ pub struct MbmArgs {
     pub seed: u64,
     /// What plans after the via-point planner alone: `tree` (default: two trees of sliding
     /// single-joint stairs, as `solve --tree`; they build the fine staircases into the cage and
-    /// the box) or `roadmap` (grown from start and goal, as `solve --roadmap`; the stage
-    /// before 2026-12-02).
+    /// the box) or `roadmap` (grown from start and goal, as `solve --roadmap`).
     #[arg(long, value_name = "PLANNER", default_value = "tree")]
     pub planner: viaroad::bench::mbm::Planner,
     /// `--planner tree`: longest extend, as a share of the joint space's extent.
@@ -227,14 +223,12 @@ pub struct MbmArgs {
     /// `--planner tree`: how an extend walks its stairs (as `solve --tree-stairs`): `whole`
     /// (the default: each stair all of it or not at all, only the extend's end a candidate
     /// nearest node), `slide` (each joint as far as it is free, a blocked joint letting the
-    /// others go on; the default before 2026-12-04 night) or `prefix`.
+    /// others go on) or `prefix`.
     #[arg(long, value_name = "MODE", default_value = "whole")]
     pub tree_stairs: viaroad::roadmap::tree::Stairs,
     /// `--planner tree`: extend the smaller tree each time (`true`, default) instead of
     /// alternating (`false`). With whole stairs a trapped extend adds nothing, and the tree of
-    /// a goal in a pocket gets the effort until it is out: over the 700 Panda problems, trees
-    /// alone (`--direct-calls 0`), 698 solved balanced against 689 alternating (2026-12-04;
-    /// with sliding stairs neither won: 67 / 70 either way, 2026-12-02).
+    /// a goal in a pocket gets the effort until it is out.
     #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
     pub tree_balance: bool,
     /// `--planner tree`: try each extend as one stair first (a yes/no call per joint), the
@@ -254,16 +248,13 @@ pub struct MbmArgs {
     /// the rayon pool, the first to connect answering, instead of one after the other; in
     /// workcell mode, the roadmap's query and the trees. With a value, the via-point planner
     /// (the roadmap's query) first runs alone for MS milliseconds and the race starts only if
-    /// it has not answered. In the workcell 2 ms keeps every family's quick answers off the
-    /// pool and cuts every p95 against 50 ms; none at all suits a workcell whose goals the
-    /// roadmap rarely reaches (the cage: p50 80 → 18 ms), at 0.1–0.2 ms more elsewhere
-    /// (2026-12-05, `benches/results/2026-12-05-greedy-per-group/head-start.tsv`).
+    /// it has not answered: a short head start (2 ms) keeps quick answers off the pool. With
+    /// no free pool thread (one thread, or a busy batch) the two run in turn.
     #[arg(long, value_name = "MS", num_args = 0..=1, default_missing_value = "0")]
     pub race: Option<f64>,
     /// `--planner tree`, not racing: the direct path, then the trees alone for this share of
     /// `--time`, then the via-point planner (`--direct-calls`), then the trees afresh for the
-    /// rest. `0`: the via-point planner first, the trees after it (the order before
-    /// 2026-12-05).
+    /// rest. `0`: the via-point planner first, the trees after it.
     #[arg(long, value_name = "SHARE", default_value_t = 0.2)]
     pub trees_first: f64,
     /// Plan against every link mesh as it is: without this, a mesh of more than 4 000
@@ -272,7 +263,7 @@ pub struct MbmArgs {
     /// force–torque sensor). The independent checker always uses the meshes.
     #[arg(long)]
     pub exact_meshes: bool,
-    /// Workcell mode (issue 10 part 6): per family, learn one roadmap of the first scene
+    /// Workcell mode: per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
     #[arg(long)]
     pub workcell: bool,

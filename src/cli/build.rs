@@ -24,7 +24,7 @@ pub struct BuildArgs {
     #[command(flatten)]
     pub local: LocalArgs,
     /// Start the roadmap from a global method's output: `cones`, the spine points of
-    /// Brooks's freeways with their legal orientations (planar scenes; issue 14; at most half
+    /// Brooks's freeways with their legal orientations (planar scenes; at most half
     /// the node budget, `cones:nodes=N` at most N), or `plain` (from nothing, the default).
     #[arg(long, value_name = "SEEDING")]
     pub seed_from: Option<viaroad::global::Seeding>,

@@ -5,7 +5,7 @@ use anyhow::Context;
 /// Parses `"0.1,0.2"`, `"0.1, 0.2"` or `"0.1 0.2"` into numbers (finiteness and length are
 /// the scene's to check, so that errors name the configuration). Spaces may repeat, commas
 /// may not: `0.1,,0.1` is refused rather than read as two numbers, since an empty field is
-/// more likely a forgotten coordinate than a typo (decided in issue 16).
+/// more likely a forgotten coordinate than a typo.
 pub fn parse_config(flag: &str, s: &str) -> anyhow::Result<Vec<f64>> {
     let fields: Vec<&str> = s.split(',').map(str::trim).collect();
     if fields.len() > 1 {

@@ -26,7 +26,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub local: LocalArgs,
     /// Draw Brooks's freeways (generalized cones and their spines) and solve the query along
-    /// them instead of with the local method (issue 14).
+    /// them instead of with the local method.
     #[arg(long)]
     pub freeways: bool,
 }
