@@ -1,5 +1,5 @@
 //! One query planned by a portfolio of the crate's planners, in the order the arm benchmark
-//! settled on (`benches/results/2026-12-05-trees-first/`): the direct path, two trees
+//! measures best (the trees-first results in `benches/results/`): the direct path, two trees
 //! of single-joint stairs for a share of the time, the via-point planner (a search bounded in
 //! oracle calls), then the trees afresh for what is left — or the via-point planner and the
 //! trees racing on the rayon pool ([`Portfolio::race`]). The path found is shortened within the
