@@ -2,8 +2,8 @@
 """Functions of `src/` longer than a bound (120 lines by default), longest first.
 
 A function's length runs from the line of its `fn` keyword to the line of its closing brace.
-The source is tokenised (comments, string, raw-string and char literals skipped, lifetimes told
-apart from chars) and braces matched, so functions inside `impl` blocks, with `where` clauses,
+The source is tokenised by `import_graph.tokenize` (comments, literals and lifetimes dropped)
+and braces matched, so functions inside `impl` blocks, with `where` clauses,
 nested in other functions or written on one line are all found. Items under `#[cfg(test)]` are
 skipped, and so are the files of modules declared `#[cfg(test)] mod x;`: test code may be long.
 
@@ -17,74 +17,14 @@ import re
 import sys
 from pathlib import Path
 
+from import_graph import tokenize
+
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-
-
-def tokens(text: str):
-    """Yields (token, line) with comments and literals dropped (a literal yields `"lit"`)."""
-    i, line, n = 0, 1, len(text)
-    while i < n:
-        c = text[i]
-        if c == "\n":
-            line += 1
-            i += 1
-        elif c.isspace():
-            i += 1
-        elif text.startswith("//", i):
-            j = text.find("\n", i)
-            i = n if j < 0 else j
-        elif text.startswith("/*", i):
-            depth, i = 1, i + 2
-            while i < n and depth:
-                if text.startswith("/*", i):
-                    depth, i = depth + 1, i + 2
-                elif text.startswith("*/", i):
-                    depth, i = depth - 1, i + 2
-                else:
-                    line += text[i] == "\n"
-                    i += 1
-        elif (m := re.compile(r'b?r(#*)"').match(text, i)) and (
-            i == 0 or not (text[i - 1].isalnum() or text[i - 1] == "_")
-        ):
-            end = '"' + m.group(1)
-            j = text.find(end, m.end())
-            j = n if j < 0 else j + len(end)
-            line += text.count("\n", i, j)
-            yield '"lit"', line
-            i = j
-        elif c == '"' or (c == "b" and text.startswith('b"', i)):
-            start = i
-            i += 1 if c == '"' else 2
-            while i < n and text[i] != '"':
-                i += 2 if text[i] == "\\" else 1
-            i += 1
-            line += text.count("\n", start, i)
-            yield '"lit"', line
-        elif c == "'" or (c == "b" and text.startswith("b'", i)):
-            j = i + (1 if c == "'" else 2)
-            # A char literal closes within a few characters; a lifetime is `'ident` unclosed.
-            if j < n and text[j] == "\\":
-                k = text.find("'", j + 2)
-                yield '"lit"', line
-                i = k + 1
-            elif j + 1 < n and text[j + 1] == "'":
-                yield '"lit"', line
-                i = j + 2
-            else:
-                m = IDENT.match(text, j)
-                yield "'" + (m.group(0) if m else ""), line
-                i = m.end() if m else j
-        elif m := IDENT.match(text, i):
-            yield m.group(0), line
-            i = m.end()
-        else:
-            yield c, line
-            i += 1
 
 
 def scan(path: Path, limit: int, test_files: set[Path], out: list):
     """Appends the functions of `path` over `limit` lines; collects its test-only module files."""
-    toks = list(tokens(path.read_text()))
+    toks = tokenize(path.read_text())
     mod_dir = path.parent if path.name in ("mod.rs", "lib.rs", "main.rs") else path.with_suffix("")
 
     def item_end(k: int) -> int:
