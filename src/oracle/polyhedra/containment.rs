@@ -24,7 +24,7 @@
 
 use super::body::{Component, Face, Part};
 use super::envelope::AngleRange;
-use super::turning::{lin, swept_box, turn};
+use super::turning::{box_corner, lin, swept_box, turn};
 use super::Aabb;
 use super::{Hits, Polyhedra, Pose};
 use crate::geometry::kernel::trig::Zeros;
@@ -561,24 +561,7 @@ pub(crate) fn rotation(
         for comp in &opart.components {
             let corners = pose.body_box(&comp.aabb);
             let swept = (0..8).fold(Aabb::EMPTY, |b, i| {
-                let c = V3::new(
-                    if i & 1 == 0 {
-                        corners.lo.x
-                    } else {
-                        corners.hi.x
-                    },
-                    if i & 2 == 0 {
-                        corners.lo.y
-                    } else {
-                        corners.hi.y
-                    },
-                    if i & 4 == 0 {
-                        corners.lo.z
-                    } else {
-                        corners.hi.z
-                    },
-                );
-                b.merge(&back_turning.arc_box(&c, &axis_b))
+                b.merge(&back_turning.arc_box(&box_corner(&corners, i), &axis_b))
             });
             if !swept.overlaps(&rpart.aabb.grown(margin)) {
                 continue;

@@ -26,6 +26,17 @@ pub(crate) fn turn(x: &V3, axis: &V3, phi: f64) -> V3 {
     axis * ((1.0 - c) * axis.dot(x)) + x * c + axis.cross(x) * s
 }
 
+/// Corner `k` (0–7) of a box: bit 0 picks x's end, bit 1 y's, bit 2 z's. A turned box stays in
+/// the hull of its turned corners, so sweeps bound a turn through them.
+pub(crate) fn box_corner(b: &Aabb, k: usize) -> V3 {
+    let end = |bit: usize, lo: f64, hi: f64| if k & bit == 0 { lo } else { hi };
+    V3::new(
+        end(1, b.lo.x, b.hi.x),
+        end(2, b.lo.y, b.hi.y),
+        end(4, b.lo.z, b.hi.z),
+    )
+}
+
 /// The world box around everything a body-frame box at `pose` sweeps while turning about the
 /// world `axis` through `pose`'s position: the arcs of its eight corners (a turned convex set
 /// stays in the hull of its turned corners), cut down to the sphere of `radius` about the
@@ -42,23 +53,7 @@ pub(crate) fn swept_box(
     }
     let mut b = Aabb::EMPTY;
     for k in 0..8 {
-        let c = V3::new(
-            if k & 1 == 0 {
-                body_box.lo.x
-            } else {
-                body_box.hi.x
-            },
-            if k & 2 == 0 {
-                body_box.lo.y
-            } else {
-                body_box.hi.y
-            },
-            if k & 4 == 0 {
-                body_box.lo.z
-            } else {
-                body_box.hi.z
-            },
-        );
+        let c = box_corner(body_box, k);
         b = b.merge(&turning.arc_box(&(pose.rot * c), axis));
     }
     let sphere = Aabb {
