@@ -15,6 +15,7 @@
 //! | [`space`] | R^n, SE(2), SE(3): distance, sampling, DOF groups, straight motions |
 //! | [`oracle`] | collision intervals of a motion (discs, polygons, polyhedra, sampled) |
 //! | [`local`] | local methods: straight line, via-point planner, path shortening |
+//! | [`solve`] | one query planned by a portfolio suited to the scene (what `viaroad solve` runs) |
 //! | [`deadline`] | budgets that hold: one deadline checked before every oracle call |
 //! | [`roadmap`] | learning, persistence, queries |
 //! | [`robot`] | robot arms: URDF + SRDF, forward kinematics, the independent arm checker |
@@ -45,4 +46,5 @@ pub mod robot;
 pub mod safe_file;
 pub mod scene;
 pub mod short;
+pub mod solve;
 pub mod space;
