@@ -14,7 +14,7 @@ use viaroad::robot::inner::Solid;
 use viaroad::robot::{Arm, ArmChecker, ArmOracle, Primitive};
 use viaroad::scene::moveit::load_planning_scene;
 
-mod common;
+use crate::common;
 use common::arms::arms_dir;
 
 fn panda() -> Arm {

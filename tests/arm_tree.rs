@@ -5,7 +5,7 @@
 //! same path. Cage 1 is the problem neither the via-point planner nor the roadmap solves: its
 //! way in is free only as a fine single-joint staircase.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
