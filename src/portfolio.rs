@@ -51,6 +51,12 @@ impl Planning<'_> {
     }
 }
 
+/// The trees' longest extend, as a share of the joint space's extent: about 1 rad on the
+/// Panda, as far as VAMP's RRT-Connect extends. Shorter extends are proved straight more
+/// often, and a blocked one wastes less: on the first 8 Panda problems of each family against
+/// OMPL's 0.2, the cage's mean fell 2.4× and the other families' by 1.5–2×.
+pub const TREE_RANGE: f64 = 0.08;
+
 /// The stages and their budgets. The default is `viaroad bench mbm`'s.
 #[derive(Clone, Debug)]
 pub struct Portfolio {
@@ -75,6 +81,7 @@ impl Default for Portfolio {
         Portfolio {
             direct_calls: 300,
             tree: Some(TreeParams {
+                range: TREE_RANGE,
                 prefix: Prefix::FirstHit,
                 stairs: Stairs::Whole,
                 balance: true,
