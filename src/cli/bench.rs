@@ -214,7 +214,7 @@ pub struct MbmArgs {
     #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_RANGE)]
     pub tree_range: f64,
     /// `--planner tree`: longest stair of an extend, as a share of the extent.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.01)]
+    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_STAIR)]
     pub tree_stair: f64,
     /// `--planner tree`: how a stair finds its free prefix (`first`, default: one first-hit
     /// call; `intervals`; `yesno`). Sliding asks blocked joints again at every stair, and the

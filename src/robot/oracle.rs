@@ -968,10 +968,9 @@ impl ArmOracle {
         finish: impl FnOnce(&Gathered<'_>) -> R,
     ) -> Result<R, RobotError> {
         let p = self.prepare(q, joint, delta, counts)?;
-        // yes/no: a moment of the move that the sure test shows colliding answers at once
-        let sure_hit = (mode == Gather::Any && p.is_ok())
-            .then(|| self.surely_collides_along(q, joint, delta))
-            .flatten();
+        // yes/no: before the first exact sweep (a pair that conservative advancement left
+        // unproved), a moment of the move that the sure test shows colliding answers at once
+        let mut sure_asked = mode != Gather::Any;
         Polyhedra::gather(mode, |g| {
             let p = match p {
                 Ok(p) => p,
@@ -980,10 +979,6 @@ impl ArmOracle {
                     return Ok(finish(g));
                 }
             };
-            if let Some(t) = sure_hit {
-                g.add(Interval { lo: t, hi: t });
-                return Ok(finish(g));
-            }
             let (pivot_w, axis_w) = p.pivot_axis();
             // link at `rel` in a frame `into` (world → frame), turning (sliding) with the
             // distal part, or against it when the distal link is the obstacle (`sign` −1)
@@ -1017,6 +1012,13 @@ impl ArmOracle {
                 .map_err(joint_move_error)
             };
             self.each_oracle(&p, |o, rel, into, sign, window| {
+                if !sure_asked {
+                    sure_asked = true;
+                    if let Some(t) = self.surely_collides_along(q, joint, delta) {
+                        g.add(Interval { lo: t, hi: t });
+                        return Ok(false);
+                    }
+                }
                 ask(o, &rel, &into, sign, window, g, counts)?;
                 Ok(!g.done())
             })?;
