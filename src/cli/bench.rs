@@ -209,11 +209,12 @@ pub struct MbmArgs {
     /// the box) or `roadmap` (grown from start and goal, as `solve --roadmap`).
     #[arg(long, value_name = "PLANNER", default_value = "tree")]
     pub planner: viaroad::bench::mbm::Planner,
-    /// `--planner tree`: longest extend, as a share of the joint space's extent.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.2)]
+    /// `--planner tree`: longest extend, as a share of the joint space's extent (about 1 rad
+    /// on the Panda).
+    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_RANGE)]
     pub tree_range: f64,
     /// `--planner tree`: longest stair of an extend, as a share of the extent.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.01)]
+    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_STAIR)]
     pub tree_stair: f64,
     /// `--planner tree`: how a stair finds its free prefix (`first`, default: one first-hit
     /// call; `intervals`; `yesno`). Sliding asks blocked joints again at every stair, and the
