@@ -12,6 +12,10 @@ use crate::deadline::Deadline;
 /// not halved further: the located intervals are this fine.
 pub const COARSE: f64 = 1.0 / 4096.0;
 
+/// Proof attempts one segment may spend locating: near-contacts that no proof separates and
+/// no sample finds colliding would otherwise be halved down to the finest width all along.
+pub const MAX_PROOFS: usize = 512;
+
 /// What a located segment is asked: a yes/no proof over a piece of its parameter, and whether
 /// the configuration at a parameter really collides (with the pairs that touch).
 pub(crate) trait Prover {
@@ -32,10 +36,23 @@ type Leaf = (f64, f64, Option<(f64, Vec<[String; 2]>)>);
 pub(crate) fn locate(p: &mut dyn Prover, fine: f64, deadline: &Deadline) -> Verdict {
     let mut stack = vec![(0.0f64, 1.0f64)];
     let mut leaves: Vec<Leaf> = Vec::new();
+    let mut proofs = 0;
     while let Some((t0, t1)) = stack.pop() {
         if deadline.expired() {
             return Verdict::Undecided {
                 reason: "the time budget ran out while locating a collision".into(),
+            };
+        }
+        proofs += 1;
+        if proofs > MAX_PROOFS {
+            return match leaves.iter().find_map(|(_, _, h)| h.clone()) {
+                Some(_) => collision(p, &leaves, &stack),
+                None => Verdict::Undecided {
+                    reason: format!(
+                        "{MAX_PROOFS} proofs did not separate the bodies, and no configuration \
+                         tried collides"
+                    ),
+                },
             };
         }
         match p.proved_free(t0, t1) {
@@ -59,12 +76,33 @@ pub(crate) fn locate(p: &mut dyn Prover, fine: f64, deadline: &Deadline) -> Verd
             }
         }
         let mid = 0.5 * (t0 + t1);
+        if w <= COARSE {
+            // a piece not proved, with no collision at its ends and middle: a few more samples
+            // before it is halved below the located width
+            let step = w / 16.0;
+            if let Some(hit) = (1..16)
+                .map(|i| t0 + i as f64 * step)
+                .find_map(|t| p.witness(t).map(|pairs| (t, pairs)))
+            {
+                leaves.push((t0, t1, Some(hit)));
+                continue;
+            }
+        }
         // the earlier half on top: leaves come out in order
         stack.push((mid, t1));
         stack.push((t0, mid));
     }
+    collision(p, &leaves, &stack)
+}
+
+/// The verdict from the unproved pieces found (and the pieces not yet looked at, in `rest`,
+/// which may hold collisions too).
+fn collision(p: &mut dyn Prover, leaves: &[Leaf], rest: &[(f64, f64)]) -> Verdict {
+    let mut pieces: Vec<(f64, f64)> = leaves.iter().map(|(a, b, _)| (*a, *b)).collect();
+    pieces.extend(rest.iter().copied());
+    pieces.sort_by(|x, y| x.0.total_cmp(&y.0));
     let mut intervals: Vec<[f64; 2]> = Vec::new();
-    for (lo, hi, _) in &leaves {
+    for (lo, hi) in &pieces {
         match intervals.last_mut() {
             Some(last) if last[1] >= *lo => last[1] = last[1].max(*hi),
             _ => intervals.push([*lo, *hi]),
