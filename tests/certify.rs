@@ -8,9 +8,7 @@ mod common;
 use common::cli::{temp_dir, viaroad, write};
 use common::rigid2d::PlanarChecker;
 use nalgebra::Point2;
-use viaroad::certify::{
-    certify, repair, Certifier, MotionModel, RepairOptions, Status, Verdict,
-};
+use viaroad::certify::{certify, repair, Certifier, MotionModel, RepairOptions, Status, Verdict};
 use viaroad::deadline::Deadline;
 use viaroad::geometry::Polygon;
 use viaroad::robot::ArmChecker;
@@ -113,11 +111,23 @@ fn a_square_turning_and_sliding_under_a_wall_by_1e_6_is_free_and_into_it_collide
 #[test]
 fn a_blocked_disc_path_is_repaired_and_the_repair_passes_the_plain_distance_check() {
     let scene = disc_scene();
-    let path = vec![vec![0.1, 0.5], vec![0.3, 0.5], vec![0.7, 0.5], vec![0.9, 0.5]];
+    let path = vec![
+        vec![0.1, 0.5],
+        vec![0.3, 0.5],
+        vec![0.7, 0.5],
+        vec![0.9, 0.5],
+    ];
     let c = Certifier::new(&scene, MotionModel::Interpolate).unwrap();
     let cert = c.certify(&path, &Deadline::none()).unwrap();
     assert_eq!(cert.status(), Status::Collides);
-    let fixed = repair(&c, &path, &cert, &RepairOptions::default(), &Deadline::none()).unwrap();
+    let fixed = repair(
+        &c,
+        &path,
+        &cert,
+        &RepairOptions::default(),
+        &Deadline::none(),
+    )
+    .unwrap();
     assert!(fixed.report.certified, "{:?}", fixed.report);
     assert_eq!(fixed.path.first(), path.first());
     assert_eq!(fixed.path.last(), path.last());
@@ -161,7 +171,14 @@ fn an_arm_straight_motion_is_located_and_repaired_under_the_independent_checker(
         assert!(checker.check_path(&path, step).unwrap().valid);
         return;
     }
-    let fixed = repair(&c, &path, &cert, &RepairOptions::default(), &Deadline::none()).unwrap();
+    let fixed = repair(
+        &c,
+        &path,
+        &cert,
+        &RepairOptions::default(),
+        &Deadline::none(),
+    )
+    .unwrap();
     assert!(fixed.report.certified, "{:?}", fixed.report);
     common::arms::certify(&scene, &fixed.path);
 }
@@ -195,5 +212,8 @@ fn the_command_exits_0_when_free_3_when_colliding_4_when_undecided() {
     let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(report["status"], "collides");
     assert_eq!(report["repair"]["report"]["certified"], true);
-    assert_eq!(code(&["certify", &scene, &fixed.to_string_lossy()]), Some(0));
+    assert_eq!(
+        code(&["certify", &scene, &fixed.to_string_lossy()]),
+        Some(0)
+    );
 }

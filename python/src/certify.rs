@@ -8,12 +8,12 @@ use super::{
     SceneData, SceneError,
 };
 use numpy::{PyArray1, PyArrayMethods};
-use viaroad::limits::MAX_QUERIES;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::Arc;
 use std::time::Duration;
 use viaroad::certify::{repair, Certificate, Certifier, MotionModel, RepairOptions, Verdict};
+use viaroad::limits::MAX_QUERIES;
 
 /// The motion model named by `motion`.
 fn model(motion: &str) -> PyResult<MotionModel> {
@@ -33,7 +33,11 @@ fn seconds(time: Option<f64>) -> PyResult<Option<Duration>> {
 
 /// A certificate as a dict: the JSON fields, plus `codes` (0 free, 1 collides, 2 undecided
 /// per segment) and `witnesses` (one row per segment, NaN where none) as numpy arrays.
-fn certificate_dict<'py>(py: Python<'py>, c: &Certificate, dof: usize) -> PyResult<Bound<'py, PyDict>> {
+fn certificate_dict<'py>(
+    py: Python<'py>,
+    c: &Certificate,
+    dof: usize,
+) -> PyResult<Bound<'py, PyDict>> {
     let value = serde_json::json!({
         "status": c.status(),
         "model": c.model,
@@ -42,7 +46,9 @@ fn certificate_dict<'py>(py: Python<'py>, c: &Certificate, dof: usize) -> PyResu
         "calls": c.calls,
         "seconds": c.seconds,
     });
-    let d = json_to_py(py, &value)?.into_bound(py).cast_into::<PyDict>()?;
+    let d = json_to_py(py, &value)?
+        .into_bound(py)
+        .cast_into::<PyDict>()?;
     let codes: Vec<i64> = c
         .segments
         .iter()
@@ -74,7 +80,15 @@ pub(super) fn certify<'py>(
     motion: &str,
     time: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let path = configs(py, "path", path, (MAX_QUERIES, "a path longer than the most queries answered at once"))?;
+    let path = configs(
+        py,
+        "path",
+        path,
+        (
+            MAX_QUERIES,
+            "a path longer than the most queries answered at once",
+        ),
+    )?;
     let model = model(motion)?;
     let time = seconds(time)?;
     let data = scene.data.clone();
@@ -94,7 +108,15 @@ pub(super) fn repair_path<'py>(
     time: f64,
     motion: &str,
 ) -> PyResult<(Py<numpy::PyArray2<f64>>, Bound<'py, PyDict>)> {
-    let path = configs(py, "path", path, (MAX_QUERIES, "a path longer than the most queries answered at once"))?;
+    let path = configs(
+        py,
+        "path",
+        path,
+        (
+            MAX_QUERIES,
+            "a path longer than the most queries answered at once",
+        ),
+    )?;
     let model = model(motion)?;
     let time = seconds(Some(time))?;
     let data = scene.data.clone();
@@ -113,7 +135,10 @@ pub(super) fn repair_path<'py>(
     let report = json_to_py(py, &serde_json::to_value(&fixed.report).unwrap_or_default())?
         .into_bound(py)
         .cast_into::<PyDict>()?;
-    report.set_item("certificate", certificate_dict(py, &fixed.certificate, dof)?)?;
+    report.set_item(
+        "certificate",
+        certificate_dict(py, &fixed.certificate, dof)?,
+    )?;
     Ok((path_array(py, &fixed.path, dof)?, report))
 }
 
@@ -146,4 +171,3 @@ pub(super) fn load_moveit(
         }),
     })
 }
-

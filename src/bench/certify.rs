@@ -79,7 +79,11 @@ pub fn read_entries(input: &Path) -> Result<Vec<Entry>, BenchCertifyError> {
     }
     let text = std::fs::read_to_string(input).map_err(|e| bad(e.to_string()))?;
     let mut out = Vec::new();
-    for (k, line) in text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty()) {
+    for (k, line) in text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+    {
         let v: serde_json::Value =
             serde_json::from_str(line).map_err(|e| bad(format!("line {}: {e}", k + 1)))?;
         if v.get("solved").and_then(|s| s.as_bool()) == Some(false)
@@ -237,8 +241,16 @@ pub fn summary_markdown(results: &[CertifyResult]) -> String {
     let row = |name: &str, rs: Vec<&CertifyResult>| {
         let n = |s: &str| rs.iter().filter(|r| r.status == s).count();
         let ms = |v: Vec<f64>| Stats::of(&v).p50 * 1e3;
-        let free_ms = ms(rs.iter().filter(|r| r.status == "free").map(|r| r.certify_s).collect());
-        let all_ms = ms(rs.iter().filter(|r| r.error.is_empty()).map(|r| r.certify_s).collect());
+        let free_ms = ms(rs
+            .iter()
+            .filter(|r| r.status == "free")
+            .map(|r| r.certify_s)
+            .collect());
+        let all_ms = ms(rs
+            .iter()
+            .filter(|r| r.error.is_empty())
+            .map(|r| r.certify_s)
+            .collect());
         let tried: Vec<&&CertifyResult> = rs.iter().filter(|r| r.repaired.is_some()).collect();
         let ok = tried.iter().filter(|r| r.repaired == Some(true)).count();
         let rep_ms = ms(tried.iter().map(|r| r.repair_s).collect());
