@@ -13,12 +13,12 @@
 //!   arm's single joint): the exact oracle's collision intervals;
 //! - an arm's straight motion of several joints: conservative advancement
 //!   ([`crate::robot::ArmOracle::straight_free`]), halving where it does not finish
-//!   ([`locate`]), witnesses confirmed by the independent [`crate::robot::ArmChecker`];
+//!   (`locate`), witnesses confirmed by the independent [`crate::robot::ArmChecker`];
 //! - a rigid body translating and turning at once (OMPL's SE(2)/SE(3) interpolation):
 //!   conservative advancement on parry's distances between the robot's and the obstacles'
 //!   shapes, halving likewise.
 //!
-//! [`repair`] replaces each run of blocked segments by a certified detour.
+//! [`repair()`] replaces each run of blocked segments by a certified detour.
 
 mod arm;
 mod locate;
