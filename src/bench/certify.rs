@@ -142,6 +142,8 @@ pub struct CertifyResult {
     pub length: [f64; 2],
     /// The repaired path.
     pub fixed: Vec<Config>,
+    /// Why a repair is not certified: its detours' errors, or the fixed path's status.
+    pub repair_errors: Vec<String>,
     /// Why it could not run.
     pub error: String,
 }
@@ -218,6 +220,19 @@ pub fn run_entry(
                 r.repaired = Some(fixed.report.certified);
                 r.repair_s = fixed.report.seconds;
                 r.length = [fixed.report.length_before, fixed.report.length_after];
+                r.repair_errors = fixed
+                    .report
+                    .detours
+                    .iter()
+                    .filter_map(|d| d.error.clone())
+                    .collect();
+                if !fixed.report.certified && r.repair_errors.is_empty() {
+                    let [_, c, u] = fixed.certificate.counts();
+                    r.repair_errors.push(format!(
+                        "the fixed path: {c} segments collide, {u} undecided, {} defects",
+                        fixed.certificate.defects.len()
+                    ));
+                }
                 r.fixed = fixed.path;
             }
             Err(err) => {
