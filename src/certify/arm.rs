@@ -69,7 +69,7 @@ impl ArmChecks {
             b,
             counts,
         };
-        locate(&mut prover, FINE, deadline)
+        locate(&mut prover, FINE, super::locate::MAX_PROOFS, deadline)
     }
 }
 

@@ -12,8 +12,9 @@ use crate::deadline::Deadline;
 /// not halved further: the located intervals are this fine.
 pub const COARSE: f64 = 1.0 / 4096.0;
 
-/// Proof attempts one segment may spend locating: near-contacts that no proof separates and
-/// no sample finds colliding would otherwise be halved down to the finest width all along.
+/// Proof attempts one arm segment may spend locating: near-contacts that no proof separates
+/// and no sample finds colliding would otherwise be halved down to the finest width all along
+/// (an arm's proof costs up to milliseconds; a rigid body's distance query microseconds).
 pub const MAX_PROOFS: usize = 512;
 
 /// What a located segment is asked: a yes/no proof over a piece of its parameter, and whether
@@ -33,66 +34,92 @@ type Leaf = (f64, f64, Option<(f64, Vec<[String; 2]>)>);
 /// Locates the collisions of a segment that is not proved free as a whole (see the module's
 /// text): pieces are halved down to [`COARSE`] where a collision is confirmed and down to
 /// `fine` where none is yet. Undecided if `deadline` passes.
-pub(crate) fn locate(p: &mut dyn Prover, fine: f64, deadline: &Deadline) -> Verdict {
-    let mut stack = vec![(0.0f64, 1.0f64)];
-    let mut leaves: Vec<Leaf> = Vec::new();
+pub(crate) fn locate(
+    p: &mut dyn Prover,
+    fine: f64,
+    max_proofs: usize,
+    deadline: &Deadline,
+) -> Verdict {
     let mut proofs = 0;
+    // first down to the located width everywhere, then finer only where no collision was found
+    let coarse = match pass(
+        p,
+        vec![(0.0, 1.0)],
+        COARSE,
+        (deadline, max_proofs),
+        &mut proofs,
+    ) {
+        Ok(leaves) => leaves,
+        Err(v) => return v,
+    };
+    if coarse.iter().any(|(_, _, h)| h.is_some()) || coarse.is_empty() {
+        return collision(p, &coarse, &[]);
+    }
+    let mut rest: Vec<(f64, f64)> = coarse.iter().map(|(a, b, _)| (*a, *b)).collect();
+    rest.reverse();
+    match pass(p, rest, fine, (deadline, max_proofs), &mut proofs) {
+        Ok(leaves) => collision(p, &leaves, &[]),
+        Err(v) => v,
+    }
+}
+
+/// Halves the pieces of `stack` (the earliest on top) that are not proved until they are no
+/// wider than `floor`: the unproved pieces, each with a colliding parameter if one of a few
+/// samples found it. `Err`: the verdict when the deadline or the proofs ran out.
+fn pass(
+    p: &mut dyn Prover,
+    mut stack: Vec<(f64, f64)>,
+    floor: f64,
+    (deadline, max_proofs): (&Deadline, usize),
+    proofs: &mut usize,
+) -> Result<Vec<Leaf>, Verdict> {
+    let mut leaves: Vec<Leaf> = Vec::new();
     while let Some((t0, t1)) = stack.pop() {
         if deadline.expired() {
-            return Verdict::Undecided {
+            return Err(Verdict::Undecided {
                 reason: "the time budget ran out while locating a collision".into(),
-            };
+            });
         }
-        proofs += 1;
-        if proofs > MAX_PROOFS {
-            return match leaves.iter().find_map(|(_, _, h)| h.clone()) {
+        *proofs += 1;
+        if *proofs > max_proofs {
+            // the piece at hand is not proved either
+            stack.push((t0, t1));
+            return Err(match leaves.iter().find_map(|(_, _, h)| h.clone()) {
                 Some(_) => collision(p, &leaves, &stack),
                 None => Verdict::Undecided {
                     reason: format!(
-                        "{MAX_PROOFS} proofs did not separate the bodies, and no configuration \
+                        "{max_proofs} proofs did not separate the bodies, and no configuration \
                          tried collides"
                     ),
                 },
-            };
+            });
         }
         match p.proved_free(t0, t1) {
             Ok(true) => continue,
             Ok(false) => {}
             Err(e) => {
-                return Verdict::Undecided {
+                return Err(Verdict::Undecided {
                     reason: e.to_string(),
-                }
+                })
             }
         }
         let w = t1 - t0;
-        if w <= COARSE {
-            let mid = 0.5 * (t0 + t1);
-            let hit = [t0, mid, t1]
+        if w <= floor {
+            // a piece not proved: its ends, its middle and a few more samples
+            let step = w / 16.0;
+            let hit = [t0, 0.5 * (t0 + t1), t1]
                 .into_iter()
+                .chain((1..16).map(|i| t0 + i as f64 * step))
                 .find_map(|t| p.witness(t).map(|pairs| (t, pairs)));
-            if hit.is_some() || w <= fine {
-                leaves.push((t0, t1, hit));
-                continue;
-            }
+            leaves.push((t0, t1, hit));
+            continue;
         }
         let mid = 0.5 * (t0 + t1);
-        if w <= COARSE {
-            // a piece not proved, with no collision at its ends and middle: a few more samples
-            // before it is halved below the located width
-            let step = w / 16.0;
-            if let Some(hit) = (1..16)
-                .map(|i| t0 + i as f64 * step)
-                .find_map(|t| p.witness(t).map(|pairs| (t, pairs)))
-            {
-                leaves.push((t0, t1, Some(hit)));
-                continue;
-            }
-        }
         // the earlier half on top: leaves come out in order
         stack.push((mid, t1));
         stack.push((t0, mid));
     }
-    collision(p, &leaves, &stack)
+    Ok(leaves)
 }
 
 /// The verdict from the unproved pieces found (and the pieces not yet looked at, in `rest`,
@@ -140,4 +167,70 @@ pub(crate) fn fmt_intervals(intervals: &[[f64; 2]]) -> String {
         .map(|[a, b]| format!("[{a:.6}, {b:.6}]"))
         .collect::<Vec<_>>()
         .join(" ∪ ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A point on a line colliding over `[0.3, 0.4]`, proved free over a piece only when the
+    /// piece stays `margin` away from that interval (a proof that cannot finish near contact).
+    struct Line {
+        margin: f64,
+    }
+
+    impl Prover for Line {
+        fn proved_free(&mut self, t0: f64, t1: f64) -> Result<bool, super::super::CertifyError> {
+            Ok(t1 < 0.3 - self.margin || t0 > 0.4 + self.margin)
+        }
+        fn witness(&mut self, t: f64) -> Option<Vec<[String; 2]>> {
+            (0.3..=0.4)
+                .contains(&t)
+                .then(|| vec![["point".into(), "block".into()]])
+        }
+        fn at(&self, t: f64) -> Vec<f64> {
+            vec![t]
+        }
+    }
+
+    #[test]
+    fn the_located_intervals_hold_the_collision_and_the_witness_lies_in_it() {
+        let v = locate(
+            &mut Line { margin: 1e-3 },
+            1e-6,
+            MAX_PROOFS,
+            &Deadline::none(),
+        );
+        let Verdict::Collides(c) = v else {
+            panic!("not located: {v:?}")
+        };
+        assert!(
+            c.intervals.iter().any(|[a, b]| *a <= 0.3 && *b >= 0.4),
+            "{c:?}"
+        );
+        assert!((0.3..=0.4).contains(&c.witness_t));
+        assert!(c.free_before <= 0.3 && c.free_after >= 0.4);
+    }
+
+    #[test]
+    fn a_near_contact_without_collision_is_undecided_and_never_free() {
+        struct Near;
+        impl Prover for Near {
+            fn proved_free(
+                &mut self,
+                t0: f64,
+                t1: f64,
+            ) -> Result<bool, super::super::CertifyError> {
+                Ok(t1 < 0.5 || t0 > 0.5)
+            }
+            fn witness(&mut self, _: f64) -> Option<Vec<[String; 2]>> {
+                None
+            }
+            fn at(&self, t: f64) -> Vec<f64> {
+                vec![t]
+            }
+        }
+        let v = locate(&mut Near, 1e-3, MAX_PROOFS, &Deadline::none());
+        assert_eq!(v.name(), "undecided", "{v:?}");
+    }
 }

@@ -351,6 +351,18 @@ impl<'a> Certifier<'a> {
                 });
             }
         }
+        if a == b {
+            // no motion: the waypoint alone, which the oracle finds free or only its enclosing
+            // shapes in collision (a colliding one returned above)
+            return if self.oracle.is_free(a, counts) {
+                Verdict::Free
+            } else {
+                Verdict::Undecided {
+                    reason: "the oracle's shapes collide at this waypoint, the true shapes do not"
+                        .into(),
+                }
+            };
+        }
         match self.model {
             MotionModel::Direct => self.direct(a, b, counts),
             MotionModel::Interpolate => match &self.checks {

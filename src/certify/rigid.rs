@@ -151,7 +151,7 @@ impl RigidChecks {
                     b,
                     rate: rate * (1.0 + 1e-9),
                 };
-                locate(&mut prover, FINE, deadline)
+                locate(&mut prover, FINE, 1 << 20, deadline)
             }
         }
     }
