@@ -26,6 +26,7 @@ mod arm_workcell;
 mod bench_cones;
 mod bench_local;
 mod budgets;
+mod certify;
 mod cli;
 mod cli_budgets;
 mod cones;
