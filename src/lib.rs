@@ -29,6 +29,7 @@
 #![warn(missing_docs)]
 
 pub mod bench;
+pub mod certify;
 pub mod deadline;
 pub mod export;
 mod fast_hash;

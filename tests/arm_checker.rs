@@ -15,7 +15,7 @@ use viaroad::scene::moveit::{
     load_motion_plan_request, load_planning_scene, ObjectShape, PlanningScene,
 };
 
-mod common;
+use crate::common;
 use common::arms::arms_dir;
 
 fn panda() -> Arm {

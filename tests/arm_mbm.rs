@@ -4,7 +4,7 @@
 //! [`viaroad::robot::ArmChecker`] inside `run_problem`; this test holds it to that
 //! and to the stage times adding up.
 
-mod common;
+use crate::common;
 
 use common::cli::{stderr, temp_dir, viaroad};
 use std::path::Path;

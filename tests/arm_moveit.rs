@@ -15,7 +15,7 @@ use viaroad::scene::moveit::{
 };
 use viaroad::scene::Robot;
 
-mod common;
+use crate::common;
 use common::arms::panda;
 
 /// The Panda's ready pose.

@@ -13,7 +13,7 @@ use viaroad::robot::arm::GroupChoice;
 use viaroad::robot::{Arm, ArmChecker, ArmOptions, ArmOracle};
 use viaroad::scene::moveit::load_planning_scene;
 
-mod common;
+use crate::common;
 use common::arms::{arms_dir, panda};
 
 fn setup(scene: &str) -> (Arm, ArmChecker, ArmOracle) {

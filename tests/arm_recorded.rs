@@ -32,7 +32,7 @@ const FAMILIES: [&str; 7] = [
 /// Moves per family.
 const MOVES: usize = 30;
 
-mod common;
+use crate::common;
 use common::arms::{arms_dir, panda};
 
 /// One line per move: the move, then the three answers (floats in Rust's round-trip format).

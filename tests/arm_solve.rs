@@ -4,7 +4,7 @@
 //! 1/10 of OMPL's default resolution, a node budget gives the same path on every run, and the
 //! cage, where the via-point planner alone gives up, is answered.
 
-mod common;
+use crate::common;
 
 use common::cli::{stdout, viaroad};
 use std::path::PathBuf;

@@ -5,7 +5,7 @@
 //! and a query's answer shortened with them is certified and shorter than with staircases
 //! alone.
 
-mod common;
+use crate::common;
 
 use common::arms::certify;
 use rand::{Rng, SeedableRng};

@@ -1,11 +1,12 @@
 //! Two trees for an arm (issue 10, `roadmap::tree` with whole stairs, and sliding ones): on shipped Panda
-//! problems the tree path and its shortcut are chains of single-joint motions that the
+//! problems the tree path and its shortcut are chains of single-joint motions (and straight
+//! motions of all joints where conservative advancement proved them free) that the
 //! independent `ArmChecker` (parry, exact primitives, no code shared with the exact oracle)
 //! certifies at 1/10 of OMPL's default resolution, and the same seed and node budget give the
 //! same path. Cage 1 is the problem neither the via-point planner nor the roadmap solves: its
 //! way in is free only as a fine single-joint staircase.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
@@ -37,7 +38,12 @@ fn grow(scene: &Scene, seed: u64) -> TreeOutcome {
 
 fn shortcut_of(scene: &Scene, path: &[Config]) -> Vec<Config> {
     let oracle = scene.oracle();
-    let groups = scene.space.groups(false);
+    // as the portfolio shortens: the tree's edges may be straight motions of all joints (its
+    // extends and stairs), which a single-joint shortcut could only replace by staircases
+    let groups = match scene.space.straight_group() {
+        Some(whole) => vec![whole],
+        None => scene.space.groups(false),
+    };
     let mut counts = CallCounts::default();
     shortcut(
         &scene.space,

@@ -2,7 +2,7 @@
 //! re-check of returned paths against an independent disc checker, staged learning, the
 //! database read back in OMPL's schema, and the command line with child processes.
 
-mod roadmap_support;
+use crate::roadmap_support;
 
 use roadmap_support::{discs, path_free};
 use rusqlite::Connection;

@@ -2,7 +2,7 @@
 //! one oracle call. The tests trip a cancel flag from inside the oracle after a fixed number of
 //! calls, so they assert call counts, never wall-clock times.
 
-mod roadmap_support;
+use crate::roadmap_support;
 
 use roadmap_support::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};

@@ -2,7 +2,7 @@
 //! non-zero exit for every kind of bad input, never a panic. Paths printed are re-checked by
 //! the independent segment–disc test.
 
-mod common;
+use crate::common;
 
 use common::cli::{fails_with, stderr, stdout, viaroad, write};
 

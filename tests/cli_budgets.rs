@@ -3,7 +3,7 @@
 //! (a warning for `build`, an error for `solve`). Paths are re-checked by the independent
 //! segment–disc test.
 
-mod common;
+use crate::common;
 
 use common::cli::{fails_with, stderr, stdout, viaroad};
 

@@ -3,7 +3,7 @@
 //! exit status 1 (no panic), reached within seconds; special files are never replaced; no
 //! stale numbered outputs; no stray temporaries after a killed save.
 
-mod common;
+use crate::common;
 
 use common::cli::{fails_alone_with as fails_with, stderr, stdout, viaroad};
 

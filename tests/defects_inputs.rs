@@ -5,7 +5,7 @@
 //! joint cycle and about SRDF links the URDF lacks name what is wrong. The hostile files are
 //! generated in a temporary directory; every test stays fast.
 
-mod common;
+use crate::common;
 
 use common::cli::{fails_with, temp_dir, write};
 use std::path::Path;

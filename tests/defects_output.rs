@@ -3,7 +3,7 @@
 //! is an error, lengths are never `-0`, huge numbers in messages are short, an output that
 //! cannot be written is refused before a batch, and a JavaScript test that cannot run says so.
 
-mod common;
+use crate::common;
 
 use common::cli::{fails_alone_with, fails_with, stderr, temp_dir, viaroad, write};
 use serde_json::Value;

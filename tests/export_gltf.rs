@@ -5,7 +5,7 @@
 //! line on stderr where node or the package is absent, `cd tools/js && npm ci --omit=dev`,
 //! and failed instead where `VIAROAD_REQUIRE_JS` is set: `common::js`).
 
-mod common;
+use crate::common;
 
 use common::cli::{fails_with, temp_dir, viaroad, write};
 use common::js::{node_script, skip};

@@ -1,7 +1,7 @@
 //! Learning: validity against the independent checker, feedback on and off, determinism across
 //! thread counts, budgets and parameter errors.
 
-mod roadmap_support;
+use crate::roadmap_support;
 
 use roadmap_support::*;
 use viaroad::local::LocalSpec;

@@ -1,7 +1,7 @@
 //! The roadmap file: round trips, and every kind of bad file rejected with its own error,
 //! never a panic; saves that fail leave the previous file intact.
 
-mod roadmap_support;
+use crate::roadmap_support;
 
 use roadmap_support::*;
 use std::path::PathBuf;

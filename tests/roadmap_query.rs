@@ -1,7 +1,7 @@
 //! Queries: every path re-checked by the independent checker, typed errors for bad ends,
 //! A* against an independent Dijkstra, batches equal to single queries in any order.
 
-mod roadmap_support;
+use crate::roadmap_support;
 
 use roadmap_support::*;
 use std::collections::BinaryHeap;

@@ -6,7 +6,7 @@
 //! ends through the roadmap answers along such trees ([`QueryOptions::trees`]), checked the
 //! same way.
 
-mod roadmap_support;
+use crate::roadmap_support;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

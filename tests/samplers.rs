@@ -2,8 +2,8 @@
 //! narrow-passage samplers put their samples nearer the obstacles than uniform sampling does,
 //! specs round-trip, and the sampler is recorded in the roadmap file (since version 2).
 
-mod common;
-mod roadmap_support;
+use crate::common;
+use crate::roadmap_support;
 
 use common::rigid::RigidChecker;
 use common::rigid2d::PlanarChecker;

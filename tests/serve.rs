@@ -4,7 +4,7 @@
 //! serving after every kind of bad line. Every server started here is killed when its test
 //! ends, whatever happens (no hanging CI).
 
-mod common;
+use crate::common;
 
 use rand::SeedableRng;
 use serde_json::{json, Value};

@@ -2,7 +2,7 @@
 //! fingerprint) and answer every query of their scene with a path the independent checkers
 //! certify.
 
-mod common;
+use crate::common;
 
 use common::rigid::RigidChecker;
 use common::rigid2d::PlanarChecker;

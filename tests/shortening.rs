@@ -3,7 +3,7 @@
 //! brute force, the pairs it need not check, and the corner test that refuses a pair before
 //! any sweep. Every path is re-checked by the independent segment test of `roadmap_support`.
 
-mod roadmap_support;
+use crate::roadmap_support;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -4,7 +4,7 @@
 //! the same seed and node budget give the same answer, the node budget holds, and the
 //! shortcut path is checked the same way.
 
-mod common;
+use crate::common;
 
 use common::cli::{fails_with, stderr, stdout, viaroad};
 use common::tree::grow;

@@ -2,7 +2,7 @@
 //! independent segment–disc test, and the search strategies keep the promises the seed makes
 //! about each other (CHS §1.3, Appendix A).
 
-mod common;
+use crate::common;
 
 use common::check_disc_path;
 use proptest::prelude::*;

@@ -3,7 +3,7 @@
 //! problems — and SE(2) with the exact polygon oracle. Every path is certified collision-free by
 //! an independent parry-based check.
 
-mod common;
+use crate::common;
 
 use common::rigid::RigidChecker;
 use common::rigid2d::PlanarChecker;

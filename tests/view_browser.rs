@@ -12,7 +12,7 @@
 //! MotionBenchMaker's table_pick problem 1, `scenes/arms/panda-table_pick-1.toml`), so
 //! that the suite stays quick.
 
-mod common;
+use crate::common;
 
 use common::cli::{stderr, temp_dir, viaroad};
 use common::js::{node_script, skip};

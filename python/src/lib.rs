@@ -24,6 +24,7 @@ use viaroad::roadmap::{
 use viaroad::scene::{Scene as RustScene, SceneError as RustSceneError};
 use viaroad::space::Config;
 
+mod certify;
 mod interrupt;
 use interrupt::{interruptible, interruptible_with};
 
@@ -332,6 +333,52 @@ impl Scene {
             .map_err(|e| MotionError::new_err(one_line(&e)))?;
         let m = ivs.len() / 2;
         PyArray1::from_vec(py, ivs).reshape([m, 2])
+    }
+
+    /// Proves each segment of `path` (a `(k, dof)` array or sequence of configurations from
+    /// any planner) free, or finds where it collides. `motion`: `"interpolate"` (OMPL's,
+    /// MoveIt's, VAMP's: joint-space straight lines, SE(3) slerp) or `"direct"` (viaroad's own
+    /// paths); `time`: seconds (segments not reached are undecided). Returns a dict: `status`
+    /// (`"free"`, `"collides"`, `"undecided"`), `segments` (per segment `verdict`, and for a
+    /// collision `intervals`, `witness`, `pairs`), `defects`, and numpy arrays `codes` (0 free,
+    /// 1 collides, 2 undecided) and `witnesses` (NaN rows where none).
+    #[pyo3(signature = (path, motion = "interpolate", time = None))]
+    fn certify<'py>(
+        &self,
+        py: Python<'py>,
+        path: &Bound<'py, PyAny>,
+        motion: &str,
+        time: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        certify::certify(self, py, path, motion, time)
+    }
+
+    /// Repairs `path`: every proved segment kept, each run of blocked ones replaced by a
+    /// certified detour planned within `time` seconds. Returns `(fixed, report)`: the fixed
+    /// path as a `(k, dof)` array and a dict (`detours`, `segments_repaired`, lengths,
+    /// `seconds`, `certified`, and the fixed path's `certificate`).
+    #[pyo3(signature = (path, time = 10.0, motion = "interpolate"))]
+    fn repair<'py>(
+        &self,
+        py: Python<'py>,
+        path: &Bound<'py, PyAny>,
+        time: f64,
+        motion: &str,
+    ) -> PyResult<(Py<PyArray2<f64>>, Bound<'py, PyDict>)> {
+        certify::repair_path(self, py, path, time, motion)
+    }
+
+    /// A MotionBenchMaker-style arm problem: the robot's folder (its `.urdf` and `.srdf`), a
+    /// MoveIt PlanningScene `.yaml` and a MotionPlanRequest `.yaml` (the group, and the start
+    /// and goal as the scene's query).
+    #[staticmethod]
+    fn load_moveit(
+        py: Python<'_>,
+        robot: &Bound<'_, PyAny>,
+        scene: &Bound<'_, PyAny>,
+        request: &Bound<'_, PyAny>,
+    ) -> PyResult<Scene> {
+        certify::load_moveit(py, robot, scene, request)
     }
 
     /// `n` random collision-free configurations as an `(n, dof)` array, drawn uniformly from a

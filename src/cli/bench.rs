@@ -39,6 +39,10 @@ pub enum BenchCommand {
     /// independent arm checker; a summary like VAMP's `evaluate_mbm` ("Solved / Valid /
     /// Total"). `--workcell`: one roadmap per family answering all its requests.
     Mbm(MbmArgs),
+    /// Another planner's paths for MotionBenchMaker problems (JSON lines as the VAMP peer
+    /// writes them, or a folder of `<family>_<NNNN>.path` files) certified segment by segment
+    /// and, with `--repair`, repaired: proved free, colliding, undecided, repairs, times.
+    Certify(BenchCertifyArgs),
     /// One run of `bench local` (internal): reads the job as JSON on stdin and prints the
     /// record as JSON on stdout.
     #[command(hide = true)]
@@ -176,6 +180,7 @@ pub fn run(cmd: BenchCommand) -> anyhow::Result<()> {
         BenchCommand::LocalRun => local_run(),
         BenchCommand::Validity(a) => validity(a),
         BenchCommand::Mbm(a) => mbm(a),
+        BenchCommand::Certify(a) => certify(a),
     }
 }
 
@@ -209,11 +214,12 @@ pub struct MbmArgs {
     /// the box) or `roadmap` (grown from start and goal, as `solve --roadmap`).
     #[arg(long, value_name = "PLANNER", default_value = "tree")]
     pub planner: viaroad::bench::mbm::Planner,
-    /// `--planner tree`: longest extend, as a share of the joint space's extent.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.2)]
+    /// `--planner tree`: longest extend, as a share of the joint space's extent (about 1 rad
+    /// on the Panda).
+    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_RANGE)]
     pub tree_range: f64,
     /// `--planner tree`: longest stair of an extend, as a share of the extent.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.01)]
+    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_STAIR)]
     pub tree_stair: f64,
     /// `--planner tree`: how a stair finds its free prefix (`first`, default: one first-hit
     /// call; `intervals`; `yesno`). Sliding asks blocked joints again at every stair, and the
@@ -916,5 +922,91 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
             report.failures.len()
         );
     }
+    Ok(())
+}
+
+/// Arguments of `bench certify`.
+#[derive(Args)]
+pub struct BenchCertifyArgs {
+    /// The paths: a JSON lines file (`family`, `index`, `path` per line) or a folder of
+    /// `<family>_<NNNN>.path` files (OMPL state files in the group's joint order).
+    pub input: PathBuf,
+    /// The robot's folder: its `.urdf` and `.srdf`.
+    #[arg(long)]
+    pub robot: PathBuf,
+    /// The MotionBenchMaker problems: a folder of family folders (`<family>_<robot>` or
+    /// `<family>`, each with `sceneNNNN.yaml` and `requestNNNN.yaml`).
+    #[arg(long)]
+    pub problems: PathBuf,
+    /// Repair the paths not proved free, within this many seconds each (0: no repair).
+    #[arg(long, value_name = "SECONDS", default_value_t = 0.0)]
+    pub repair: f64,
+    /// Seconds to certify one path.
+    #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+    pub time: f64,
+    /// At most this many paths.
+    #[arg(long)]
+    pub limit: Option<usize>,
+    /// Only this family (the planner's name, e.g. `table_pick`).
+    #[arg(long)]
+    pub family: Option<String>,
+    /// The robot's big meshes exactly rather than enveloped (as `bench mbm`).
+    #[arg(long)]
+    pub exact_meshes: bool,
+    /// One JSON object per path to this file (witnesses and repaired paths included).
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+fn certify(a: BenchCertifyArgs) -> anyhow::Result<()> {
+    use std::io::Write;
+    use viaroad::bench::certify as bc;
+    let time = super::limits::parse_seconds("--time", a.time)?;
+    let repair = if a.repair > 0.0 {
+        Some(super::limits::parse_seconds("--repair", a.repair)?)
+    } else {
+        None
+    };
+    let arm = viaroad::bench::mbm::load_robot_with(
+        &a.robot,
+        &viaroad::robot::ArmOptions {
+            exact_meshes: a.exact_meshes,
+            ..Default::default()
+        },
+    )?;
+    let robot_name = arm.model.urdf.name.clone();
+    let mut entries = bc::read_entries(&a.input)?;
+    if let Some(f) = &a.family {
+        entries.retain(|e| &e.family == f);
+    }
+    entries.truncate(a.limit.unwrap_or(usize::MAX));
+    let options = bc::BenchCertifyOptions {
+        repair: repair.map(|t| viaroad::certify::RepairOptions {
+            time: Some(t),
+            ..Default::default()
+        }),
+        time: Some(time),
+    };
+    let mut out = match &a.out {
+        Some(p) => Some(std::io::BufWriter::new(
+            std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?,
+        )),
+        None => None,
+    };
+    let bar = super::progress_bar(entries.len() as u64, "certify");
+    let mut results = Vec::with_capacity(entries.len());
+    for e in &entries {
+        let r = bc::run_entry(&arm, &robot_name, &a.problems, e, &options);
+        if let Some(w) = out.as_mut() {
+            writeln!(w, "{}", serde_json::to_string(&r)?)?;
+        }
+        results.push(r);
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    if let Some(mut w) = out {
+        w.flush()?;
+    }
+    print!("{}", bc::summary_markdown(&results));
     Ok(())
 }

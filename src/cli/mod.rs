@@ -2,6 +2,7 @@
 
 mod bench;
 mod build;
+mod certify;
 mod config_arg;
 mod demo;
 mod export;
@@ -59,6 +60,9 @@ enum Command {
     Export(export::ExportArgs),
     /// Write a self-contained HTML page that plays a planned path in 3D.
     View(view::ViewArgs),
+    /// Prove each segment of a path from any planner free, or find where it collides (exit 0
+    /// free, 3 collides, 4 undecided); `--repair` replaces the blocked runs by certified detours.
+    Certify(certify::CertifyArgs),
 }
 
 /// Runs one command.
@@ -75,6 +79,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Bench(b) => bench::run(b),
         Command::Export(a) => export::run(a),
         Command::View(a) => view::run(a),
+        Command::Certify(a) => certify::run(a),
     }
 }
 

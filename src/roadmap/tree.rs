@@ -786,7 +786,11 @@ impl Grower<'_> {
 
     /// [`Stairs::Whole`]: `step` stair by stair, each stair whole (a yes/no call per group
     /// piece) or not at all; the first blocked stair ends the extend with the complete stairs
-    /// before it. Only the extend's end is indexed for nearest-node queries.
+    /// before it. Only the extend's end is indexed for nearest-node queries. With
+    /// [`TreeParams::straight`] each stair is first asked as one straight motion of all joints
+    /// (one call where the staircase asks one per joint), its pieces only where that is not
+    /// proved: an extend whose whole straight motion was not proved is mostly free stairs
+    /// before the one that meets the obstacle.
     fn extend_whole(&mut self, tree: &mut Tree, step: &Step) -> Result<Extend, OracleError> {
         let mut corners: Vec<Config> = Vec::new();
         // corners of the complete stairs
@@ -794,6 +798,24 @@ impl Grower<'_> {
         let mut current = step.from.clone();
         'stairs: for i in 1..=step.stairs {
             let w = step.stair_end(self.space, i);
+            if self.params.straight
+                && step.stairs > 1
+                && !self.deadline.expired()
+                && crate::local::straight_connection(
+                    self.space,
+                    self.oracle,
+                    self.groups,
+                    &current,
+                    &w,
+                    &mut self.counts,
+                )?
+                .is_some()
+            {
+                corners.push(w.clone());
+                current = w;
+                whole = corners.len();
+                continue;
+            }
             for g in self.groups {
                 if self.deadline.expired() {
                     break 'stairs;
