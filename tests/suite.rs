@@ -54,6 +54,7 @@ mod scene_loading;
 mod serve;
 mod shipped_roadmaps;
 mod shortening;
+mod solve_default;
 mod tree;
 mod validity;
 mod viapoint_discs;

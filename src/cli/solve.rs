@@ -1,5 +1,6 @@
-//! `viaroad solve`: a scene's queries answered by the local method alone (or a single-query
-//! planner: `--roadmap`, `--tree`, `--portfolio`, the default for arm scenes).
+//! `viaroad solve`: a scene's queries answered by the portfolio suited to the scene
+//! ([`super::solver`]), or by one planner asked for: the local method alone, a grown roadmap
+//! or two trees.
 
 use super::solve_args::{solve_query, SingleQuery, SolveArgs};
 use anyhow::Context;
@@ -10,7 +11,7 @@ use viaroad::local::{path_length, LocalSpec};
 use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner};
 use viaroad::scene::Scene;
 
-/// Runs `solve`.
+/// Runs `solve`: the mode asked for, else the portfolio suited to the scene.
 pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     if a.roadmap {
         return run_roadmap(a);
@@ -30,12 +31,14 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         Some(o) => anyhow::bail!("--oracle {o}: expected `exact` (the default) or `minkowski`"),
     }
     let scene = Scene::load(&a.scene)?;
-    // an arm is planned by the benchmark's stages unless its local method is asked for: the
-    // via-point planner alone exhausts its depth in the cage, where the trees answer
-    let arm = matches!(scene.robot, viaroad::scene::Robot::Arm(_));
-    if a.portfolio || (arm && !a.local.given()) {
-        return super::portfolio::run_portfolio(&a, &scene);
+    if a.local_alone() {
+        return run_local(&a, &scene);
     }
+    super::solver::run_solver(&a, &scene)
+}
+
+/// `solve --local-only`: each query connected by the local method alone, its path shortened.
+fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
     let spec = a.local.spec_or(LocalSpec::default())?;
     let time = super::limits::optional_seconds("--time", a.time)?;
     let oracle = scene.oracle();
@@ -62,7 +65,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             &q.goal,
         )?;
         let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
-        let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal, &deadline)?;
+        let s = solve_query(scene, oracle.as_ref(), &spec, &start, &goal, &deadline)?;
         if let Some(out) = &mut path_out {
             out.write(i, &s.shortened)?;
         }
