@@ -202,11 +202,10 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `solve --tree`: each query answered by RRT-Connect with exact single-group extends.
-fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
-    use viaroad::roadmap::tree::{rrt_connect, shortcut, TreeParams};
-    let scene = Scene::load(&a.scene)?;
-    use viaroad::roadmap::tree::Stairs;
+/// The trees' parameters `a` asks for.
+fn tree_params(a: &SolveArgs) -> viaroad::roadmap::tree::TreeParams {
+    use viaroad::roadmap::tree::{Stairs, TreeParams};
+    // centring and coarse extends need partial stairs
     let stairs = a
         .tree_stairs
         .unwrap_or(if a.tree_centre > 0 || a.tree_coarse {
@@ -214,7 +213,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         } else {
             Stairs::Whole
         });
-    let params = TreeParams {
+    TreeParams {
         range: a.tree_range,
         stair: a.tree_stair,
         prefix: a.tree_prefix,
@@ -227,7 +226,14 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         streams: a.tree_streams,
         stairs,
         straight: !a.no_straight,
-    };
+    }
+}
+
+/// `solve --tree`: each query answered by RRT-Connect with exact single-group extends.
+fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
+    use viaroad::roadmap::tree::{rrt_connect, shortcut};
+    let scene = Scene::load(&a.scene)?;
+    let params = tree_params(&a);
     params.validate().map_err(anyhow::Error::msg)?;
     // checked before the path files are prepared (which removes those of earlier runs)
     let SingleQuery {
