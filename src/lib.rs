@@ -22,6 +22,8 @@
 //! | [`export`] | glTF export and the HTML viewer (seeing a plan in 3D) |
 //! | [`mesh_io`] | mesh files (OBJ, STL, Collada) and the checked reads of input files |
 //! | [`scene`] | TOML scenes, OMPL.app problems, MoveIt scenes and requests, meshes |
+//! | [`checker`] | path checkers sharing no code with the oracles (discs, SE(2), SE(3)) |
+//! | [`certify`] | other planners' paths proved free, located and repaired |
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
 //! | [`limits`] | the largest numbers accepted from users |
 //! | [`safe_file`] | atomic saves that never replace special files; bounded reads |
@@ -30,6 +32,7 @@
 
 pub mod bench;
 pub mod certify;
+pub mod checker;
 pub mod deadline;
 pub mod export;
 mod fast_hash;
