@@ -39,6 +39,7 @@ mod directed_walk;
 mod export_gltf;
 mod fuzz_regressions;
 mod graph_digest;
+mod house_rules;
 mod minkowski;
 mod oracle_polygons;
 mod oracle_polyhedra;

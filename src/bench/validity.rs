@@ -1,6 +1,6 @@
 //! `viaroad bench validity`: many random queries on every scene kind, every answered path
-//! re-checked by checkers that share no code with the library's exact oracles (issue 15,
-//! part 3). A planner whose oracle misses a collision produces paths that look fine to
+//! re-checked by checkers that share no code with the library's exact oracles.
+//! A planner whose oracle misses a collision produces paths that look fine to
 //! itself; only an independent check turns "our tests pass" into "0 invalid in 100 000".
 //!
 //! * Discs (R^n, closed balls around a point robot): the distance from each segment of the

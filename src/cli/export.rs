@@ -1,4 +1,4 @@
-//! `viaroad export`: a scene, its robot and a planned path as a glTF 2.0 binary (issue 13);
+//! `viaroad export`: a scene, its robot and a planned path as a glTF 2.0 binary;
 //! the planning shared with `viaroad view`.
 
 use super::local_args::LocalArgs;

@@ -62,7 +62,7 @@ impl LearnArgs {
             .context("learning parameters")?;
         let time = super::limits::optional_seconds("--time", self.time)?;
         if let Some(n) = self.nodes {
-            // decided in issue 16: a count no memory holds is refused, not run until it fails
+            // a count no memory holds is refused, not run until it fails
             super::limits::count_in_range(
                 "--nodes",
                 n,

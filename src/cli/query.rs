@@ -460,7 +460,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
         None => None,
     };
-    // a status line must not precede an `error:` line (issue 16): a single query's invalid
+    // a status line must not precede an `error:` line: a single query's invalid
     // input is the command's error, so its status comes after the answer
     let loaded = || {
         eprintln!(

@@ -1,4 +1,4 @@
-//! `viaroad serve`: load a roadmap once and answer queries as JSON lines (issue 12), on
+//! `viaroad serve`: load a roadmap once and answer queries as JSON lines, on
 //! stdin/stdout or on a local TCP port, several clients at once, queries answered in parallel.
 //!
 //! One request per line: `{"id": 7, "start": [...], "goal": [...], "shorten": "fast"}`
