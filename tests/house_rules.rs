@@ -113,3 +113,48 @@ fn the_users_guide_cites_no_issues_or_dates() {
         found.join("\n")
     );
 }
+
+/// `--help` of every command says what options do, not their history, and puts the knobs
+/// that only tuning needs under a "Tuning" heading after the options people need.
+#[test]
+fn help_texts_put_knobs_under_tuning_and_cite_no_history() {
+    let commands: &[(&[&str], bool)] = &[
+        (&[], false),
+        (&["demo"], true),
+        (&["build"], true),
+        (&["query"], true),
+        (&["serve"], true),
+        (&["export"], true),
+        (&["view"], true),
+        (&["render"], true),
+        (&["info"], false),
+        (&["probe"], false),
+        (&["certify"], false),
+        (&["bench"], false),
+        (&["bench", "discs"], true),
+        (&["bench", "local"], true),
+        (&["bench", "validity"], false),
+        (&["bench", "mbm"], true),
+        (&["bench", "certify"], false),
+    ];
+    for (command, tuning) in commands {
+        let args: Vec<&str> = command.iter().copied().chain(["--help"]).collect();
+        let o = crate::common::cli::viaroad(&args);
+        assert!(o.status.success(), "{args:?}");
+        let text = crate::common::cli::stdout(&o);
+        for line in text.lines() {
+            assert!(history(line).is_none(), "{args:?} cites history: {line}");
+            assert!(!line.contains("benches/results"), "{args:?}: {line}");
+        }
+        let heading = text.lines().position(|l| l == "Tuning:");
+        assert_eq!(
+            heading.is_some(),
+            *tuning,
+            "{args:?}: a Tuning heading?\n{text}"
+        );
+        if let Some(h) = heading {
+            let options = text.lines().position(|l| l == "Options:").unwrap();
+            assert!(options < h, "{args:?}: the options people need come first");
+        }
+    }
+}

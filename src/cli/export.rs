@@ -35,17 +35,17 @@ pub struct PlanArgs {
     pub query: usize,
     /// Path shortening (as in `query`): the shortened path is drawn beside the raw one and the
     /// robot follows it; `off` draws the raw path alone.
-    #[arg(long, value_enum, default_value_t = Shortening::Fast)]
+    #[arg(long, value_enum, default_value_t = Shortening::Fast, help_heading = "Tuning")]
     pub shorten: Shortening,
     /// Also draw the roadmap's nodes and edges (at the robot's reference point).
     #[arg(long)]
     pub show_roadmap: bool,
     /// Most nodes of the grown roadmap (no `--roadmap`, no `--path`): a budget that gives the
     /// same path on any machine.
-    #[arg(long, default_value_t = 5000)]
+    #[arg(long, default_value_t = 5000, help_heading = "Tuning")]
     pub nodes: usize,
     /// Seed of the grown roadmap.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, help_heading = "Tuning")]
     pub seed: u64,
     #[command(flatten)]
     pub local: LocalArgs,
