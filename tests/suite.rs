@@ -36,6 +36,7 @@ mod defects_output;
 mod degenerate;
 mod determinism;
 mod directed_walk;
+mod doc_commands;
 mod export_gltf;
 mod fuzz_regressions;
 mod graph_digest;
