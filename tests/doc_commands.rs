@@ -128,8 +128,7 @@ fn code(text: &str) -> &str {
 fn is_placeholder(word: &str) -> bool {
     let w = word.trim_end_matches([']', '…', '.', ',']);
     word.starts_with('[')
-        || (w.len() >= 1
-            && w.chars().next().is_some_and(|c| c.is_ascii_uppercase())
+        || (w.chars().next().is_some_and(|c| c.is_ascii_uppercase())
             && w.chars()
                 .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_'))
 }
