@@ -16,6 +16,8 @@
 //!   run too, without those files: it must fail with status 1 and one `error:` line, never a
 //!   usage error (status 2), which shows that its arguments parse.
 //!
+//! A `viaroad …` span in the prose (`viaroad query --check`) is checked as a synopsis.
+//!
 //! Other tools' lines (`cargo test`, `pip`, `perf`, scripts under `benches/`) are not run here:
 //! CI runs the suite and the Python tests itself, and profiling needs `perf`. The `python`
 //! blocks are left to the Python tests. A block with a `viaroad` command but no shell marking
@@ -351,4 +353,58 @@ fn the_guide_commands_run() {
         counts["run"] >= 10 && counts["synopsis"] >= 10,
         "{counts:?}"
     );
+}
+
+/// The `viaroad …` spans of a page's prose (outside fenced blocks), as synopses.
+fn inline_commands(page: &str) -> Vec<Line> {
+    let text = std::fs::read_to_string(repo().join(page)).unwrap();
+    let mut fenced = false;
+    let prose: Vec<&str> = text
+        .lines()
+        .map(|l| {
+            if l.trim_start().starts_with("```") {
+                fenced = !fenced;
+                return "";
+            }
+            if fenced {
+                ""
+            } else {
+                l
+            }
+        })
+        .collect();
+    let prose = prose.join("\n");
+    let mut out = Vec::new();
+    let mut offset = 0;
+    for (i, span) in prose.split('`').enumerate() {
+        if i % 2 == 1 && span.starts_with("viaroad ") {
+            let line = prose[..offset].matches('\n').count() + 1;
+            out.push(Line {
+                at: format!("{page}:{line}"),
+                text: span.replace('\n', " "),
+            });
+        }
+        offset += span.len() + 1;
+    }
+    out
+}
+
+#[test]
+fn commands_in_the_prose_name_real_commands_and_options() {
+    let mut pages = vec!["README.md".to_string(), "ARCHITECTURE.md".to_string()];
+    for entry in std::fs::read_dir(repo().join("docs")).unwrap() {
+        let name = entry.unwrap().file_name().into_string().unwrap();
+        if name.ends_with(".md") {
+            pages.push(format!("docs/{name}"));
+        }
+    }
+    let mut cache = HashMap::new();
+    let mut seen = 0;
+    for page in &pages {
+        for line in inline_commands(page) {
+            check_synopsis(&line, &mut cache);
+            seen += 1;
+        }
+    }
+    assert!(seen >= 20, "{seen} commands in the prose");
 }
