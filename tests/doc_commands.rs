@@ -20,9 +20,9 @@
 //!
 //! Other tools' lines (`cargo test`, `pip`, `perf`, scripts under `benches/`) are not run here:
 //! CI runs the suite and the Python tests itself, and profiling needs `perf`. The `python`
-//! blocks are run by `python/tests/test_docs.py`. A block with a `viaroad` command but no shell marking
-//! fails, so that no command escapes. Examples here must stay cheap (node budgets rather than
-//! long time budgets): the whole file runs in well under a minute on two cores.
+//! blocks are run by `python/tests/test_docs.py`. A block with a `viaroad` command but no shell
+//! marking fails, so that no command escapes. Examples here must stay cheap (node budgets
+//! rather than long time budgets): the whole file runs in well under a minute on two cores.
 
 use crate::common;
 use std::collections::HashMap;
