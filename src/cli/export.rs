@@ -1,4 +1,4 @@
-//! `viaroad export`: a scene, its robot and a planned path as a glTF 2.0 binary (issue 13);
+//! `viaroad export`: a scene, its robot and a planned path as a glTF 2.0 binary;
 //! the planning shared with `viaroad view`.
 
 use super::local_args::LocalArgs;
@@ -36,21 +36,21 @@ pub struct PlanArgs {
     pub query: usize,
     /// Path shortening (as in `query`): the shortened path is drawn beside the raw one and the
     /// robot follows it; `off` draws the raw path alone.
-    #[arg(long, value_enum, default_value_t = Shortening::Fast)]
+    #[arg(long, value_enum, default_value_t = Shortening::Fast, help_heading = "Tuning")]
     pub shorten: Shortening,
     /// Also draw the roadmap's nodes and edges (at the robot's reference point).
     #[arg(long)]
     pub show_roadmap: bool,
     /// Most nodes of the trees and roadmaps grown to plan the query (no `--roadmap`, no
     /// `--path`): a budget that gives the same path on any machine.
-    #[arg(long, default_value_t = 5000)]
+    #[arg(long, default_value_t = 5000, help_heading = "Tuning")]
     pub nodes: usize,
     /// Seconds the planning may take (no `--roadmap`, no `--path`). Default: the `.cfg` file's
     /// `[benchmark] time_limit`, else 60 s.
     #[arg(long, value_name = "SECONDS")]
     pub time: Option<f64>,
     /// Seed of the trees and roadmaps grown to plan the query.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, help_heading = "Tuning")]
     pub seed: u64,
     #[command(flatten)]
     pub local: LocalArgs,

@@ -53,7 +53,8 @@ enum Command {
     Probe(probe::ProbeArgs),
     /// Load a roadmap once and answer queries as JSON lines on stdin/stdout or a TCP port.
     Serve(serve::ServeArgs),
-    /// Benchmarks: the seed's disc experiments (Tables A.1–A.4) and local methods compared.
+    /// Benchmarks: the seed's disc experiments (Tables A.1–A.4), local methods compared, paths
+    /// re-checked, MotionBenchMaker problems, other planners' paths certified.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
     /// Write a scene, its robot and a planned path as a glTF 2.0 binary (.glb).
