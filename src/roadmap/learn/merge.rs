@@ -258,24 +258,23 @@ impl Learner<'_> {
                 return Ok((MergeStop::TimeBudget, rounds));
             }
             let size = (8usize << rounds.min(16)).min(params.round_size.max(1));
-            let end = (next + size).min(candidates);
             let shared: &Work<'_> = work;
-            let shared_parts: &[u32] = part_of;
-            let plans: Vec<Result<Vec<Attempt>, OracleError>> = (next..end)
-                .into_par_iter()
-                .map(|i| self.plan_across(shared, shared_parts, params, deadline, i as u32))
+            let (batch, scanned) = self.next_batch(shared, part_of, params, next, size);
+            let plans: Vec<Result<Vec<Attempt>, OracleError>> = batch
+                .par_iter()
+                .map(|(i, targets)| self.plan_across(shared, (params, deadline), *i, targets))
                 .collect();
             work.stopped = deadline.expired();
-            for (i, plan) in (next..end).zip(plans) {
+            for ((i, _), plan) in batch.iter().zip(plans) {
                 for a in plan? {
                     if let Target::Node(n) = a.target {
-                        work.apply(i as u32, n, &a.connection);
+                        work.apply(*i, n, &a.connection);
                     }
                 }
             }
+            next = scanned;
             // nodes fed back belong to no part: they are not candidates
             part_of.resize(work.node_count(), NO_PART);
-            next = end;
             rounds += 1;
             progress(&MergeProgress {
                 tried: next,
@@ -295,42 +294,94 @@ impl Learner<'_> {
         Ok((stop, rounds))
     }
 
-    /// Candidate `i`'s attempts: towards its nearest nodes of other parts in other components,
-    /// nearest first, at most [`LearnParams::neighbours`] of them.
-    fn plan_across(
+    /// The round's candidates from `from` on: the next `size` that have a target
+    /// ([`Self::targets_across`]), and the index after the last candidate looked at. Most
+    /// candidates have none once the parts' big components are joined; skipping them here keeps
+    /// a round's attempts as many as its size, so they run in parallel. Candidates are looked
+    /// at in parallel chunks, all against the roadmap as the round began, so the batch does not
+    /// depend on the thread count.
+    fn next_batch(
         &self,
         shared: &Work<'_>,
         part_of: &[u32],
         params: &LearnParams,
-        deadline: &Deadline,
+        from: usize,
+        size: usize,
+    ) -> (Vec<(u32, Vec<u32>)>, usize) {
+        const CHUNK: usize = 1024;
+        let mut batch = Vec::with_capacity(size);
+        let mut at = from;
+        while at < part_of.len() && batch.len() < size {
+            let end = (at + CHUNK).min(part_of.len());
+            let found: Vec<(u32, Vec<u32>)> = (at..end)
+                .into_par_iter()
+                .map(|i| {
+                    (
+                        i as u32,
+                        self.targets_across(shared, part_of, params, i as u32),
+                    )
+                })
+                .filter(|(_, t)| !t.is_empty())
+                .collect();
+            for (i, t) in found {
+                if batch.len() == size {
+                    return (batch, i as usize);
+                }
+                batch.push((i, t));
+            }
+            at = end;
+        }
+        (batch, at)
+    }
+
+    /// Candidate `i`'s targets: its nearest nodes of other parts in other components, nearest
+    /// first, at most [`LearnParams::neighbours`] of them among the nearest three times as many.
+    fn targets_across(
+        &self,
+        shared: &Work<'_>,
+        part_of: &[u32],
+        params: &LearnParams,
         i: u32,
-    ) -> Result<Vec<Attempt>, OracleError> {
-        let q = shared.node(i);
-        let own = shared.uf.find(i);
+    ) -> Vec<u32> {
         let part = part_of[i as usize];
-        // the nearest nodes of all parts, of which those of other parts and components count
+        if part == NO_PART {
+            return Vec::new();
+        }
+        let own = shared.uf.find(i);
         let wide = params.neighbours.saturating_mul(3).max(params.neighbours);
-        let targets: Vec<(Target, &[f64])> = shared
-            .nearest(q, wide, params.radius)
+        shared
+            .nearest(shared.node(i), wide, params.radius)
             .into_iter()
             .filter(|&(n, _)| {
                 let p = part_of.get(n as usize).copied().unwrap_or(NO_PART);
                 p != part && p != NO_PART && shared.uf.find(n) != own
             })
             .take(params.neighbours)
-            .map(|(n, _)| (Target::Node(n), shared.node(n)))
+            .map(|(n, _)| n)
+            .collect()
+    }
+
+    /// Candidate `i`'s attempts towards `targets`, nearest first, skipping components it has
+    /// joined (OS94's construction step).
+    fn plan_across(
+        &self,
+        shared: &Work<'_>,
+        (params, deadline): (&LearnParams, &Deadline),
+        i: u32,
+        targets: &[u32],
+    ) -> Result<Vec<Attempt>, OracleError> {
+        let targets: Vec<(Target, &[f64])> = targets
+            .iter()
+            .map(|&n| (Target::Node(n), shared.node(n)))
             .collect();
-        if targets.is_empty() {
-            return Ok(Vec::new());
-        }
         let component = |t: Target| match t {
             Target::Node(n) => Target::Node(shared.uf.find(n)),
             c => c,
         };
         self.attempts(
-            q,
+            shared.node(i),
             &targets,
-            vec![Target::Node(own)],
+            vec![Target::Node(shared.uf.find(i))],
             component,
             (params.cycle_edges, params.deep_neighbours),
             deadline,
