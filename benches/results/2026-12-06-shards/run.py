@@ -3,8 +3,11 @@ seconds each (T from a ladder, stopping at the first that answers 99 % of a fixe
 a reduction tree of pairwise merges joins them; wall time, nodes, edges, merge time and its
 share, Ray's overhead. Writes results.json beside this file.
 
-    target/pyenv/bin/python benches/results/2026-12-06-shards/run.py
+    target/pyenv/bin/python benches/results/2026-12-06-shards/run.py [--scenes Home] [--workers 1]
+                                                                     [--out results.json]
 """
+
+import argparse
 
 import importlib.util
 import json
@@ -23,8 +26,8 @@ ray_learn = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(ray_learn)
 
 SCENES = {
-    "Home": (ROOT / "scenes/ompl/3D/Home.cfg", [5, 10, 20, 40]),
-    "panda-box": (ROOT / "scenes/arms/panda-box-1.toml", [5, 10, 20, 40]),
+    "Home": (ROOT / "scenes/ompl/3D/Home.cfg", [1, 2, 5, 10]),
+    "panda-box": (ROOT / "scenes/arms/panda-box-1.toml", [1, 2, 5, 10]),
 }
 WORKERS = [1, 2, 4]
 QUERIES = 100
@@ -86,20 +89,26 @@ def one(scene_path, workers, seconds, starts, goals):
 
 
 def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--scenes", nargs="*", default=list(SCENES))
+    p.add_argument("--workers", nargs="*", type=int, default=WORKERS)
+    p.add_argument("--out", default="results.json")
+    args = p.parse_args()
     ray.init(num_cpus=2)
     out = {"ray": ray_overhead(), "runs": []}
     print(out["ray"], flush=True)
-    for name, (path, ladder) in SCENES.items():
+    for name in args.scenes:
+        path, ladder = SCENES[name]
         scene = viaroad.Scene.load(path)
         ends = scene.sample_free(2 * QUERIES, seed=11)
         starts, goals = ends[:QUERIES], ends[QUERIES:]
-        for w in WORKERS:
+        for w in args.workers:
             for t in ladder:
                 r = one(path, w, t, starts, goals)
                 r["scene"] = name
                 out["runs"].append(r)
                 print(json.dumps(r), flush=True)
-                (HERE / "results.json").write_text(json.dumps(out, indent=1))
+                (HERE / args.out).write_text(json.dumps(out, indent=1))
                 if r["solved"] >= 0.99 * r["queries"]:
                     break
     ray.shutdown()
