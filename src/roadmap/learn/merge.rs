@@ -13,9 +13,9 @@
 //! another component, nearest first, skipping components it has joined (OS94's construction
 //! step, with the parts' own [`LearnParams`]: neighbours, radius, deep neighbours, feedback).
 //! What an attempt discovers is fed back as in learning (CHS §1.6). Candidates run in rounds
-//! of growing size (8, 16, … up to the round size), planned in parallel against the roadmap as
-//! the round began and applied in candidate order, so the result does not depend on the
-//! thread count. Once two parts' big components are joined, their other nodes find no target
+//! of growing size (8, 16, … up to the round size) — a round takes the next candidates that
+//! have a target at all — planned in parallel against the roadmap as the round began and
+//! applied in candidate order, so the result does not depend on the thread count. Once two parts' big components are joined, their other nodes find no target
 //! in another component and cost one nearest-neighbour search each: a merge's oracle work is
 //! spent where the parts' components meet, not on re-learning the parts.
 //!
