@@ -338,3 +338,28 @@ fn cli_shards_and_merge() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("shard 4 of 3 does not exist"));
 }
+
+/// A merge stopped before its first attempt (a cancel flag already raised, as Ctrl-C does)
+/// still returns the union of the parts, valid, with no oracle call spent.
+#[test]
+fn a_cancelled_merge_keeps_the_union() {
+    let s = scene();
+    let parts: Vec<Roadmap> = (1..=2).map(|i| shard(&s, i, 2, 200)).collect();
+    let oracle = s.oracle();
+    let local = LocalSpec::roadmap_default().build();
+    let flag = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+    let merged = Learner::for_scene(&s, oracle.as_ref(), local.as_ref())
+        .merge(
+            None,
+            &[&parts[0], &parts[1]],
+            &Deadline::none().with_cancel(flag),
+            &mut |_| {},
+        )
+        .unwrap();
+    assert_eq!(merged.report.stop, MergeStop::Cancelled);
+    assert_eq!(merged.report.attempts, 0);
+    assert_eq!(merged.report.counts.intersect_calls(), 0);
+    let n: usize = parts.iter().map(Roadmap::node_count).sum();
+    assert_eq!(merged.roadmap.node_count(), n);
+    roadmap_valid(&merged.roadmap, &discs(&s)).unwrap();
+}
