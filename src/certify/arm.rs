@@ -28,9 +28,10 @@ use std::sync::Arc;
 /// unproved piece is left undecided.
 const FINE: f64 = 1.0 / 65536.0;
 
-/// Steps one pair may take in the proof on the true shapes before the segment is left
-/// undecided (a pair that grazes at 1e-7 would otherwise creep on for ever).
-const MAX_PAIR_STEPS: usize = 200_000;
+/// Steps (parry distances) the proof on the true shapes may take over all pairs of one segment
+/// before the segment is left undecided: a pair that grazes at 1e-7 would creep on for ever,
+/// and a distance between two big meshes costs up to milliseconds.
+const MAX_STEPS: usize = 20_000;
 
 /// A distance below which the proof on the true shapes gives up: contact, as far as parry's
 /// rounding can tell.
@@ -125,16 +126,16 @@ impl ArmChecks {
             }
             a.iter().zip(b).map(|(x, y)| x + t * (y - x)).collect()
         };
+        let mut steps = 0;
         for pair in self.checker.part_pairs() {
             let v = speeds[pair.link] + pair.other_link.map_or(0.0, |l| speeds[l]);
             if v == 0.0 {
                 continue; // neither moves: apart as at `a`
             }
             let mut t = 0.0;
-            let mut steps = 0;
             while t < 1.0 {
                 steps += 1;
-                if steps > MAX_PAIR_STEPS || (steps % 64 == 0 && deadline.expired()) {
+                if steps > MAX_STEPS || deadline.expired() || crate::deadline::watched_expired() {
                     return false;
                 }
                 let poses = arm.link_poses(&at(t));

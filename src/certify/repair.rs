@@ -193,7 +193,10 @@ pub fn repair(
         }
     }
     out.extend(waypoints[next.min(waypoints.len())..].iter().cloned());
-    let certificate = c.certify(&out, &Deadline::none())?;
+    // the fixed path is certified within the repair's budget again (at least 10 s), so that a
+    // run left blocked cannot hold the repair up
+    let again = options.time.map(|t| t.max(Duration::from_secs(10)));
+    let certificate = c.certify(&out, &Deadline::none().within(again))?;
     let all_planned = detours.iter().all(|d| d.error.is_none());
     Ok(Repaired {
         report: RepairReport {
