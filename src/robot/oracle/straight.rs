@@ -426,7 +426,8 @@ impl ArmOracle {
     /// Per link, a bound on how far any point of the link (of any of its collision shapes:
     /// the polytopes the bound is taken over contain them) moves per unit of the parameter of
     /// the straight motion from `q0` to `q1`, relative to the world: `Σ_k |Δ_k| R_kl`
-    /// ([`Reach`]). 0 for a link without geometry. Conservative advancement on other
+    /// (`R_kl`: the distance of its points from joint `k`'s axis, bounded over all
+    /// configurations). 0 for a link without geometry. Conservative advancement on other
     /// distances (the certifier's, on the true shapes) steps by it.
     pub fn point_speeds(&self, q0: &[f64], q1: &[f64]) -> Vec<f64> {
         let delta = self.joint_deltas(q0, q1);
