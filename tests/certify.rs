@@ -217,3 +217,105 @@ fn the_command_exits_0_when_free_3_when_colliding_4_when_undecided() {
         Some(0)
     );
 }
+
+/// A two-joint toy arm turning in the plane z = 0.2 (a beam of 0.6 m, a tip of 0.3 m 5 cm past
+/// its joint, clear of the beam for turns below 1.1 rad) beside a ball of radius 0.2 whose
+/// lowest point along −y lies `gap` above the beam's side at `[0, 0]`. The oracle's polytope for the ball stands about 8 mm off it there (one of its
+/// vertices points at the beam), so the oracle refuses `[0, 0]` for any gap below that: the
+/// Fetch's head (a sphere of 0.2 m) and its MotionBenchMaker goals 0.2–3 mm below it.
+fn toy_arm_under_a_ball(gap: f64) -> (Scene, common::cli::TempDir) {
+    let dir = temp_dir("certify", &format!("ball-{gap:e}"));
+    write(
+        &dir,
+        "toy.urdf",
+        r#"<robot name="toy">
+  <link name="base"><collision><origin xyz="0 0 0.05"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="beam"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <link name="beam"><collision><origin xyz="0.3 0 0"/><geometry><box size="0.6 0.05 0.05"/></geometry></collision></link>
+  <joint name="j2" type="revolute"><parent link="beam"/><child link="tip"/>
+    <origin xyz="0.6 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <link name="tip"><collision><origin xyz="0.2 0 0"/><geometry><box size="0.3 0.05 0.05"/></geometry></collision></link>
+</robot>"#,
+    );
+    write(
+        &dir,
+        "scene.yaml",
+        &format!(
+            "world:\n  collision_objects:\n    - id: ball\n      header: {{frame_id: world}}\n      \
+             primitives: [{{type: sphere, dimensions: [0.2]}}]\n      \
+             primitive_poses: [{{position: [0.3, {}, 0.2], orientation: [0, 0, 0, 1]}}]\n",
+            0.025 + 0.2 + gap
+        ),
+    );
+    let toml = write(
+        &dir,
+        "toy.toml",
+        "name = \"toy under a ball\"\n[space]\nkind = \"arm\"\n[robot]\nurdf = \"toy.urdf\"\n\
+         group = [\"j1\", \"j2\"]\n[environment]\nmoveit_scene = \"scene.yaml\"\n\
+         [[query]]\nstart = [-1.0, 0.5]\ngoal = [0.0, 0.0]\n",
+    );
+    (Scene::load(std::path::Path::new(&toml)).unwrap(), dir)
+}
+
+/// Where only the oracle's enclosing polytope meets a curved shape, the segment is proved on
+/// the true shapes: 1e-6 below the ball is free (one joint and two joints moving), 1e-6 into
+/// it collides with a witness the checker confirms.
+#[test]
+fn an_arm_ending_1e_6_below_a_ball_is_free_though_the_oracle_s_polytope_meets_it() {
+    use viaroad::oracle::{CallCounts, CountedOracle};
+    for gap in [1e-6, -1e-6] {
+        let (scene, _dir) = toy_arm_under_a_ball(gap);
+        let goal = vec![0.0, 0.0];
+        let oracle_free = scene.oracle().is_free(&goal, &mut CallCounts::default());
+        assert!(!oracle_free, "the polytope should meet the beam at {gap}");
+        let Robot::Arm(a) = &scene.robot else {
+            panic!("not an arm")
+        };
+        let checker = ArmChecker::new(&a.arm, &a.objects).unwrap();
+        for start in [vec![-1.0, 0.0], vec![-1.0, 0.3]] {
+            let v = verdicts(&scene, &[start.clone(), goal.clone()]);
+            if gap > 0.0 {
+                assert_eq!(v, vec![Verdict::Free], "{start:?}");
+            } else {
+                let Verdict::Collides(c) = &v[0] else {
+                    panic!("{start:?}: {v:?}")
+                };
+                assert!(!checker.collisions(&c.witness).is_empty());
+            }
+        }
+    }
+}
+
+/// A path through the ball to a goal 1 mm below it, which the oracle refuses: the repair ends
+/// its detour at a free neighbour of the goal and joins the goal by a segment proved on the
+/// true shapes; the fixed path passes the independent checker.
+#[test]
+fn a_repair_reaches_a_goal_that_only_the_oracle_s_polytope_refuses() {
+    let (scene, _dir) = toy_arm_under_a_ball(1e-3);
+    let path = vec![vec![-1.0, 0.5], vec![0.6, 0.0], vec![0.0, 0.0]];
+    let c = Certifier::new(&scene, MotionModel::Interpolate).unwrap();
+    let cert = c.certify(&path, &Deadline::none()).unwrap();
+    assert_eq!(cert.status(), Status::Collides);
+    let fixed = repair(
+        &c,
+        &path,
+        &cert,
+        &RepairOptions::default(),
+        &Deadline::none(),
+    )
+    .unwrap();
+    assert!(fixed.report.certified, "{:?}", fixed.report);
+    assert_eq!(fixed.certificate.status(), Status::Free);
+    assert_eq!(fixed.path.first(), path.first());
+    assert_eq!(fixed.path.last(), path.last());
+    // the scene's own query check asks the oracle, which refuses the goal: the independent
+    // checker alone, at 1/10 of OMPL's default resolution
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm")
+    };
+    let checker = ArmChecker::new(&a.arm, &a.objects).unwrap();
+    let step = 0.001 * checker.arm().group.max_extent();
+    let report = checker.check_path(&fixed.path, step).unwrap();
+    assert!(report.valid, "{report:?}");
+}

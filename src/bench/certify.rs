@@ -37,6 +37,9 @@ pub struct Entry {
     pub path: Vec<Config>,
     /// The planner's own time, milliseconds, where given (`total_ms`).
     pub planner_ms: Option<f64>,
+    /// The robot as the planner names it (`robot`, e.g. `ur5`), where given: the family
+    /// folders are named after it (`box_ur5`), not after the URDF's robot (`ur5_robotiq85`).
+    pub robot: Option<String>,
 }
 
 /// Reads the entries of `input`: a JSON lines file or a folder of path files.
@@ -73,6 +76,7 @@ pub fn read_entries(input: &Path) -> Result<Vec<Entry>, BenchCertifyError> {
                 index,
                 path,
                 planner_ms: None,
+                robot: None,
             });
         }
         return Ok(out);
@@ -97,6 +101,7 @@ pub fn read_entries(input: &Path) -> Result<Vec<Entry>, BenchCertifyError> {
                 index: v.get("index")?.as_u64()? as usize,
                 path: serde_json::from_value(v.get("path")?.clone()).ok()?,
                 planner_ms: v.get("total_ms").and_then(|t| t.as_f64()),
+                robot: v.get("robot").and_then(|r| r.as_str()).map(str::to_string),
             })
         })();
         out.push(entry.ok_or_else(|| bad(format!("line {}: no family, index or path", k + 1)))?);
@@ -148,14 +153,17 @@ pub struct CertifyResult {
     pub error: String,
 }
 
-/// The problem of an entry in `problems` (the family folders).
+/// The problem of an entry in `problems` (the family folders): `<family>_<robot>` with the
+/// entry's robot name or the URDF's (`robot`), else `<family>`.
 fn problem_of(problems: &Path, robot: &str, e: &Entry) -> Problem {
-    let named = problems.join(format!("{}_{robot}", e.family));
-    let dir = if named.is_dir() {
-        named
-    } else {
-        problems.join(&e.family)
-    };
+    let dir = e
+        .robot
+        .iter()
+        .map(String::as_str)
+        .chain([robot])
+        .map(|r| problems.join(format!("{}_{r}", e.family)))
+        .find(|d| d.is_dir())
+        .unwrap_or_else(|| problems.join(&e.family));
     Problem {
         family: e.family.clone(),
         id: format!("{:04}", e.index),

@@ -16,7 +16,9 @@
 //!   (`locate`), witnesses confirmed by the independent [`crate::robot::ArmChecker`];
 //! - a rigid body translating and turning at once (OMPL's SE(2)/SE(3) interpolation):
 //!   conservative advancement on parry's distances between the robot's and the obstacles'
-//!   shapes, halving likewise.
+//!   shapes, halving likewise;
+//! - an arm's segment the oracle leaves undecided (its polytopes enclose curved shapes and
+//!   big meshes): conservative advancement on parry's distances between the true shapes.
 //!
 //! [`repair()`] replaces each run of blocked segments by a certified detour.
 
@@ -354,7 +356,10 @@ impl<'a> Certifier<'a> {
         if a == b {
             // no motion: the waypoint alone, which the oracle finds free or only its enclosing
             // shapes in collision (a colliding one returned above)
-            return if self.oracle.is_free(a, counts) {
+            let on_true_shapes = |c: &arm::ArmChecks| c.free_on_true_shapes(a, b, deadline);
+            return if self.oracle.is_free(a, counts)
+                || matches!(&self.checks, Checks::Arm(c) if on_true_shapes(c))
+            {
                 Verdict::Free
             } else {
                 Verdict::Undecided {

@@ -193,7 +193,10 @@ pub fn repair(
         }
     }
     out.extend(waypoints[next.min(waypoints.len())..].iter().cloned());
-    let certificate = c.certify(&out, &Deadline::none())?;
+    // the fixed path is certified within the repair's budget again (at least 10 s), so that a
+    // run left blocked cannot hold the repair up
+    let again = options.time.map(|t| t.max(Duration::from_secs(10)));
+    let certificate = c.certify(&out, &Deadline::none().within(again))?;
     let all_planned = detours.iter().all(|d| d.error.is_none());
     Ok(Repaired {
         report: RepairReport {
@@ -221,10 +224,113 @@ fn failed(segments: [usize; 2], seconds: f64, why: String) -> DetourReport {
     }
 }
 
-/// A detour from `from` to `to` (both must be free): the via-point method on its call budget,
-/// then the portfolio; shortened; its waypoints joined as the certifier's model moves (a
-/// rigid body's pieces one DOF group at a time become waypoints of their own).
+/// A detour from `from` to `to` (both free for the true shapes; where the oracle's enclosing
+/// shapes refuse one, the detour runs from or to a free neighbour of it, [`anchor`]).
 fn detour(
+    c: &Certifier,
+    from: &Config,
+    to: &Config,
+    options: &RepairOptions,
+    deadline: &Deadline,
+) -> Result<(String, Vec<Config>), String> {
+    let mut counts = CallCounts::default();
+    // an end only the oracle's enclosing shapes refuse is reached from a free neighbour by a
+    // segment proved on the true shapes; the detour is planned between the neighbours
+    let mut ends = Vec::with_capacity(2);
+    for (what, q, other) in [("start", from, to), ("end", to, from)] {
+        match anchor(c, q, other, options.seed, deadline, &mut counts) {
+            Some(a) => ends.push(a),
+            None if c.witness(q).is_some() => {
+                return Err(format!("the detour's {what} collides (the true shapes)"))
+            }
+            None => {
+                return Err(format!(
+                    "the detour's {what} is free, but the oracle's enclosing shapes collide \
+                     there and no free neighbour joins it"
+                ))
+            }
+        }
+    }
+    let (inner_from, inner_to) = (&ends[0], &ends[1]);
+    let (stage, mut corners) = plan_detour(c, inner_from, inner_to, options, deadline)?;
+    if inner_from != from {
+        corners.insert(0, from.clone());
+    }
+    if inner_to != to {
+        corners.push(to.clone());
+    }
+    Ok((stage, corners))
+}
+
+/// Offsets from a refused end, as shares of the way towards a target or of a random
+/// direction's unit step (radians or scene units): far first, for a neighbour the oracle
+/// leaves room around (a near one sits in a pocket the detour cannot leave).
+const ANCHOR_SHARES: [f64; 7] = [0.35, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005];
+
+/// Random directions tried per share after the way towards the other end.
+const ANCHOR_DIRECTIONS: usize = 16;
+
+/// `q` itself where the oracle finds it free; else, where the true shapes leave `q` free, a
+/// configuration near it that the oracle finds free and from which the certifier proves the
+/// segment to `q` free: towards `other` first, then in seeded random directions, the farthest
+/// first. `None` where there is none.
+fn anchor(
+    c: &Certifier,
+    q: &Config,
+    other: &Config,
+    seed: u64,
+    deadline: &Deadline,
+    counts: &mut CallCounts,
+) -> Option<Config> {
+    use rand::{Rng, SeedableRng};
+    let oracle = c.oracle();
+    if oracle.is_free(q, counts) {
+        return Some(q.clone());
+    }
+    if c.witness(q).is_some() {
+        return None;
+    }
+    let space = &c.scene().space;
+    let (lower, upper) = (space.lower(), space.upper());
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let directions: Vec<Vec<f64>> = (0..ANCHOR_DIRECTIONS)
+        .map(|_| {
+            let v: Vec<f64> = q.iter().map(|_| rng.random_range(-1.0..1.0)).collect();
+            let n = v.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-12);
+            v.into_iter().map(|x| x / n).collect()
+        })
+        .collect();
+    for share in ANCHOR_SHARES {
+        let mut candidates = vec![point(c, q, other, share)];
+        for d in &directions {
+            let mut p: Config = q.iter().zip(d).map(|(x, y)| x + share * y).collect();
+            if matches!(c.scene().robot, crate::scene::Robot::Arm(_)) {
+                for (i, x) in p.iter_mut().enumerate() {
+                    *x = x.clamp(lower[i], upper[i]);
+                }
+            } else {
+                space.normalize(&mut p);
+            }
+            candidates.push(p);
+        }
+        for p in candidates {
+            if deadline.expired() {
+                return None;
+            }
+            if space.check(&p).is_ok()
+                && oracle.is_free(&p, counts)
+                && c.segment(&p, q, deadline, counts) == Verdict::Free
+            {
+                return Some(p);
+            }
+        }
+    }
+    None
+}
+
+/// The detour between two ends the oracle finds free: the via-point method, then the
+/// portfolio; shortened; joined as the certifier's model moves.
+fn plan_detour(
     c: &Certifier,
     from: &Config,
     to: &Config,
@@ -234,11 +340,6 @@ fn detour(
     let scene = c.scene();
     let oracle = c.oracle();
     let mut counts = CallCounts::default();
-    for (what, q) in [("the detour's start", from), ("the detour's end", to)] {
-        if !oracle.is_free(q, &mut counts) {
-            return Err(format!("{what} collides"));
-        }
-    }
     let spec = LocalSpec::default()
         .budgeted(options.local_calls)
         .unwrap_or_default();

@@ -87,6 +87,17 @@ pub struct PathReport {
     pub first_invalid: Option<(usize, f64, Vec<Collision>)>,
 }
 
+/// A pair of solids the checker tests ([`ArmChecker::part_pairs`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PartPair {
+    /// The link of the first solid.
+    pub link: usize,
+    /// The link of the second solid, `None` for an obstacle.
+    pub other_link: Option<usize>,
+    a: usize,
+    b: usize,
+}
+
 /// The independent checker of one arm in one scene.
 #[derive(Clone)]
 pub struct ArmChecker {
@@ -281,6 +292,63 @@ impl ArmChecker {
             }
         }
         out
+    }
+
+    /// Every pair of solids [`Self::collisions`] tests: two parts of a non-exempt link pair, or
+    /// a link's part and an obstacle's.
+    pub fn part_pairs(&self) -> Vec<PartPair> {
+        let mut out = Vec::new();
+        for &(la, lb) in &self.arm.self_pairs {
+            for (i, _) in self.links.iter().enumerate().filter(|(_, p)| p.owner == la) {
+                for (j, _) in self.links.iter().enumerate().filter(|(_, p)| p.owner == lb) {
+                    out.push(PartPair {
+                        link: la,
+                        other_link: Some(lb),
+                        a: i,
+                        b: j,
+                    });
+                }
+            }
+        }
+        for (i, a) in self.links.iter().enumerate() {
+            for j in 0..self.obstacles.len() {
+                out.push(PartPair {
+                    link: a.owner,
+                    other_link: None,
+                    a: i,
+                    b: j,
+                });
+            }
+        }
+        out
+    }
+
+    /// A lower bound on the distance between the solids of `pair` at the link poses `poses`
+    /// ([`Arm::link_poses`]): the gap between their bounding balls where it exceeds `near`,
+    /// else parry's distance between the shapes themselves (0 where they touch, or where parry
+    /// cannot tell). Meshes are surfaces here: a solid wholly inside another is not seen, so
+    /// a caller stepping by these distances starts from a configuration [`Self::collisions`]
+    /// finds free (a solid cannot come to hold another without their surfaces meeting).
+    pub fn pair_distance(&self, pair: &PartPair, poses: &[Isometry3<f64>], near: f64) -> f64 {
+        let a = &self.links[pair.a];
+        let pa = poses[a.owner] * a.origin;
+        let (b, pb) = match pair.other_link {
+            Some(_) => {
+                let b = &self.links[pair.b];
+                (b, poses[b.owner] * b.origin)
+            }
+            None => {
+                let b = &self.obstacles[pair.b];
+                (b, b.origin)
+            }
+        };
+        let gap = (pa.translation.vector - pb.translation.vector).norm() - a.radius - b.radius;
+        if gap > near {
+            return gap;
+        }
+        parry3d_f64::query::distance(&pa, &*a.shape, &pb, &*b.shape)
+            .unwrap_or(0.0)
+            .max(0.0)
     }
 
     /// Whether `q` has the group's length, lies within the bounds, and collides nowhere.

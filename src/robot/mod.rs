@@ -31,7 +31,7 @@ pub mod srdf;
 pub mod urdf;
 
 pub use arm::{Arm, ArmOptions};
-pub use checker::{ArmChecker, Collision, Contact, PathReport};
+pub use checker::{ArmChecker, Collision, Contact, PartPair, PathReport};
 pub use kinematics::{Group, Model};
 pub use oracle::ArmOracle;
 pub use shapes::Primitive;

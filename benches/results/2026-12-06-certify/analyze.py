@@ -18,7 +18,8 @@ from pathlib import Path
 OMPL = Path(os.environ.get("OMPL_PEER", "/tmp/ompl-peer-certify/build/ompl_peer"))
 RES = Path(os.environ.get("VAMP_RES", "/tmp/vamp-sdist/vamp_planner-0.6.4/resources"))
 PEER = Path(os.environ.get("VAMP_PEER", "/work/shared/vamp-peer"))
-CHECKS = {"panda": "panda_all.jsonl", "fetch": "fetch_all_final.jsonl"}
+CHECKS = {"panda": "panda_all.jsonl", "fetch": "fetch_all_final.jsonl",
+          "ur5": "ur5_first10_final.jsonl"}
 
 
 def armcheck(robot, family, index, path, resolution):
@@ -59,8 +60,8 @@ def main():
         if c.get("kind") == "final" and c.get("resolution") == 0.001:
             mesh[(c["family"], c["index"])] = c["check"]
     flagged = {k for k, c in mesh.items() if collides(c)}
+    out = {"robot": a.robot, "paths": len(rs), "armcheck_verdicts": len(mesh)}
     out["A_bounds_only"] = sum(1 for c in mesh.values() if not c.get("valid", True) and not collides(c))
-    out = {"robot": a.robot, "paths": len(rs)}
     status = lambda k: rs[k]["status"] if k in rs else "missing"
     out["A_armcheck_flags"] = len(flagged)
     out["A_of_them_called_free"] = sorted(f"{f} {i}" for f, i in flagged if status((f, i)) == "free")
@@ -76,7 +77,10 @@ def main():
             bad.append(f"{k[0]} {k[1]}")
     out["B_free_checked_at_1e-4"] = f"{len(sample)} of {len(free)}"
     out["B_failing"] = bad
-    only = [k for k, r in rs.items() if r["status"] == "collides" and k not in flagged]
+    only = [k for k, r in rs.items() if r["status"] == "collides" and k not in flagged
+            and r["witnesses"]]
+    out["C_defects_only"] = sum(1 for k, r in rs.items() if r["status"] == "collides"
+                                and k not in flagged and not r["witnesses"])
     conf, unconf = 0, []
     for k in only:
         w = rs[k]["witnesses"][0][2]
@@ -98,6 +102,21 @@ def main():
     out["D_repairs_tried"] = len(rep)
     out["D_repairs_certified"] = len(ok)
     out["D_repaired_failing_armcheck_1e-3"] = failing
+    # E. repairs refused because the path's own start or goal (the problem's) collides with
+    # the true shapes: armcheck must find that configuration in collision too
+    ends = {}
+    for k in rep:
+        if rs[k]["repaired"]:
+            continue
+        errs = " ".join(rs[k].get("repair_errors", []))
+        if "collides (the true shapes)" not in errs:
+            continue
+        p = path_of(a.robot, k)
+        hits = [collides(armcheck(a.robot, k[0], k[1], [q], 0.001)) for q in (p[0], p[-1])]
+        ends[f"{k[0]} {k[1]}"] = {"start_collides": hits[0], "goal_collides": hits[1]}
+    out["E_failed_with_an_end_colliding"] = len(ends)
+    out["E_armcheck_confirms_an_end"] = sum(any(v.values()) for v in ends.values())
+    out["E_ends"] = ends
     print(json.dumps(out, indent=1))
 
 

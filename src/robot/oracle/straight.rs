@@ -423,6 +423,20 @@ impl ArmOracle {
         Ok(true)
     }
 
+    /// Per link, a bound on how far any point of the link (of any of its collision shapes:
+    /// the polytopes the bound is taken over contain them) moves per unit of the parameter of
+    /// the straight motion from `q0` to `q1`, relative to the world: `Σ_k |Δ_k| R_kl`
+    /// (`R_kl`: the distance of its points from joint `k`'s axis, bounded over all
+    /// configurations). 0 for a link without geometry. Conservative advancement on other
+    /// distances (the certifier's, on the true shapes) steps by it.
+    pub fn point_speeds(&self, q0: &[f64], q1: &[f64]) -> Vec<f64> {
+        let delta = self.joint_deltas(q0, q1);
+        self.reach
+            .iter()
+            .map(|r| r.iter().map(|&(k, f)| delta[k].abs() * f).sum::<f64>() * (1.0 + 1e-9))
+            .collect()
+    }
+
     /// How far each joint of the robot turns or slides along the straight motion from `q0` to
     /// `q1` (signed): the group's own, a mimic joint's from its master's, 0 for the others.
     fn joint_deltas(&self, q0: &[f64], q1: &[f64]) -> Vec<f64> {
