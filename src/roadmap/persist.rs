@@ -403,6 +403,10 @@ fn check_space(space: &Space) -> Result<(), RoadmapError> {
                 .collect();
             Space::joints(lower.to_vec(), upper.to_vec(), &flags).map_err(|e| e.to_string())
         }
+        SpaceKind::Se2Bodies(k) if lower.len() == 3 * k && upper.len() == 3 * k => {
+            Space::se2_bodies(k, [lower[0], lower[1]], [upper[0], upper[1]], scale)
+                .map_err(|e| e.to_string())
+        }
         _ => Err("bounds of the wrong dimension".into()),
     };
     match rebuilt {

@@ -10,7 +10,6 @@
 use super::directions::{perpendicular_into, DirScratch};
 use super::options::{BasePoint, Directions, ViaPointOptions};
 use crate::interval::{Interval, IntervalList};
-use crate::space::extend_small;
 use crate::space::{Change, Config, Group, GroupKind, Motion, Space, Sweep};
 use rand::Rng;
 
@@ -109,7 +108,7 @@ pub fn borderlines_into(
         (GroupKind::Linear, Change::Linear(delta)) => {
             let mut u = std::mem::take(&mut lines.unit);
             u.clear();
-            extend_small(&mut u, &delta[g.coords.clone()]);
+            u.extend(g.indices().map(|i| delta[i]));
             let n = u.iter().map(|x| x * x).sum::<f64>().sqrt();
             if n > 0.0 {
                 u.iter_mut().for_each(|x| *x /= n);
