@@ -373,6 +373,8 @@ pub enum Checker {
     Planar(planar::PlanarChecker),
     /// Meshes in space.
     Rigid(rigid::RigidChecker),
+    /// Several polygonal bodies in the plane.
+    Bodies(bodies::BodiesChecker),
     /// A jointed arm among MoveIt collision objects: parry on the exact primitives, sampled along
     /// every joint move at `step` (1/10 of OMPL's default resolution, 0.1 % of the joint space's
     /// extent), sharing no code with the exact single-joint oracle.
@@ -414,6 +416,9 @@ impl Checker {
                 planar::PlanarChecker::se2(scene).map(Checker::Planar)
             }
             (Robot::Mesh(_), SpaceKind::Se3) => rigid::RigidChecker::se3(scene).map(Checker::Rigid),
+            (Robot::Bodies(_), SpaceKind::Se2Bodies(_)) => {
+                bodies::BodiesChecker::new(scene).map(Checker::Bodies)
+            }
             (Robot::Arm(a), SpaceKind::Joints { .. }) => {
                 let checker =
                     crate::robot::ArmChecker::new(&a.arm, &a.objects).map_err(|e| e.to_string())?;
@@ -439,6 +444,7 @@ impl Checker {
             } => check_disc_path(path, centres, radii, lower, upper),
             Checker::Planar(c) => c.certify_path(path),
             Checker::Rigid(c) => c.certify_path(path),
+            Checker::Bodies(c) => c.certify_path(path),
             Checker::Arm { checker, step } => {
                 let report = checker.check_path(path, *step).map_err(|e| e.to_string())?;
                 match report.first_invalid {
@@ -566,6 +572,8 @@ fn in_box(q: &[f64], lower: &[f64], upper: &[f64]) -> Result<(), String> {
     Ok(())
 }
 
+pub mod bodies;
+
 /// The SE(2) checker: parry2d compounds of ear-clipped triangles.
 pub mod planar {
     use super::*;
@@ -602,7 +610,7 @@ pub mod planar {
         out
     }
 
-    fn compound(polys: &[Polygon]) -> Result<Compound, String> {
+    pub(super) fn compound(polys: &[Polygon]) -> Result<Compound, String> {
         let parts: Vec<(Isometry<f64>, SharedShape)> = polys
             .iter()
             .flat_map(triangles)
