@@ -24,6 +24,11 @@ pub struct SolveArgs {
     /// several queries get `-1`, `-2`, … before the extension.
     #[arg(long, value_name = "FILE")]
     pub path_out: Option<PathBuf>,
+    /// Re-check every solved path, raw and shortened, with the scene's independent checker
+    /// (as `query --check`), outside the query's time: the local method alone and `--roadmap`
+    /// say `certified` or why not (JSON: `"certified"`, `"check_error"`).
+    #[arg(long)]
+    pub check: bool,
     /// Seconds each query may take (checked before every oracle call). Default: no limit for
     /// the local method alone, 60 s with `--roadmap`.
     #[arg(long, value_name = "SECONDS")]
