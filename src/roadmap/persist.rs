@@ -200,6 +200,15 @@ fn decode_payload(payload: &[u8]) -> Result<(Payload, usize), bincode::error::De
 impl Roadmap {
     /// The roadmap file's bytes.
     pub fn to_bytes(&self) -> Result<Vec<u8>, RoadmapError> {
+        if let LocalSpec::ViaPoint(o) = &self.header().local_spec {
+            if o.sidestep.is_some() {
+                return Err(RoadmapError::Encode(
+                    "the local method's sidestep is not recorded in roadmap files; learn the \
+                     roadmap to be saved without it"
+                        .into(),
+                ));
+            }
+        }
         let payload = bincode::serde::encode_to_vec(
             PayloadRef {
                 header: self.header(),

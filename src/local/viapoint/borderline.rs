@@ -128,6 +128,9 @@ pub fn borderlines_into(
                     slot.1 = blocked_group;
                 }
                 lines.dirs = dirs;
+                if let (0, Some(share)) = (round, options.sidestep) {
+                    sidestep_lines(space, groups, crossing, &u, share * n, lines);
+                }
             }
             lines.unit = u;
         }
@@ -182,6 +185,38 @@ pub fn borderlines_into(
             }
         }
         lines.unit = d;
+    }
+}
+
+/// The borderlines of CHS Fig 1.4, whose reference point lies off the blocked motion: the base
+/// point steps by `step` (both ways) along each axis of every other linear group, and a line
+/// through the stepped point runs along the blocked motion's unit direction `u`.
+fn sidestep_lines(
+    space: &Space,
+    groups: &[Group],
+    crossing: &Crossing,
+    u: &[f64],
+    step: f64,
+    lines: &mut Lines,
+) {
+    if !(step.is_finite() && step > 0.0) {
+        return;
+    }
+    let g = &groups[crossing.group];
+    let mut q = crossing.base.to_vec();
+    for (k, h) in groups.iter().enumerate() {
+        if k == crossing.group || h.kind != GroupKind::Linear {
+            continue;
+        }
+        for i in h.indices() {
+            for sign in [1.0, -1.0] {
+                q[i] = crossing.base[i] + sign * step;
+                let slot = lines.next_slot();
+                space.line_through_into(&q, g, u, &mut slot.0);
+                slot.1 = crossing.group;
+            }
+            q[i] = crossing.base[i];
+        }
     }
 }
 
