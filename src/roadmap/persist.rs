@@ -200,15 +200,6 @@ fn decode_payload(payload: &[u8]) -> Result<(Payload, usize), bincode::error::De
 impl Roadmap {
     /// The roadmap file's bytes.
     pub fn to_bytes(&self) -> Result<Vec<u8>, RoadmapError> {
-        if let LocalSpec::ViaPoint(o) = &self.header().local_spec {
-            if o.sidestep.is_some() {
-                return Err(RoadmapError::Encode(
-                    "the local method's sidestep is not recorded in roadmap files; learn the \
-                     roadmap to be saved without it"
-                        .into(),
-                ));
-            }
-        }
         let payload = bincode::serde::encode_to_vec(
             PayloadRef {
                 header: self.header(),
@@ -324,8 +315,18 @@ impl Roadmap {
     /// Saves the roadmap to `path` atomically: the bytes go to a temporary file in the same
     /// directory ([`temp_path`]), which is flushed to disk and then renamed over `path`. If
     /// anything fails, `path` keeps its previous content and the temporary file is removed.
-    /// Special files are refused, never replaced ([`write_atomically`]).
+    /// Special files are refused, never replaced ([`write_atomically`]). A roadmap learnt with
+    /// a via-point `sidestep` is refused: the file would not record it.
     pub fn save(&self, path: &Path) -> Result<(), RoadmapError> {
+        if let LocalSpec::ViaPoint(o) = &self.header().local_spec {
+            if o.sidestep.is_some() {
+                return Err(RoadmapError::Encode(
+                    "the local method's sidestep is not recorded in roadmap files; learn the \
+                     roadmap to be saved without it"
+                        .into(),
+                ));
+            }
+        }
         let bytes = self.to_bytes()?;
         write_atomically(path, |w| w.write_all(&bytes))
     }
