@@ -497,6 +497,7 @@ mod tests {
             "viapoint:depth=deepen-reuse,beta=2/3,via=2",
             "viapoint:depth=9,via=all,base=centre-first,search=bfs,calls=none",
             "viapoint:dirs=random:4,split=true,seed=7",
+            "viapoint:split=true,sidestep=0.5",
         ] {
             let spec: LocalSpec = s.parse().unwrap();
             let again: LocalSpec = spec.to_string().parse().unwrap();

@@ -392,6 +392,42 @@ mod tests {
     /// borderlines of that round really gives none, for planar, spatial and rigid-body spaces,
     /// both direction strategies and random blocked motions.
     #[test]
+    fn sidesteps_leave_the_blocked_motion_and_run_along_it() {
+        // CHS Fig 1.4: axis-parallel motions in the plane; x is blocked at the base point
+        let space = Space::euclidean(vec![0.0; 2], vec![10.0; 2]).unwrap();
+        let groups = space.groups(true);
+        let motion = space.group_motion(&[1.0, 5.0], &[9.0, 5.0], &groups[0]);
+        let base = [4.0, 5.0];
+        let crossing = Crossing {
+            motion: &motion,
+            group: 0,
+            base: &base,
+        };
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+        let plain = ViaPointOptions {
+            split_axes: true,
+            ..ViaPointOptions::default()
+        };
+        let mut lines = Lines::default();
+        borderlines_into(&space, &groups, &plain, &crossing, 0, &mut rng, &mut lines);
+        assert_eq!(lines.len(), 1, "one line along y through the base point");
+        let stepping = ViaPointOptions {
+            sidestep: Some(0.25),
+            ..plain
+        };
+        borderlines_into(
+            &space, &groups, &stepping, &crossing, 0, &mut rng, &mut lines,
+        );
+        assert_eq!(lines.len(), 3);
+        for (sign, (m, g)) in [1.0, -1.0].iter().zip(&lines.as_slice()[1..]) {
+            // stepped by a quarter of the blocked motion's length (8) in y, running along x
+            assert_eq!(*g, 0);
+            assert_eq!(m.origin, vec![4.0, 5.0 + sign * 2.0]);
+            assert_eq!(m.change, Change::Linear(vec![1.0, 0.0]));
+        }
+    }
+
+    #[test]
     fn empty_rounds_are_really_empty() {
         use rand::SeedableRng;
         let spaces = [
