@@ -1,4 +1,4 @@
-//! Benchmarks of the robot-arm foundations (issue 10) on the shipped Panda in MotionBenchMaker
+//! Benchmarks of the robot-arm foundations on the shipped Panda in MotionBenchMaker
 //! scenes (scenes/arms/):
 //!
 //! - `checker/state`: the independent checker (parry, every non-exempt pair) at one

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Arm paths judged by the peer's own checker at 1/10 of its resolution (issue 10: "every returned
-# path certified: zero collisions under a check at 1/10 of OMPL's default resolution; where a
+# Arm paths judged by the peer's own checker at 1/10 of its resolution (the goal:
+# "every returned path certified: zero collisions under a check at 1/10 of OMPL's default resolution; where a
 # peer's path passes its own check and fails the finer one, show it"). Every `*.path` file of
 # PATHS_DIR is handed to `ompl_peer armcheck` (OMPL 1.5 + FCL: every state, every segment at
 # --resolution; it shares no code with viaroad) with its MotionBenchMaker scene and request.

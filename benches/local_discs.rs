@@ -34,7 +34,7 @@ fn oracle_calls(c: &mut Criterion) {
                 .unwrap()
         })
     });
-    // the allocation-free twin the via-point search uses (issue 11: ≤ 150 ns a segment call)
+    // the allocation-free twin the via-point search uses (≤ 150 ns a segment call)
     let (mut out, mut ws) = (IntervalList::new(), Workspace::new());
     g.bench_function("intersect_into_segment_50_discs", |b| {
         b.iter(|| {

@@ -1,4 +1,4 @@
-//! The Minkowski C-obstacle oracle against the edge-pair polygon oracle (issue 14): time of a
+//! The Minkowski C-obstacle oracle against the edge-pair polygon oracle: time of a
 //! batch of translations at a fixed orientation on the shipped SE(2) scene and OMPL.app's 2D
 //! problems (the scenes' own robots), plus the one-off cost of building the C-obstacles.
 //!

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The validity sweep's second opinion (issue 15, part 3): answers random queries on OMPL.app
+# The validity sweep's second opinion: answers random queries on OMPL.app
 # problems with `viaroad bench validity`, keeps a sample of the solved paths (raw and shortened)
 # as OMPL state files and re-checks every one with the OMPL peer's `check` (OMPL 1.5 + FCL, every
 # state and every segment at OMPL's motion-check resolution: it shares no code with viaroad).

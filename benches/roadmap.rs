@@ -1,4 +1,4 @@
-//! Roadmap benchmarks on a cluttered disc scene (issue 3).
+//! Roadmap benchmarks on a cluttered disc scene.
 //!
 //! Criterion groups: learning N nodes, loading a saved roadmap of 10 000 nodes, answering one
 //! query against it. Before them (under `cargo bench`, unless `VIAROAD_BENCH_NO_REPORT` is set)

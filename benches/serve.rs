@@ -1,4 +1,4 @@
-//! Throughput of `viaroad serve` (issue 12): queries per second over TCP from 1, 2 and 8
+//! Throughput of `viaroad serve`: queries per second over TCP from 1, 2 and 8
 //! concurrent clients, on the shipped discs demo roadmap and on OMPL.app's Home. Each client
 //! keeps one query in flight (it waits for the reply before the next); a last row has 8
 //! clients send everything at once (pipelined). Every reply is matched to its id (none lost,

@@ -3,8 +3,8 @@
 //! The standard `HashMap` hashes with SipHash, seeded at random to resist flooding by an
 //! adversary. Our keys come from meshes and configurations, not from an adversary, and SipHash
 //! was the largest single cost of loading an arm's scene (perf of `viaroad query` on
-//! table_pick: 17 % of the samples in `hash_one`, 28 % in map entries, 2026-12-03) and a sixth
-//! of a shallow via-point search (issue 11). [`MixHasher`] is one multiply and a fold per
+//! table_pick: 17 % of the samples in `hash_one`, 28 % in map entries) and a sixth of a
+//! shallow via-point search. [`MixHasher`] is one multiply and a fold per
 //! word. No result may depend on a map's iteration order (with SipHash it changed from run to
 //! run, so none does).
 

@@ -106,7 +106,7 @@ impl IntervalList {
     }
 
     /// Allocation-free twin of [`from_unsorted`](Self::from_unsorted) for the oracles' hot
-    /// path (issue 11): sorts and merges `items` in place and swaps the buffers, so `self`
+    /// path: sorts and merges `items` in place and swaps the buffers, so `self`
     /// holds the union and `items` comes back empty with the old list's allocation. Steady
     /// state: no allocation at all.
     pub fn set_from_unsorted(&mut self, items: &mut Vec<Interval>) {
@@ -348,7 +348,7 @@ impl IntervalList {
 /// Sorts by lower end (in [`f64::total_cmp`]'s order; stable up to
 /// [`INSERTION_SORT_MAX`] intervals, and the merged union does not depend on it). Oracle answers hold a handful
 /// of intervals, where an insertion sort beats the general sort's set-up; longer lists take
-/// the library sort. (A branch-free counting sort was tried for issue 11: twice the
+/// the library sort. (A branch-free counting sort was tried: twice the
 /// instructions for the same time on `bench discs`.)
 fn sort_by_lo(items: &mut [Interval]) {
     if items.len() > INSERTION_SORT_MAX {

@@ -15,12 +15,15 @@
 //! | [`space`] | R^n, SE(2), SE(3): distance, sampling, DOF groups, straight motions |
 //! | [`oracle`] | collision intervals of a motion (discs, polygons, polyhedra, sampled) |
 //! | [`local`] | local methods: straight line, via-point planner, path shortening |
+//! | [`solve`] | one query planned by a portfolio suited to the scene (what `viaroad solve` runs) |
 //! | [`deadline`] | budgets that hold: one deadline checked before every oracle call |
 //! | [`roadmap`] | learning, persistence, queries |
 //! | [`robot`] | robot arms: URDF + SRDF, forward kinematics, the independent arm checker |
 //! | [`export`] | glTF export and the HTML viewer (seeing a plan in 3D) |
 //! | [`mesh_io`] | mesh files (OBJ, STL, Collada) and the checked reads of input files |
 //! | [`scene`] | TOML scenes, OMPL.app problems, MoveIt scenes and requests, meshes |
+//! | [`checker`] | path checkers sharing no code with the oracles (discs, SE(2), SE(3)) |
+//! | [`certify`] | other planners' paths proved free, located and repaired |
 //! | [`bench`](mod@bench) | the seed's experiments and local-method benchmarks |
 //! | [`limits`] | the largest numbers accepted from users |
 //! | [`safe_file`] | atomic saves that never replace special files; bounded reads |
@@ -29,6 +32,7 @@
 
 pub mod bench;
 pub mod certify;
+pub mod checker;
 pub mod deadline;
 pub mod export;
 mod fast_hash;
@@ -46,4 +50,5 @@ pub mod robot;
 pub mod safe_file;
 pub mod scene;
 pub mod short;
+pub mod solve;
 pub mod space;

@@ -1,7 +1,7 @@
 //! The largest (or smallest) numbers viaroad accepts from users, in one place.
 //!
 //! A number past these limits is refused with one clear message *before* anything is allocated
-//! or looped over (issue 16): a time of 10³⁰⁰ s cannot become a [`std::time::Duration`], 10¹¹
+//! or looped over: a time of 10³⁰⁰ s cannot become a [`std::time::Duration`], 10¹¹
 //! generated discs do not fit in memory, a sampling resolution of 10⁻³⁰⁰ never finishes a
 //! motion, and bounds of ±10³⁰⁸ overflow every distance. The limits are far beyond any useful
 //! run, so they only ever catch typos and hostile input.

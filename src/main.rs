@@ -8,7 +8,7 @@ use clap::Parser;
 /// Lets a closed stdout pipe end the program quietly, as Unix tools do (`viaroad solve … |
 /// head -1`): Rust ignores SIGPIPE, so every later `println!` would panic with "Broken pipe";
 /// with the default action the process ends at the first write to the closed pipe, wherever
-/// that write is (issue 16). `bench local`, which writes to its children's pipes, ignores it
+/// that write is. `bench local`, which writes to its children's pipes, ignores it
 /// again for itself. SIGXFSZ is ignored, so that a file size limit is a write error.
 fn set_signal_dispositions() {
     #[cfg(unix)]

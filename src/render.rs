@@ -3,7 +3,7 @@
 //! Draws the position plane (x, y) of any scene: discs and polygons as they are, a rigid robot
 //! as its footprint at the corners of a path; SE(3) scenes are drawn from above (obstacle
 //! meshes projected to the xy-plane, as outlines, and the robot's footprint — the outline of
-//! its projection — at the corners of a path, issue 13).
+//! its projection — at the corners of a path).
 
 use crate::geometry::{Polygon, TriMesh};
 use crate::local::Borderline;
@@ -359,7 +359,7 @@ impl Picture {
     }
 }
 
-/// Brooks's freeways (issue 14), kept apart from the local method's layers.
+/// Brooks's freeways, kept apart from the local method's layers.
 impl Picture {
     /// Draws generalized cones: each as a faint trapezoid about its spine, the spine as a line
     /// (`viaroad render --freeways`).

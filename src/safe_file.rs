@@ -1,4 +1,4 @@
-//! Files written and read the careful way (issue 16): saves never replace a special file, a
+//! Files written and read the careful way: saves never replace a special file, a
 //! killed save leaves nothing behind for long, and reads never take more than they should.
 //!
 //! * [`write_atomically`] writes a temporary file next to the target and renames it over the

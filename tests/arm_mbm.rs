@@ -1,4 +1,4 @@
-//! `bench mbm`'s per-problem pipeline (issue 10 part 5): the via-point planner and then the
+//! `bench mbm`'s per-problem pipeline: the via-point planner and then the
 //! trees, both at once (`--race`), or the trees first (`--trees-first`, the default).
 //! Whichever answers, the path comes back re-checked by the independent
 //! [`viaroad::robot::ArmChecker`] inside `run_problem`; this test holds it to that
@@ -78,7 +78,7 @@ fn raced_or_in_turn_every_answer_is_certified() {
 
 /// With the trees first, a problem the trees leave unsolved in their share goes to the
 /// via-point search: table_pick 1's direct path is blocked, trees cut at one node cannot solve
-/// it, and the via-point planner then does (36 calls on 2026-12-05), after the trees ran.
+/// it, and the via-point planner then does (36 calls when measured), after the trees ran.
 /// Staircases only: the straight motion of all joints from start to goal is free there (one
 /// call, no stage after it).
 #[test]

@@ -1,5 +1,5 @@
 //! MoveIt's rules for what a PlanningScene and a MotionPlanRequest mean, where MotionBenchMaker's
-//! Fetch and UR5 problems rely on them (found by running them, 2026-12-05): objects given in a
+//! Fetch and UR5 problems rely on them (found by running them): objects given in a
 //! link's frame, joint states naming joints the URDF lacks, goals beyond a joint limit, and the
 //! request's own planning group.
 

@@ -1,4 +1,4 @@
-//! Planning for arms end to end (issue 10): arm TOML scenes, the joint space, the via-point
+//! Planning for arms end to end: arm TOML scenes, the joint space, the via-point
 //! planner and the roadmap on the Panda, every path re-checked by the independent
 //! [`ArmChecker`] (parry, exact primitives, sharing no code with the exact oracle) sampled at
 //! 1/10 of OMPL's default motion-check resolution (1 % of the space's extent → 0.1 %).

@@ -1,6 +1,6 @@
 //! The arm oracle's answers against answers recorded with the oracle of commit 3f1de36 (before
-//! the per-call bounds of obstacle nodes and faces and the leaf-level cull of the rotation sweep,
-//! issue 10): the same single-joint moves must get the same intervals, yes/no and first hit,
+//! the per-call bounds of obstacle nodes and faces and the leaf-level cull of the rotation sweep):
+//! the same single-joint moves must get the same intervals, yes/no and first hit,
 //! bit for bit. Those changes only compute the same bounds once per call, or skip pairs of faces
 //! that a later test would have skipped too, so nothing may move, not even in the last bit.
 //!

@@ -172,7 +172,7 @@ fn the_sure_test_changes_no_verdict_and_finds_most_collisions() {
             sure += usize::from(surely);
         }
     }
-    // 2026-12-05: 69 % of the colliding configurations in the box (the states bench)
+    // measured: 69 % of the colliding configurations in the box (the states bench)
     assert!(
         sure * 2 > colliding,
         "the sure test found {sure} of {colliding} collisions"

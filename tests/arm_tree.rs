@@ -1,4 +1,4 @@
-//! Two trees for an arm (issue 10, `roadmap::tree` with whole stairs, and sliding ones): on shipped Panda
+//! Two trees for an arm (`roadmap::tree` with whole stairs, and sliding ones): on shipped Panda
 //! problems the tree path and its shortcut are chains of single-joint motions (and straight
 //! motions of all joints where conservative advancement proved them free) that the
 //! independent `ArmChecker` (parry, exact primitives, no code shared with the exact oracle)

@@ -1,4 +1,4 @@
-//! The workcell mode of `bench mbm` (issue 10 part 6): one roadmap of a family's first scene,
+//! The workcell mode of `bench mbm`: one roadmap of a family's first scene,
 //! saved and loaded back, answering every request valid in that scene; where the roadmap does
 //! not answer in half the query time, two trees do (out of the roadmap, or from the bare
 //! ends), or they race it from the start. Every
@@ -33,7 +33,7 @@ fn family(family: &str, test: &str) -> (Arm, Vec<Problem>, PathBuf) {
 #[test]
 fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadmap() {
     // the box: its requests need the trees (the 40-node roadmap grown for half the query time
-    // did not reach in, 2026-12-03), which answer each in ≈ 1.4 s of their 4 s on the 2-core VM;
+    // did not reach in), which answer each in ≈ 1.4 s of their 4 s on the 2-core VM;
     // the cage needed ≈ 5 s of trees, more than a test should spend
     let (robot, problems, dir) = family("box", "modes");
     let trees = TreeParams {

@@ -1,4 +1,4 @@
-//! `viaroad bench local --seed-from plain cones` (issue 14, part 2): learning with and without
+//! `viaroad bench local --seed-from plain cones`: learning with and without
 //! the seeds of Brooks's freeways, inside the same learner on the same queries. A tiny bench on
 //! the shipped corridor: both seedings run, the seeded roadmaps hold the seed nodes, every path
 //! returned is re-checked by the independent checker, the counts repeat with any thread count,
@@ -279,7 +279,7 @@ fn the_seeded_roadmaps_hold_the_seed_nodes() {
 /// Regression: a seed turn of (nearly) half a turn was certified along one of its two
 /// "shorter ways" and read from its other end along the other; the bench's exact re-check
 /// found colliding raw paths through such edges on se2-translate, Maze and Barriers
-/// (benches/results/2026-12-02-cones, first run). Every seed edge is now free both ways, by
+/// (the *cones* results, first run). Every seed edge is now free both ways, by
 /// the exact oracle and by the independent checker.
 #[test]
 fn seed_edges_are_free_read_from_either_end() {

@@ -88,10 +88,11 @@ fn solve_roadmap_with_a_node_budget_is_reproducible_and_shares_are_checked() {
         let bad = format!("--directed-share={bad}");
         fails_with(&["solve", CLUTTERED, "--roadmap", &bad], "directed_share");
     }
-    // a node budget belongs to the grown roadmap (a usage error: clap's exit status 2)
-    let o = viaroad(&["solve", CLUTTERED, "--nodes", "100"]);
+    // a node budget belongs to grown trees and roadmaps, not to the local method alone (a
+    // usage error: clap's exit status 2)
+    let o = viaroad(&["solve", CLUTTERED, "--local-only", "--nodes", "100"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains("--roadmap"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--local-only"), "{}", stderr(&o));
 }
 
 #[test]

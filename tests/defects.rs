@@ -1,4 +1,4 @@
-//! Regression tests of issue 16 ("Defects found by trying"): one test per row of its table,
+//! Regression tests of defects found by trying the command line: one test per defect,
 //! per message mended and per decision taken. Every failure must be one `error:` line with
 //! exit status 1 (no panic), reached within seconds; special files are never replaced; no
 //! stale numbered outputs; no stray temporaries after a killed save.

@@ -1,4 +1,4 @@
-//! Degenerate geometry (issue 15, part 4), each case with its expected answer under the
+//! Degenerate geometry, each case with its expected answer under the
 //! library's documented convention — **touching counts as collision** (closed obstacles and a
 //! closed robot; `CollisionOracle::intervals`) — and checked against parry on solid shapes
 //! (cuboids, convex polygons and polyhedra: distance 0 means touching or overlapping):

@@ -1,4 +1,4 @@
-//! Determinism everywhere (issue 15, part 5): the same seed gives byte-identical roadmap files
+//! Determinism everywhere: the same seed gives byte-identical roadmap files
 //! with 1, 2 and 8 rayon threads, on a 2D, an SE(2) and an SE(3) scene, and the same answers
 //! to the same queries. Node budgets only: a time budget is not reproducible (documented on
 //! `Budget::time`).

@@ -1,4 +1,4 @@
-//! glTF export (issue 13): the `.glb` read back by a reader written here (not the writer's),
+//! glTF export: the `.glb` read back by a reader written here (not the writer's),
 //! the drawn motion re-checked by the independent validity checkers (parry, conservative
 //! advancement), the arm's links against forward kinematics, and every file run through the
 //! Khronos glTF validator (npm `gltf-validator`, pinned in tools/js; skipped with a `SKIPPED`

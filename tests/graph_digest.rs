@@ -1,6 +1,6 @@
-//! The hot-path guard (issue 11): the same seed learns the same graph and answers the same
+//! The hot-path guard: the same seed learns the same graph and answers the same
 //! queries with the same oracle work as before the hot path was rewritten. The digests below
-//! were recorded on 2026-12-01 from commit d7ab2ce, before any of that work; a change that is
+//! were recorded from commit d7ab2ce, before any of that work; a change that is
 //! only "less overhead" must leave every one of them as it is. A change of the algorithm
 //! (sampling, neighbour choice, the via-point search) changes them on purpose: record the new
 //! values in the same commit and say why in its message.
@@ -9,18 +9,18 @@
 //! the learner's attempt and connection counts, and for each query its outcome, path, length
 //! and intersect calls. The file bytes are not hashed: the header may change format.
 //!
-//! The answers' intersect calls were re-recorded on 2026-12-02 (branch `home5`): shortening
+//! The answers' intersect calls were re-recorded when shortening learnt to ask: shortening
 //! asks each single-group piece once per query and never asks about the raw path's own pieces
 //! (`KnownPieces`), so the same paths cost fewer calls. The third digest (outcome, path and
 //! length of each answer, no calls) was recorded then and is the same at 3f1de36, before that
 //! change: it guards the paths when only the calls change.
 //!
 //! The answers' calls of se2-corridor (677 → 641) and cube-into-box (21 810 → 21 990) were
-//! re-recorded again on 2026-12-02 (branch `home6`): attaching tries the direct path to the
+//! re-recorded when attaching learnt the direct path first: attaching tries the direct path to the
 //! nearest candidates before the via-point search (`QueryOptions::attach_direct_candidates`).
 //! Graphs and paths are unchanged (first and third digests).
 //!
-//! The answers of se2-corridor were re-recorded on 2026-12-05 (641 → 211 calls, new paths of
+//! The answers of se2-corridor were re-recorded for unchecked pairs (641 → 211 calls, new paths of
 //! the same lengths: all 40 answers of the four scenes equally long before and after, to 1e-12):
 //! shortening weighs a pair of corners not yet checked a millionth more than its length
 //! (`local::shorten::UNCHECKED`), so that among paths of equal length, common where one group

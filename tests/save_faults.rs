@@ -1,4 +1,4 @@
-//! Faults during saves (issue 15, part 2), with the real `viaroad build`:
+//! Faults during saves, with the real `viaroad build`:
 //!
 //! * a full disk — a file size limit (`RLIMIT_FSIZE`, set with `ulimit -f` in a shell that
 //!   ignores SIGXFSZ so that the write fails with EFBIG instead of killing the process), and a

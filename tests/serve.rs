@@ -1,4 +1,4 @@
-//! `viaroad serve` as clients meet it (issue 12): valid, malformed and concurrent requests over
+//! `viaroad serve` as clients meet it: valid, malformed and concurrent requests over
 //! stdin/stdout and TCP; every query answered exactly once under its own id, every path
 //! re-checked by the independent checkers of `viaroad::bench::validity`, and the server still
 //! serving after every kind of bad line. Every server started here is killed when its test

@@ -1,4 +1,4 @@
-//! The validity sweep of `viaroad bench validity` in small (issue 15, part 3): a few hundred
+//! The validity sweep of `viaroad bench validity` in small: a few hundred
 //! random queries on every scene kind, every path re-checked by the independent checkers of
 //! `viaroad::bench::validity`; and the checkers themselves shown to refuse paths that collide
 //! (a checker that accepts everything would make the sweep meaningless).

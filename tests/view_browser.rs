@@ -1,4 +1,4 @@
-//! The viewer page in a real browser (issue 13): `viaroad view` writes the page, headless
+//! The viewer page in a real browser: `viaroad view` writes the page, headless
 //! Debian Chromium opens it from `file://` (driven by playwright-core, pinned in tools/js,
 //! through tools/js/view-check.js), and the test asserts that the model loaded, that the robot
 //! is drawn at t = 0 and at t = 1 (a render with the robot alone gives its mask, and on much

@@ -44,7 +44,7 @@ struct Shared {
 /// How long the worker has run on a CPU. A hang is judged by the worker's CPU time, not by the
 /// wall clock: on a loaded machine (the fuzzer runs `nice`d beside builds) a worker can wait
 /// seconds for a core, and a wall-clock limit then reports inputs that load in milliseconds
-/// (seen on 2026-12-01: a TOML "hang" that replays in 40 ms). A loader that blocks without
+/// (seen once: a TOML "hang" that replays in 40 ms). A loader that blocks without
 /// burning CPU is still caught, by [`WALL_FACTOR`] times the limit on the wall clock.
 #[derive(Clone, Copy)]
 struct WorkerClock {

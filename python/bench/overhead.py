@@ -1,4 +1,4 @@
-"""Python overhead per `Roadmap.query` call (issue 12): the wall time of the Python call
+"""Python overhead per `Roadmap.query` call: the wall time of the Python call
 against the time of the Rust call inside it (`QueryResult.ms`, measured around
 `QueryPlanner::query`), on the discs demo roadmap and, if `cargo bench --bench serve` has
 learnt it, OMPL.app's Home. The difference is what Python adds: reading start and goal,

@@ -1,4 +1,4 @@
-//! `viaroad._viaroad`: the library from Python (issue 12), through its public API only:
+//! `viaroad._viaroad`: the library from Python, through its public API only:
 //! [`Scene`], [`Roadmap`], [`QueryPlanner`], [`Learner`]. Long work (learning, queries,
 //! sampling) releases the interpreter, so other Python threads run meanwhile, and Ctrl-C stops
 //! it ([`interrupt`]); counts are held to [`viaroad::limits`]; errors are exceptions of

@@ -1,4 +1,4 @@
-"""The `viaroad` Python package (issue 12): a disc scene and an OMPL.app scene solved from
+"""The `viaroad` Python package: a disc scene and an OMPL.app scene solved from
 Python, every returned path re-checked by a check written here (segment-disc distance in numpy
 for discs; straight single-group motions sampled densely for the planar OMPL.app scene), a
 roadmap file round-tripped, parallel and threaded queries equal to single ones, and every kind

@@ -94,7 +94,7 @@ impl DiscProblem {
 
 /// Draws of fifty discs [`try_problem`] makes before it gives up. At the seed's radius almost
 /// every draw is solvable; at r = 0.14 about one in a million is (14 s for five problems), at
-/// r = 0.2 practically none, so without a bound the generator would never finish (issue 16).
+/// r = 0.2 practically none, so without a bound the generator would never finish.
 /// 10⁵ draws take well under a second.
 pub const MAX_DRAWS: u64 = 100_000;
 

@@ -5,9 +5,9 @@
 //!   Tables A.1–A.4 ([`tables`]).
 //! - [`local`]: local methods compared inside the same learner on the same scenes and queries
 //!   (time and nodes to 99 % of the queries, Planner Arena database, plots).
-//! - [`mbm`]: MotionBenchMaker problems for robot arms, and the workcell roadmap (issue 10).
+//! - [`mbm`]: MotionBenchMaker problems for robot arms, and the workcell roadmap.
 //! - [`validity`]: random queries on every scene kind, every path re-checked by independent
-//!   checkers (issue 15: 0 invalid in 100 000).
+//!   checkers (0 invalid in 100 000).
 
 pub mod certify;
 pub mod discs;

@@ -10,7 +10,7 @@
 
 use super::locate::{locate, Prover};
 use super::{exact_collision, CertifyError, Verdict};
-use crate::bench::validity::{planar::PlanarChecker, rigid::RigidChecker};
+use crate::checker::{planar::PlanarChecker, rigid::RigidChecker};
 use crate::deadline::Deadline;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};
 use crate::scene::{Obstacle, Robot, Scene};

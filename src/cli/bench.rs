@@ -101,42 +101,42 @@ pub struct BenchLocalArgs {
     #[arg(long, default_value_t = 10_000)]
     pub nodes: usize,
     /// Nodes of the first stage.
-    #[arg(long, default_value_t = 25)]
+    #[arg(long, default_value_t = 25, help_heading = "Tuning")]
     pub first: usize,
     /// Factor between stages (default √2: two stages per doubling).
-    #[arg(long, default_value_t = std::f64::consts::SQRT_2)]
+    #[arg(long, default_value_t = std::f64::consts::SQRT_2, help_heading = "Tuning")]
     pub growth: f64,
     /// Size of a random query set (scenes without an OMPL query file).
     #[arg(long, default_value_t = 100)]
     pub queries: usize,
     /// Random queries even for scenes that have an OMPL query file.
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub random_queries: bool,
     /// Query pairs from this file for every scene (one pair per line, OMPL's layout).
-    #[arg(long, conflicts_with = "random_queries")]
+    #[arg(long, conflicts_with = "random_queries", help_heading = "Tuning")]
     pub query_file: Option<PathBuf>,
     /// Share of the scored queries at which a run stops.
-    #[arg(long, default_value_t = 0.99)]
+    #[arg(long, default_value_t = 0.99, help_heading = "Tuning")]
     pub target: f64,
     /// Queries use the roadmap only: no try of the local method straight from start to goal
     /// (which the via-point planner often wins on its own).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub no_direct: bool,
     /// Nearest nodes a query tries to attach start and goal to (each side).
-    #[arg(long, default_value_t = viaroad::roadmap::QueryOptions::default().attach_candidates)]
+    #[arg(long, default_value_t = viaroad::roadmap::QueryOptions::default().attach_candidates, help_heading = "Tuning")]
     pub attach: usize,
     /// Nearest nodes a side a via-point roadmap's query retries with the deep via-point
     /// planner when the roadmap's own method fails (`viaroad query` uses 3). 0 keeps every
     /// query to the run's own method, so methods are compared on their roadmaps alone.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, help_heading = "Tuning")]
     pub escalation: usize,
     /// The intersect calls one query may spend after each stage (attaching, direct and deeper
     /// tries; default: no limit). Bounds the evaluation of deep via-point settings on SE(3)
     /// scenes reproducibly; a query that spends it counts as unsolved.
-    #[arg(long, value_name = "CALLS")]
+    #[arg(long, value_name = "CALLS", help_heading = "Tuning")]
     pub query_calls: Option<u64>,
     /// Feedback for methods without a suffix.
-    #[arg(long, value_enum, default_value_t = FeedbackChoice::On)]
+    #[arg(long, value_enum, default_value_t = FeedbackChoice::On, help_heading = "Tuning")]
     pub feedback: FeedbackChoice,
     /// Runs at once, each in its own process with cores / J rayon threads (J > 1: more
     /// throughput, the same counts, but the runs share the machine, so times are not fair).
@@ -144,7 +144,7 @@ pub struct BenchLocalArgs {
     pub jobs: usize,
     /// Run everything in this process, one run after another (no child processes; the peak
     /// memory of a run is then measured by resetting the process's high-water mark).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub in_process: bool,
 }
 
@@ -157,12 +157,13 @@ pub struct DiscsArgs {
     /// Seed of the problem generator.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Disc radius (default: the calibrated value, see the README).
-    #[arg(long, default_value_t = SEED_RADIUS)]
+    /// Disc radius (default: the value calibrated to the seed's recursion depths, see
+    /// docs/benchmarks.md).
+    #[arg(long, default_value_t = SEED_RADIUS, help_heading = "Tuning")]
     pub radius: f64,
     /// Intersect calls one problem may spend (default: 100000 with plain recursion, 200000 with
     /// the tree of subproblems). The seed's largest count was 2·10⁷.
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub budget: Option<u64>,
     /// Only these tables, e.g. `A.1,A.4` (default: all four).
     #[arg(long, value_delimiter = ',')]
@@ -201,7 +202,7 @@ pub struct MbmArgs {
     /// racing, beside them). Its calls sweep whole joint ranges (≈ 1–3 ms each on the Panda
     /// problems against ≈ 50 µs for a tree's stair), so it is kept for what the trees do not
     /// solve soon. 0: the direct path only, then the trees.
-    #[arg(long, default_value_t = 300)]
+    #[arg(long, default_value_t = 300, help_heading = "Tuning")]
     pub direct_calls: u64,
     /// At most this many problems per family.
     #[arg(long)]
@@ -216,39 +217,49 @@ pub struct MbmArgs {
     pub planner: viaroad::bench::mbm::Planner,
     /// `--planner tree`: longest extend, as a share of the joint space's extent (about 1 rad
     /// on the Panda).
-    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_RANGE)]
+    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_RANGE, help_heading = "Tuning")]
     pub tree_range: f64,
     /// `--planner tree`: longest stair of an extend, as a share of the extent.
-    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_STAIR)]
+    #[arg(long, value_name = "SHARE", default_value_t = viaroad::portfolio::TREE_STAIR, help_heading = "Tuning")]
     pub tree_stair: f64,
     /// `--planner tree`: how a stair finds its free prefix (`first`, default: one first-hit
     /// call; `intervals`; `yesno`). Sliding asks blocked joints again at every stair, and the
     /// first hit (`joint_move_first_hit`) answers those without the collisions beyond it.
-    #[arg(long, value_name = "MODE", default_value = "first")]
+    #[arg(
+        long,
+        value_name = "MODE",
+        default_value = "first",
+        help_heading = "Tuning"
+    )]
     pub tree_prefix: viaroad::roadmap::tree::Prefix,
     /// `--planner tree`: how an extend walks its stairs (as `solve --tree-stairs`): `whole`
     /// (the default: each stair all of it or not at all, only the extend's end a candidate
     /// nearest node), `slide` (each joint as far as it is free, a blocked joint letting the
     /// others go on) or `prefix`.
-    #[arg(long, value_name = "MODE", default_value = "whole")]
+    #[arg(
+        long,
+        value_name = "MODE",
+        default_value = "whole",
+        help_heading = "Tuning"
+    )]
     pub tree_stairs: viaroad::roadmap::tree::Stairs,
     /// `--planner tree`: extend the smaller tree each time (`true`, default) instead of
     /// alternating (`false`). With whole stairs a trapped extend adds nothing, and the tree of
     /// a goal in a pocket gets the effort until it is out.
-    #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
+    #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set, help_heading = "Tuning")]
     pub tree_balance: bool,
     /// `--planner tree`: try each extend as one stair first (a yes/no call per joint), the
     /// staircase only when that is blocked (as `solve --tree-coarse`).
-    #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set)]
+    #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set, help_heading = "Tuning")]
     pub tree_coarse: bool,
     /// `--planner tree`: restart both trees when an attempt has grown this many nodes, each
     /// later attempt with a new random stream and twice the nodes (as `solve --tree-restart`).
     /// Default: no restarts.
-    #[arg(long, value_name = "NODES")]
+    #[arg(long, value_name = "NODES", help_heading = "Tuning")]
     pub tree_restart: Option<usize>,
     /// `--planner tree`: pairs of trees racing from the same ends with different random
     /// streams, on the rayon pool (`RAYON_NUM_THREADS`); the first to connect answers. 1: one.
-    #[arg(long, value_name = "N", default_value_t = 1)]
+    #[arg(long, value_name = "N", default_value_t = 1, help_heading = "Tuning")]
     pub tree_streams: usize,
     /// `--planner tree`: run the via-point planner (`--direct-calls`) and the trees at once on
     /// the rayon pool, the first to connect answering, instead of one after the other; in
@@ -256,18 +267,23 @@ pub struct MbmArgs {
     /// (the roadmap's query) first runs alone for MS milliseconds and the race starts only if
     /// it has not answered: a short head start (2 ms) keeps quick answers off the pool. With
     /// no free pool thread (one thread, or a busy batch) the two run in turn.
-    #[arg(long, value_name = "MS", num_args = 0..=1, default_missing_value = "0")]
+    #[arg(long, value_name = "MS", num_args = 0..=1, default_missing_value = "0", help_heading = "Tuning")]
     pub race: Option<f64>,
     /// `--planner tree`, not racing: the direct path, then the trees alone for this share of
     /// `--time`, then the via-point planner (`--direct-calls`), then the trees afresh for the
     /// rest. `0`: the via-point planner first, the trees after it.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.2)]
+    #[arg(
+        long,
+        value_name = "SHARE",
+        default_value_t = 0.2,
+        help_heading = "Tuning"
+    )]
     pub trees_first: f64,
     /// Plan against every link mesh as it is: without this, a mesh of more than 4 000
     /// triangles is planned against its enveloping polytope (a few hundred faces that contain
     /// it, standing off it by at most a quarter of its radius; the UR5's gripper base and
     /// force–torque sensor). The independent checker always uses the meshes.
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub exact_meshes: bool,
     /// Workcell mode: per family, learn one roadmap of the first scene
     /// (`--nodes`), save it in --out, load it and answer every request valid in that scene.
@@ -291,19 +307,19 @@ pub struct MbmArgs {
     /// Workcell mode with `--keep-answers`: keep the trees that found an answer too
     /// (`Roadmap::with_kept`: every extend's end a node, joined to the node it grew from), so
     /// that the next goal in the same pocket attaches to them.
-    #[arg(long, requires = "keep_answers")]
+    #[arg(long, requires = "keep_answers", help_heading = "Tuning")]
     pub keep_trees: bool,
     /// Workcell mode, `--planner tree`: where the trees grow from. `roadmap` (default): each
     /// end that a free direct path attaches to one of its 5 nearest roadmap nodes brings that
     /// node's component along as its tree, so the other end's tree need only reach the roadmap;
     /// `ends`: both trees grow from the bare start and goal, as a single problem's do.
-    #[arg(long, value_enum, default_value_t = TreesFrom::Roadmap)]
+    #[arg(long, value_enum, default_value_t = TreesFrom::Roadmap, help_heading = "Tuning")]
     pub trees_from: TreesFrom,
     /// Single-joint staircases only: no straight motions of several joints at once (by
     /// default they are tried where conservative advancement proves them free — start to
     /// goal, attaching, the trees' extends, shortening; `QueryOptions::straight_shortcuts`,
     /// `Planning::straight`, `TreeParams::straight`).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub no_straight: bool,
     /// Directory for summary.md, problems.csv (or workcell.md) and report.json.
     #[arg(long)]

@@ -26,7 +26,7 @@ pub struct BuildArgs {
     /// Start the roadmap from a global method's output: `cones`, the spine points of
     /// Brooks's freeways with their legal orientations (planar scenes; at most half
     /// the node budget, `cones:nodes=N` at most N), or `plain` (from nothing, the default).
-    #[arg(long, value_name = "SEEDING")]
+    #[arg(long, value_name = "SEEDING", help_heading = "Tuning")]
     pub seed_from: Option<viaroad::global::Seeding>,
 }
 

@@ -1,4 +1,4 @@
-//! `viaroad export`: a scene, its robot and a planned path as a glTF 2.0 binary (issue 13);
+//! `viaroad export`: a scene, its robot and a planned path as a glTF 2.0 binary;
 //! the planning shared with `viaroad view`.
 
 use super::local_args::LocalArgs;
@@ -9,11 +9,12 @@ use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::export::{Legend, Plan};
 use viaroad::local::{first_collision_on_path, path_length, shorten, LocalSpec};
-use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner, Roadmap};
+use viaroad::roadmap::{QueryOptions, QueryPlanner, Roadmap};
 use viaroad::robot::arm::GroupChoice;
 use viaroad::robot::{Arm, ArmChecker, ArmOptions};
 use viaroad::scene::moveit::{load_motion_plan_request, load_planning_scene};
 use viaroad::scene::{ompl_cfg, Scene};
+use viaroad::space::Config;
 use viaroad::space::{Group, Space};
 
 /// What to draw and how to find the path: shared by `export` and `view`.
@@ -21,8 +22,8 @@ use viaroad::space::{Group, Space};
 pub struct PlanArgs {
     /// Scene file (.toml or OMPL.app .cfg).
     pub scene: PathBuf,
-    /// Answer the query with this saved roadmap (else a roadmap is grown from the query's
-    /// start and goal, as `solve --roadmap` does).
+    /// Answer the query with this saved roadmap (else it is planned as `solve` plans it: the
+    /// portfolio suited to the scene).
     #[arg(long)]
     pub roadmap: Option<PathBuf>,
     /// Draw this path (an OMPL state file, one state per line) instead of planning one. It is
@@ -35,17 +36,21 @@ pub struct PlanArgs {
     pub query: usize,
     /// Path shortening (as in `query`): the shortened path is drawn beside the raw one and the
     /// robot follows it; `off` draws the raw path alone.
-    #[arg(long, value_enum, default_value_t = Shortening::Fast)]
+    #[arg(long, value_enum, default_value_t = Shortening::Fast, help_heading = "Tuning")]
     pub shorten: Shortening,
     /// Also draw the roadmap's nodes and edges (at the robot's reference point).
     #[arg(long)]
     pub show_roadmap: bool,
-    /// Most nodes of the grown roadmap (no `--roadmap`, no `--path`): a budget that gives the
-    /// same path on any machine.
-    #[arg(long, default_value_t = 5000)]
+    /// Most nodes of the trees and roadmaps grown to plan the query (no `--roadmap`, no
+    /// `--path`): a budget that gives the same path on any machine.
+    #[arg(long, default_value_t = 5000, help_heading = "Tuning")]
     pub nodes: usize,
-    /// Seed of the grown roadmap.
-    #[arg(long, default_value_t = 1)]
+    /// Seconds the planning may take (no `--roadmap`, no `--path`). Default: the `.cfg` file's
+    /// `[benchmark] time_limit`, else 60 s.
+    #[arg(long, value_name = "SECONDS")]
+    pub time: Option<f64>,
+    /// Seed of the trees and roadmaps grown to plan the query.
+    #[arg(long, default_value_t = 1, help_heading = "Tuning")]
     pub seed: u64,
     #[command(flatten)]
     pub local: LocalArgs,
@@ -271,76 +276,30 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
                 a.query
             )
         })?;
-        let options = QueryOptions {
-            landmarks: 0,
-            shorten: a.shorten != Shortening::Off,
-            exact_shortening_limit: if a.shorten == Shortening::Exact {
-                usize::MAX
-            } else {
-                QueryOptions::default().exact_shortening_limit
-            },
-            ..QueryOptions::default()
-        };
-        let (map, grown_calls) = match &a.roadmap {
-            Some(file) => {
-                legend.source = format!("roadmap {}", file.display());
-                (Roadmap::load(file, scene.fingerprint())?, 0)
-            }
-            None => {
-                super::limits::count_in_range(
-                    "--nodes",
-                    a.nodes,
-                    viaroad::limits::MAX_NODES,
-                    "a roadmap that large does not fit in memory",
-                )?;
-                let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref());
-                let deadline = super::interrupt::on_ctrl_c(Deadline::none());
-                let grown = learner
-                    .connect_pair(
-                        &LearnParams::default(),
-                        None,
-                        (&q.start, &q.goal),
-                        &Budget {
-                            nodes: Some(a.nodes),
-                            time: None,
-                        },
-                        a.seed,
-                        &deadline,
-                        &mut |_| {},
-                    )
-                    .context("learning")?;
-                let map = grown.learnt.roadmap;
-                legend.source = format!(
-                    "roadmap grown from start and goal, {} nodes",
-                    map.node_count()
-                );
-                let calls = map.header().counts.intersect_calls();
-                (map, calls)
-            }
-        };
-        let planner = QueryPlanner::new(&map, oracle.as_ref())?.with_options(QueryOptions {
-            grow: a.roadmap.is_some(),
-            ..options
-        });
-        let r = planner.query(&q.start, &q.goal)?;
-        if !r.is_solved() {
-            anyhow::bail!(
-                "query {} of {} not solved ({:?}); try more --nodes or another --seed",
-                a.query,
-                a.scene.display(),
-                r.outcome
-            );
-        }
-        legend.calls = Some(grown_calls + r.counts.intersect_calls());
-        let shortened = if a.shorten == Shortening::Off {
-            Vec::new()
+        if let Some(file) = &a.roadmap {
+            let (raw, shortened, map, calls) =
+                through_roadmap(a, file, &scene, oracle.as_ref(), q)?;
+            legend.source = format!("roadmap {}", file.display());
+            legend.calls = Some(calls);
+            roadmap = Some(map);
+            Plan { raw, shortened }
         } else {
-            r.path
-        };
-        roadmap = Some(map);
-        Plan {
-            raw: r.raw_path,
-            shortened,
+            let s = plan_as_solve(a, &scene, oracle.as_ref(), q)?;
+            legend.source = format!(
+                "planned as `solve` plans ({}), {} nodes grown",
+                s.method.map_or("", |m| m.name()),
+                s.nodes
+            );
+            legend.calls = Some(s.counts.intersect_calls());
+            roadmap = s.roadmap;
+            let shortened = match a.shorten {
+                Shortening::Off => Vec::new(),
+                _ => s.shortened,
+            };
+            Plan {
+                raw: s.raw,
+                shortened,
+            }
         }
     };
     let raw_name = if a.path.is_some() {
@@ -364,6 +323,86 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
         roadmap: roadmap.filter(|_| a.show_roadmap),
         legend,
     })
+}
+
+/// The query planned by the planner `solve` uses by default, within `--time` and `--nodes`.
+fn plan_as_solve(
+    a: &PlanArgs,
+    scene: &Scene,
+    oracle: &dyn viaroad::oracle::CollisionOracle,
+    q: &viaroad::scene::Query,
+) -> anyhow::Result<viaroad::solve::Solution> {
+    super::limits::count_in_range(
+        "--nodes",
+        a.nodes,
+        viaroad::limits::MAX_NODES,
+        "trees and roadmaps that large do not fit in memory",
+    )?;
+    let seconds = match a.time {
+        Some(t) => t,
+        None => super::solve_args::default_seconds(&a.scene)?,
+    };
+    let time = super::limits::parse_seconds("--time", seconds)?;
+    let solver = viaroad::solve::Solver {
+        seed: a.seed,
+        nodes: Some(a.nodes),
+        ..viaroad::solve::Solver::default()
+    };
+    let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(Some(time));
+    let s = solver.plan(scene, oracle, (&q.start, &q.goal), &deadline)?;
+    if let Some(w) = &s.warning {
+        eprintln!("warning: {w}");
+    }
+    if !s.is_solved() {
+        anyhow::bail!(
+            "query {} of {} not solved in {seconds} s with {} nodes; try a longer --time, more --nodes or another --seed",
+            a.query,
+            a.scene.display(),
+            a.nodes
+        );
+    }
+    Ok(s)
+}
+
+/// The query answered through the saved roadmap `file`: the raw and shortened paths, the
+/// roadmap and the oracle calls.
+fn through_roadmap(
+    a: &PlanArgs,
+    file: &Path,
+    scene: &Scene,
+    oracle: &dyn viaroad::oracle::CollisionOracle,
+    q: &viaroad::scene::Query,
+) -> anyhow::Result<(Vec<Config>, Vec<Config>, Roadmap, u64)> {
+    let map = Roadmap::load(file, scene.fingerprint())?;
+    let options = QueryOptions {
+        landmarks: 0,
+        shorten: a.shorten != Shortening::Off,
+        exact_shortening_limit: if a.shorten == Shortening::Exact {
+            usize::MAX
+        } else {
+            QueryOptions::default().exact_shortening_limit
+        },
+        grow: true,
+        ..QueryOptions::default()
+    };
+    let planner = QueryPlanner::new(&map, oracle)?.with_options(options);
+    let r = planner.query(&q.start, &q.goal)?;
+    if !r.is_solved() {
+        anyhow::bail!(
+            "query {} of {} not solved ({:?}) through {}",
+            a.query,
+            a.scene.display(),
+            r.outcome,
+            file.display()
+        );
+    }
+    let shortened = match a.shorten {
+        Shortening::Off => Vec::new(),
+        _ => r.path,
+    };
+    let calls = r.counts.intersect_calls();
+    drop(planner);
+    Ok((r.raw_path, shortened, map, calls))
 }
 
 /// Arguments of `export`.

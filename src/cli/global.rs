@@ -1,5 +1,5 @@
 //! `viaroad solve --global cones` and `viaroad solve --oracle minkowski`: a scene's queries
-//! answered by the methods of the project's other seeds (issue 14), printed like `solve`'s.
+//! answered by the methods of the project's other seeds, printed like `solve`'s.
 
 use super::solve_args::SolveArgs;
 use anyhow::Context;

@@ -18,24 +18,24 @@ pub struct LearnArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Do not feed the local method's via points and free segments back into the roadmap.
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub no_feedback: bool,
     /// Nearest neighbours each new node tries (OMPL's PRM: 10).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub neighbours: Option<usize>,
     /// Cheap attempts first: the full local method only towards the nearest N neighbours in
     /// other components, the direct path towards the rest (default: the full method for all).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", help_heading = "Tuning")]
     pub deep_neighbours: Option<usize>,
     /// Where construction draws new nodes: `uniform`, `obstacle`, `gaussian:sigma=0.1`,
     /// `bridge:sigma=0.1`, `gap:sigma=0.1` (the bridge test with exact intervals), or a mix
     /// such as `mix:uniform=1,bridge=1,gaussian=1` (sigma and margin are shares of the space's
     /// extent). Default: the learner's.
-    #[arg(long, value_name = "SPEC")]
+    #[arg(long, value_name = "SPEC", help_heading = "Tuning")]
     pub sampler: Option<Sampler>,
     /// Share of the expansion walks that are directed, RRT-Connect style, when a query grows
     /// the roadmap to join its ends (0: random bounces only). Default: the learner's.
-    #[arg(long, value_name = "SHARE")]
+    #[arg(long, value_name = "SHARE", help_heading = "Tuning")]
     pub directed_share: Option<f64>,
 }
 
@@ -62,7 +62,7 @@ impl LearnArgs {
             .context("learning parameters")?;
         let time = super::limits::optional_seconds("--time", self.time)?;
         if let Some(n) = self.nodes {
-            // decided in issue 16: a count no memory holds is refused, not run until it fails
+            // a count no memory holds is refused, not run until it fails
             super::limits::count_in_range(
                 "--nodes",
                 n,

@@ -1,6 +1,6 @@
 //! Numbers from the command line checked against [`viaroad::limits`] before anything is
 //! allocated or looped over: one clear message instead of a panic, an abort or a run that
-//! never ends (issue 16).
+//! never ends.
 
 use std::time::Duration;
 use viaroad::limits::{duration_from_secs, MAX_SECONDS};

@@ -10,19 +10,19 @@ use viaroad::local::LocalSpec;
 #[derive(Args, Clone, Debug)]
 pub struct LocalArgs {
     /// `straight`, `viapoint`, `sampled`, or a full spec such as
-    /// `viapoint:depth=deepen-reuse,beta=2/3,via=2` (see the README). Default: the via-point
-    /// planner — searching deep for `solve` and `render`, shallow (`viapoint:max=3,calls=1000`)
-    /// for roadmaps.
+    /// `viapoint:depth=deepen-reuse,beta=2/3,via=2` (see docs/planning.md). Default: the
+    /// via-point planner — searching deep for `solve` and `render`, shallow
+    /// (`viapoint:max=3,calls=1000`) for roadmaps.
     #[arg(long)]
     pub local: Option<String>,
     /// Valuation exponent β of V_β(d, l) = d / l^β (via-point planner).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub beta: Option<String>,
     /// Via points tried per borderline: a number or `all`.
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub via: Option<String>,
     /// Recursion limit: a number (fixed), `deepen`, or `deepen-reuse`.
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub depth: Option<String>,
 }
 

@@ -14,13 +14,13 @@ mod limits;
 mod local_args;
 mod output;
 mod path_out;
-mod portfolio;
 mod probe;
 mod query;
 mod render;
 mod serve;
 mod solve;
 mod solve_args;
+mod solver;
 mod view;
 
 use clap::{Parser, Subcommand};
@@ -45,7 +45,7 @@ enum Command {
     Query(query::QueryArgs),
     /// Show what a roadmap file holds.
     Info(info::InfoArgs),
-    /// Solve a scene's queries with the local method alone (no roadmap).
+    /// Plan a scene's queries with no roadmap file: the planners suited to the scene, or one asked for.
     Solve(solve_args::SolveArgs),
     /// Draw a scene, a solved query with the borderlines and via points tried, as SVG.
     Render(render::RenderArgs),
@@ -53,7 +53,8 @@ enum Command {
     Probe(probe::ProbeArgs),
     /// Load a roadmap once and answer queries as JSON lines on stdin/stdout or a TCP port.
     Serve(serve::ServeArgs),
-    /// Benchmarks: the seed's disc experiments (Tables A.1–A.4) and local methods compared.
+    /// Benchmarks: the seed's disc experiments (Tables A.1–A.4), local methods compared, paths
+    /// re-checked, MotionBenchMaker problems, other planners' paths certified.
     #[command(subcommand)]
     Bench(bench::BenchCommand),
     /// Write a scene, its robot and a planned path as a glTF 2.0 binary (.glb).

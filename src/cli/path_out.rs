@@ -1,7 +1,7 @@
 //! `--path-out`: solved paths written as OMPL state files, so that OMPL's tools (and the peer's
 //! `check` mode) can validate or replay them without conversion.
 //!
-//! No stale output is ever left (issue 16): before the first path is written, the files an
+//! No stale output is ever left: before the first path is written, the files an
 //! earlier run may have left under the same name (every numbered `base-K.ext`, and for a
 //! single query the base file) are removed, so the files present afterwards are exactly those this run wrote
 //! — one per solved query — and [`PathOut::finish`] lists them.

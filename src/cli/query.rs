@@ -48,20 +48,20 @@ pub struct QueryArgs {
     /// Path shortening (CHS A.1): `fast` drops corners greedily on paths of more than 32
     /// corners before the visibility graph, `exact` builds the visibility graph over every
     /// corner (shortest, up to m²/2 checks), `off` returns the roadmap path as found.
-    #[arg(long, value_enum, default_value_t = Shortening::Fast)]
+    #[arg(long, value_enum, default_value_t = Shortening::Fast, help_heading = "Tuning")]
     pub shorten: Shortening,
     /// Call budget of the quick via-point try from start to goal before the roadmap
     /// (0: only the direct path is checked).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", help_heading = "Tuning")]
     pub direct_calls: Option<u64>,
     /// Via-point roadmaps: nearest nodes of each end first tried with the direct path alone,
     /// before the via-point planner searches from the nearest (0: the planner from the first
     /// on). Default: all the attach candidates (30).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", help_heading = "Tuning")]
     pub attach_direct: Option<usize>,
     /// Landmarks guiding A* (0: the space's distance alone as the heuristic). Default: 8 for a
     /// batch of queries, 0 for a single one (they cost one graph search each, once).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", help_heading = "Tuning")]
     pub landmarks: Option<usize>,
     /// Seconds each query may take (checked before every oracle call). Where the roadmap
     /// cannot join start and goal, the query grows a copy of it around them (or trees out of
@@ -70,7 +70,7 @@ pub struct QueryArgs {
     pub time: f64,
     /// Do not grow the roadmap for a query it cannot answer: try a deeper local search
     /// instead (and give up sooner).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub no_grow: bool,
     /// Where the roadmap cannot join start and goal, grow two trees out of it for the rest of
     /// the time instead of a copy of it: each end that a free direct path attaches to one of
@@ -78,20 +78,24 @@ pub struct QueryArgs {
     /// tree need only reach the roadmap (whole single-joint stairs, first-hit calls, as
     /// `bench mbm --planner tree`). `auto` (default): on for arms, whose goals in a box or a
     /// cage a grown copy does not reach; `on`; `off`.
-    #[arg(long, value_name = "MODE", value_enum, default_value_t = Trees::Auto)]
+    #[arg(long, value_name = "MODE", value_enum, default_value_t = Trees::Auto, help_heading = "Tuning")]
     pub trees: Trees,
     /// Where trees grow (`--trees`): ask the roadmap alone for MS milliseconds, then ask it
     /// again beside the trees on the thread pool, the first to answer stopping the other,
     /// instead of growing the trees only after attaching failed; `off`: in turn; `auto`
-    /// (default): 2 ms for arms, in turn for every other space. The Panda's cage workcell:
-    /// query p50 92 ms in turn, 16–18 ms racing (`QueryOptions::race`).
-    #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
+    /// (default): 2 ms for arms, in turn for every other space (`QueryOptions::race`).
+    #[arg(
+        long,
+        value_name = "MS|off|auto",
+        default_value = "auto",
+        help_heading = "Tuning"
+    )]
     pub race: HeadStart,
     /// Single-joint staircases only: no straight motions of several joints at once (by
     /// default an arm's query tries them where conservative advancement proves them free —
     /// start to goal, attaching, the trees' extends, shortening, as
     /// `QueryOptions::straight_shortcuts`; the Panda's workcells: half the path length).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub no_straight: bool,
     /// Feed every path found back into the roadmap before the next query (its corners become
     /// nodes, its single-group pieces edges: `Roadmap::with_path`), answering the queries one
@@ -104,7 +108,7 @@ pub struct QueryArgs {
     /// With `--keep-answers`: keep the trees that found an answer too, not only its path
     /// (`Roadmap::with_kept`: every extend's end a node, joined to the node it grew from), so
     /// that the next goal in the same pocket (a cage, a box) attaches to them directly.
-    #[arg(long, requires = "keep_answers")]
+    #[arg(long, requires = "keep_answers", help_heading = "Tuning")]
     pub keep_trees: bool,
     /// Re-check every answer's path (the shortened one it returns) with the scene's
     /// independent checker, outside the query's
@@ -460,7 +464,7 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         Some(base) => Some(super::path_out::PathOut::new(base, queries.len())?),
         None => None,
     };
-    // a status line must not precede an `error:` line (issue 16): a single query's invalid
+    // a status line must not precede an `error:` line: a single query's invalid
     // input is the command's error, so its status comes after the answer
     let loaded = || {
         eprintln!(

@@ -111,7 +111,7 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
         ));
     }
     super::output::save(&a.output, picture.to_svg().as_bytes())?;
-    // status lines after the save: none precedes an `error:` line (issue 16)
+    // status lines after the save: none precedes an `error:` line
     if let Some(line) = status {
         eprintln!("{line}");
     }

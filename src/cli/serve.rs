@@ -1,4 +1,4 @@
-//! `viaroad serve`: load a roadmap once and answer queries as JSON lines (issue 12), on
+//! `viaroad serve`: load a roadmap once and answer queries as JSON lines, on
 //! stdin/stdout or on a local TCP port, several clients at once, queries answered in parallel.
 //!
 //! One request per line: `{"id": 7, "start": [...], "goal": [...], "shorten": "fast"}`
@@ -52,13 +52,13 @@ pub struct ServeArgs {
     /// With `--listen`: a client that has sent no line for this many seconds and waits for no
     /// answer is sent one `error` line and disconnected, freeing its place (default: 60). An
     /// empty line keeps a client connected.
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", help_heading = "Tuning")]
     pub idle_timeout: Option<f64>,
     /// With `--listen`: most clients connected at once (default and at most: 256). When every
     /// place is taken, a new client takes the place of the one idle longest, if that one has
     /// been idle for a second or more (it is sent one `error` line and disconnected);
     /// otherwise the new client is told the server is full and disconnected.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", help_heading = "Tuning")]
     pub max_clients: Option<usize>,
     /// Queries answered at once (default: the machine's cores).
     #[arg(long, value_name = "N")]
@@ -69,20 +69,25 @@ pub struct ServeArgs {
     #[arg(long, value_name = "SECONDS", default_value_t = QueryOptions::DEFAULT_TIME.as_secs_f64())]
     pub time: f64,
     /// Do not grow the roadmap for a query it cannot answer (a deeper local search instead).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub no_grow: bool,
     /// Where the roadmap cannot join start and goal, grow two trees out of it instead of a
     /// copy of it (as `query --trees`): `auto` (default: on for arms), `on`, `off`.
-    #[arg(long, value_name = "MODE", value_enum, default_value_t = super::query::Trees::Auto)]
+    #[arg(long, value_name = "MODE", value_enum, default_value_t = super::query::Trees::Auto, help_heading = "Tuning")]
     pub trees: super::query::Trees,
     /// Where trees grow: the roadmap's head start before it races them (as `query --race`);
     /// `off`: in turn; `auto` (default): 2 ms for arms, in turn otherwise.
-    #[arg(long, value_name = "MS|off|auto", default_value = "auto")]
+    #[arg(
+        long,
+        value_name = "MS|off|auto",
+        default_value = "auto",
+        help_heading = "Tuning"
+    )]
     pub race: super::query::HeadStart,
     /// Single-joint staircases only: no straight motions of several joints at once (by
     /// default an arm's query tries them where conservative advancement proves them free, as
     /// `query --no-straight`).
-    #[arg(long)]
+    #[arg(long, help_heading = "Tuning")]
     pub no_straight: bool,
     /// Re-check every solved answer's path (the shortened one it returns) with the scene's
     /// independent checker, as `query --check` does, outside the query's time (`query_ms`):

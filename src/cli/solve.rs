@@ -1,5 +1,6 @@
-//! `viaroad solve`: a scene's queries answered by the local method alone (or a single-query
-//! planner: `--roadmap`, `--tree`, `--portfolio`, the default for arm scenes).
+//! `viaroad solve`: a scene's queries answered by the portfolio suited to the scene
+//! ([`super::solver`]), or by one planner asked for: the local method alone, a grown roadmap
+//! or two trees.
 
 use super::solve_args::{solve_query, SingleQuery, SolveArgs};
 use anyhow::Context;
@@ -10,7 +11,7 @@ use viaroad::local::{path_length, LocalSpec};
 use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner};
 use viaroad::scene::Scene;
 
-/// Runs `solve`.
+/// Runs `solve`: the mode asked for, else the portfolio suited to the scene.
 pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     if a.roadmap {
         return run_roadmap(a);
@@ -30,12 +31,14 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         Some(o) => anyhow::bail!("--oracle {o}: expected `exact` (the default) or `minkowski`"),
     }
     let scene = Scene::load(&a.scene)?;
-    // an arm is planned by the benchmark's stages unless its local method is asked for: the
-    // via-point planner alone exhausts its depth in the cage, where the trees answer
-    let arm = matches!(scene.robot, viaroad::scene::Robot::Arm(_));
-    if a.portfolio || (arm && !a.local.given()) {
-        return super::portfolio::run_portfolio(&a, &scene);
+    if a.local_alone() {
+        return run_local(&a, &scene);
     }
+    super::solver::run_solver(&a, &scene)
+}
+
+/// `solve --local-only`: each query connected by the local method alone, its path shortened.
+fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
     let spec = a.local.spec_or(LocalSpec::default())?;
     let time = super::limits::optional_seconds("--time", a.time)?;
     let oracle = scene.oracle();
@@ -63,7 +66,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             &q.goal,
         )?;
         let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
-        let s = solve_query(&scene, oracle.as_ref(), &spec, &start, &goal, &deadline)?;
+        let s = solve_query(scene, oracle.as_ref(), &spec, &start, &goal, &deadline)?;
         if let Some(out) = &mut path_out {
             out.write(i, &s.shortened)?;
         }
@@ -215,11 +218,10 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `solve --tree`: each query answered by RRT-Connect with exact single-group extends.
-fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
-    use viaroad::roadmap::tree::{rrt_connect, shortcut, TreeParams};
-    let scene = Scene::load(&a.scene)?;
-    use viaroad::roadmap::tree::Stairs;
+/// The trees' parameters `a` asks for.
+fn tree_params(a: &SolveArgs) -> viaroad::roadmap::tree::TreeParams {
+    use viaroad::roadmap::tree::{Stairs, TreeParams};
+    // centring and coarse extends need partial stairs
     let stairs = a
         .tree_stairs
         .unwrap_or(if a.tree_centre > 0 || a.tree_coarse {
@@ -227,7 +229,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         } else {
             Stairs::Whole
         });
-    let params = TreeParams {
+    TreeParams {
         range: a.tree_range,
         stair: a.tree_stair,
         prefix: a.tree_prefix,
@@ -240,7 +242,14 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         streams: a.tree_streams,
         stairs,
         straight: !a.no_straight,
-    };
+    }
+}
+
+/// `solve --tree`: each query answered by RRT-Connect with exact single-group extends.
+fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
+    use viaroad::roadmap::tree::{rrt_connect, shortcut};
+    let scene = Scene::load(&a.scene)?;
+    let params = tree_params(&a);
     params.validate().map_err(anyhow::Error::msg)?;
     // checked before the path files are prepared (which removes those of earlier runs)
     let SingleQuery {

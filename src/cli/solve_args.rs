@@ -15,8 +15,6 @@ use viaroad::scene::Scene;
 pub struct SolveArgs {
     /// Scene file (.toml or OMPL.app .cfg).
     pub scene: PathBuf,
-    #[command(flatten)]
-    pub local: LocalArgs,
     /// One JSON object per query on stdout.
     #[arg(long)]
     pub json: bool,
@@ -29,31 +27,71 @@ pub struct SolveArgs {
     /// say `certified` or why not (JSON: `"certified"`, `"check_error"`).
     #[arg(long)]
     pub check: bool,
-    /// Seconds each query may take (checked before every oracle call). Default: no limit for
-    /// the local method alone, 60 s with `--roadmap`.
+    /// Seconds each query may take (checked before every oracle call). Default: the `.cfg`
+    /// file's `[benchmark] time_limit`, else 60 s; no limit for the local method alone.
     #[arg(long, value_name = "SECONDS")]
     pub time: Option<f64>,
-    /// Single-query roadmap (OMPL's PRM `solve`): grow a roadmap from start and goal with the
-    /// roadmap's local method (`--local` picks another) until they meet or the time is up,
-    /// then answer through it. Without it the local method alone connects start and goal.
-    #[arg(long, group = "single_query")]
-    pub roadmap: bool,
-    /// Most nodes of the grown roadmap (`--roadmap`) or of both trees (`--tree`; each stage of
-    /// trees with `--portfolio`): a budget that gives the same answer on any machine. With
-    /// `--nodes` and no `--time` there is no time limit.
-    #[arg(long, requires = "single_query")]
+    /// Most nodes of the trees and roadmaps a query grows: a budget that gives the same answer
+    /// on any machine. With `--nodes` and no `--time` there is no time limit.
+    #[arg(long, conflicts_with = "local_only")]
     pub nodes: Option<usize>,
-    /// Single-query trees (OMPL's RRTConnect `solve`): two trees grown from start and goal
-    /// whose extends are staircases of single-group motions, each as far as it is free
-    /// (`roadmap::tree`). Default time 60 s, like `--roadmap`.
-    #[arg(long, group = "single_query")]
+    /// Seed of the trees and roadmaps a query grows.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// The local method alone (the via-point planner unless `--local` names another): no trees,
+    /// no roadmap; it ends at its recursion depth. Implied by `--local`, `--beta`, `--via` and
+    /// `--depth` without `--roadmap`.
+    #[arg(long, group = "mode")]
+    pub local_only: bool,
+    /// A roadmap grown from start and goal alone (OMPL's PRM `solve`) with the roadmap's local
+    /// method (`--local` picks another), answered through once they meet.
+    #[arg(long, group = "mode")]
+    pub roadmap: bool,
+    /// Two trees alone (OMPL's RRTConnect `solve`) whose extends are staircases of
+    /// single-group motions, each as far as it is free.
+    #[arg(long, group = "mode")]
     pub tree: bool,
+    #[command(flatten, next_help_heading = "Local method")]
+    pub local: LocalArgs,
+    /// Answer with a global method instead: `cones`, Brooks's freeways (generalized cones
+    /// searched with A*; planar scenes; incomplete by design, see docs/freeways.md).
+    #[arg(
+        long,
+        value_name = "METHOD",
+        conflicts_with = "mode",
+        help_heading = "Other planners"
+    )]
+    pub global: Option<String>,
+    /// Collision oracle: `minkowski` answers through the C-obstacles of a robot that keeps
+    /// each query's orientation and only translates (se2 scenes whose queries do not turn).
+    #[arg(long, value_name = "ORACLE", conflicts_with_all = ["roadmap", "tree", "global"], help_heading = "Other planners")]
+    pub oracle: Option<String>,
+    /// Keep to single-joint (single-group) staircases: no straight motions of several joints
+    /// at once, neither as the trees' extends nor as shortcuts (as `query --no-straight`).
+    #[arg(long, help_heading = "Tuning")]
+    pub no_straight: bool,
+    /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
+    /// (`--roadmap`; 0: random bounces only). Default: the learner's.
+    #[arg(long, value_name = "SHARE", help_heading = "Tuning")]
+    pub directed_share: Option<f64>,
     /// Longest extend of `--tree`, as a share of the space's extent (OMPL's RRTConnect: 0.2).
-    #[arg(long, value_name = "SHARE", default_value_t = 0.2, requires = "tree")]
+    #[arg(
+        long,
+        value_name = "SHARE",
+        default_value_t = 0.2,
+        requires = "tree",
+        help_heading = "Tuning"
+    )]
     pub tree_range: f64,
     /// Longest stair of a `--tree` extend (one position move, then one turn), as a share of
     /// the extent: shorter stairs follow coupled motions more closely, for more calls.
-    #[arg(long, value_name = "SHARE", default_value_t = 0.01, requires = "tree")]
+    #[arg(
+        long,
+        value_name = "SHARE",
+        default_value_t = 0.01,
+        requires = "tree",
+        help_heading = "Tuning"
+    )]
     pub tree_stair: f64,
     /// How a `--tree` stair finds its free prefix: `intervals` (one interval call), `yesno`
     /// (a yes/no call first, intervals only when blocked) or `first` (one first-collision
@@ -62,70 +100,63 @@ pub struct SolveArgs {
         long,
         value_name = "MODE",
         default_value = "intervals",
-        requires = "tree"
+        requires = "tree",
+        help_heading = "Tuning"
     )]
     pub tree_prefix: viaroad::roadmap::tree::Prefix,
     /// `--tree`: try each extend as one stair first (yes/no), the staircase only when blocked.
-    #[arg(long, requires = "tree")]
+    #[arg(long, requires = "tree", help_heading = "Tuning")]
     pub tree_coarse: bool,
     /// `--tree`: extend the smaller tree each time (`true`) instead of alternating (`false`).
     /// Default: balanced with whole stairs, alternating otherwise.
-    #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", requires = "tree")]
+    #[arg(long, value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", requires = "tree", help_heading = "Tuning")]
     pub tree_balance: Option<bool>,
     /// `--tree`: centring rounds per blocked stair (0: off). A blocked stair moves the node to
     /// the middle of its free chords across the stair (a first-collision call each way per
     /// direction) and is tried again, up to N times: lines a robot up with a funnel (bugtrap).
-    #[arg(long, value_name = "N", default_value_t = 0, requires = "tree")]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 0,
+        requires = "tree",
+        help_heading = "Tuning"
+    )]
     pub tree_centre: usize,
     /// `--tree-centre`: half-angle of the turns a centring round asks about, in turns (at most
     /// 0.45): only free arcs narrower than this are centred.
-    #[arg(long, value_name = "TURNS", default_value_t = viaroad::roadmap::tree::CENTRE_TURN, requires = "tree")]
+    #[arg(long, value_name = "TURNS", default_value_t = viaroad::roadmap::tree::CENTRE_TURN, requires = "tree", help_heading = "Tuning")]
     pub tree_centre_turn: f64,
     /// `--tree`: restart both trees when an attempt has grown this many nodes, each later
     /// attempt with a new random stream and twice the nodes (RRT run times are heavy-tailed;
     /// the first attempt is the run without restarts). Default: no restarts.
-    #[arg(long, value_name = "NODES", requires = "tree")]
+    #[arg(long, value_name = "NODES", requires = "tree", help_heading = "Tuning")]
     pub tree_restart: Option<usize>,
     /// `--tree`: pairs of trees racing from the same ends with different random streams, on
     /// the rayon pool; the first to connect answers (without a time limit: the first in stream
     /// order, the same on any thread count). Default 1.
-    #[arg(long, value_name = "N", default_value_t = 1, requires = "tree")]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1,
+        requires = "tree",
+        help_heading = "Tuning"
+    )]
     pub tree_streams: usize,
     /// `--tree`: how an extend walks its stairs: `whole` (each stair all of it or not at all,
     /// only the extend's end a candidate nearest node: OMPL's extend in steps of one stair),
     /// `prefix` (each DOF group's piece as far as it is free, the first blocked group ends the
     /// extend) or `slide` (a blocked group lets the stair's other groups go on). Default:
     /// `whole`, `prefix` with `--tree-centre` or `--tree-coarse` (which need it).
-    #[arg(long, value_name = "MODE", requires = "tree")]
+    #[arg(long, value_name = "MODE", requires = "tree", help_heading = "Tuning")]
     pub tree_stairs: Option<viaroad::roadmap::tree::Stairs>,
-    /// The stages `viaroad bench mbm` runs, one after the other (`viaroad::portfolio`): the
-    /// direct path, two trees for a fifth of the time (as `--tree`, first-hit prefixes), the
-    /// via-point planner (300 oracle calls), the trees afresh for the rest; the path found
-    /// shortened. The default for arm scenes unless the local method is chosen (`--local`,
-    /// `--beta`, `--via`, `--depth`). Default time 60 s, like `--tree`.
-    #[arg(long, group = "single_query", conflicts_with_all = ["local", "beta", "via", "depth", "global", "oracle"])]
-    pub portfolio: bool,
-    /// Seed of the grown roadmap (`--roadmap`), of the two trees (`--tree`) or of the
-    /// portfolio's trees.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// The portfolio (`--portfolio`, an arm's default) and the trees (`--tree`) keep to
-    /// single-joint staircases: no straight motions of several joints at once, neither as the
-    /// trees' extends nor as shortcuts (as `query --no-straight`).
-    #[arg(long)]
-    pub no_straight: bool,
-    /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
-    /// (`--roadmap`; 0: random bounces only). Default: the learner's.
-    #[arg(long, value_name = "SHARE")]
-    pub directed_share: Option<f64>,
-    /// Answer with a global method instead: `cones`, Brooks's freeways (generalized cones
-    /// searched with A*; planar scenes; incomplete by design, see the README).
-    #[arg(long, value_name = "METHOD", conflicts_with = "roadmap")]
-    pub global: Option<String>,
-    /// Collision oracle: `minkowski` answers through the C-obstacles of a robot that keeps
-    /// each query's orientation and only translates (se2 scenes whose queries do not turn).
-    #[arg(long, value_name = "ORACLE", conflicts_with_all = ["roadmap", "global"])]
-    pub oracle: Option<String>,
+}
+
+impl SolveArgs {
+    /// Whether the local method alone answers: asked for, or implied by naming a local method
+    /// outside `--roadmap` (whose own local method it then is).
+    pub fn local_alone(&self) -> bool {
+        self.local_only || (self.local.given() && !self.roadmap && !self.tree)
+    }
 }
 
 /// One solved query, as printed.
@@ -166,8 +197,8 @@ pub fn solve_query(
     })
 }
 
-/// What every single-query planner of `solve` (`--roadmap`, `--tree`, `--portfolio`) needs
-/// before its first query: the time of each query (60 s by default; none with `--nodes` alone),
+/// What every planner of `solve` but the local method alone needs before its first query: the
+/// time of each query (the `.cfg` file's `time_limit` or 60 s by default; none with `--nodes` alone),
 /// `--nodes` checked (`too_big` says why there is a limit), the scene's checked queries (at least
 /// one), its warnings printed, and the `--path-out` files.
 pub struct SingleQuery {
@@ -184,7 +215,11 @@ impl SingleQuery {
     pub fn prepare(a: &SolveArgs, scene: &Scene, too_big: &str) -> anyhow::Result<SingleQuery> {
         let time = match (a.time, a.nodes) {
             (None, Some(_)) => None,
-            (t, _) => Some(super::limits::parse_seconds("--time", t.unwrap_or(60.0))?),
+            (Some(t), _) => Some(super::limits::parse_seconds("--time", t)?),
+            (None, None) => Some(super::limits::parse_seconds(
+                "[benchmark] time_limit",
+                default_seconds(&a.scene)?,
+            )?),
         };
         if let Some(n) = a.nodes {
             super::limits::count_in_range("--nodes", n, viaroad::limits::MAX_NODES, too_big)?;
@@ -206,4 +241,15 @@ impl SingleQuery {
             path_out,
         })
     }
+}
+
+/// A query's time unless `--time` says otherwise: an OMPL.app problem's own benchmark limit, so
+/// that it is judged on the terms it was published with, else a minute.
+pub fn default_seconds(scene: &std::path::Path) -> anyhow::Result<f64> {
+    // the extension decides as in `Scene::load`
+    let limit = match scene.extension().and_then(|e| e.to_str()) {
+        Some("cfg") => viaroad::scene::ompl_cfg::time_limit(scene)?,
+        _ => None,
+    };
+    Ok(limit.unwrap_or(60.0))
 }

@@ -1,4 +1,4 @@
-//! `viaroad view`: the glTF of `export` in one self-contained HTML page (issue 13).
+//! `viaroad view`: the glTF of `export` in one self-contained HTML page.
 
 use super::export::{export, PlanArgs};
 use clap::Args;

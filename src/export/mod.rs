@@ -1,4 +1,4 @@
-//! Seeing a plan in 3D (issue 13): a scene, its robot and a path as a glTF 2.0 binary, and a
+//! Seeing a plan in 3D: a scene, its robot and a path as a glTF 2.0 binary, and a
 //! self-contained HTML page that plays it.
 //!
 //! | module | concept |

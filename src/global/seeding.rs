@@ -1,4 +1,4 @@
-//! Where a roadmap starts (issue 14, part 2): from nothing, as Overmars and Švestka's learner
+//! Where a roadmap starts: from nothing, as Overmars and Švestka's learner
 //! does, or from a global method's output — the spine points of Brooks's freeways with their
 //! legal orientations ([`super::cones::seeds`]). `viaroad build --seed-from cones` learns one
 //! roadmap from the seeds; `viaroad bench local --seed-from plain cones` compares learning

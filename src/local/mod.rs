@@ -309,8 +309,8 @@ fn goes_straight(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool 
 ///
 /// The same sum as measuring [`direct_pieces`], without building a motion and a corner per
 /// piece ([`Space::group_length`]): shortening measures every pair of corners (`m²` of them),
-/// and those allocations were 7 % of a workcell query (table_pick, 2026-12-03) and still
-/// 0.17 ms of a 1.1 ms shortening in the box with one motion and corner per pair (2026-12-05).
+/// and those allocations were 7 % of a workcell query (table_pick) and still 0.17 ms
+/// of a 1.1 ms shortening in the box with one motion and corner per pair.
 pub fn direct_length(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> f64 {
     // a group's piece starts where `a` is in that group (earlier pieces move other groups)
     groups
@@ -404,7 +404,7 @@ impl KnownPieces {
     /// corners anyway, and a collision the sure test misses is found by the sweep that ends
     /// there. In the Panda's box workcell the sure test found two of three colliding corners at
     /// ~1 µs against 10–25 µs for the full test, and leaving the rest to the sweeps lowered the
-    /// query p50 from 1.26–1.41 to 1.06–1.09 ms (three runs each, the same paths, 2026-12-05).
+    /// query p50 from 1.26–1.41 to 1.06–1.09 ms (three runs each, the same paths).
     fn corner_blocks(
         &mut self,
         oracle: &dyn CollisionOracle,
@@ -427,7 +427,7 @@ impl KnownPieces {
     /// in collision or a piece blocked), without asking the oracle: a shortening's lazy search
     /// sets aside every such pair on its candidate path at once, where it would otherwise
     /// search again after each (in the box's workcell two of three pairs a shortening looked at
-    /// were blocked by a corner already found in collision, 2026-12-05).
+    /// were blocked by a corner already found in collision).
     pub fn blocks(&self, space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool {
         let mut buf = Vec::with_capacity(2 * a.len());
         let mut cur = a.to_vec();

@@ -15,7 +15,7 @@ pub struct Discs {
     /// Centres, `dim` coordinates each, flattened.
     centres: Vec<f64>,
     radii: Vec<f64>,
-    /// The planar case laid out for a vectorised loop (issue 11): blocks of [`LANES`] discs,
+    /// The planar case laid out for a vectorised loop: blocks of [`LANES`] discs,
     /// each block centre xs, centre ys, squared radii; the last block is padded with discs
     /// of squared radius −∞, which no line meets.
     planar: Option<Vec<Block>>,
@@ -100,7 +100,7 @@ fn planar_roots(
 /// [`planar_roots`] with AVX2 intrinsics: four discs per instruction where the default
 /// target has two, and the discs met packed to the front of the buffers by a permutation
 /// looked up from the comparison mask instead of one store per disc (that scalar gather was
-/// half of a call, issue 11). The same IEEE operations lane by lane, in the same order and
+/// half of a call). The same IEEE operations lane by lane, in the same order and
 /// without fused multiply-adds, so the same bits (`planar_avx2_equals_portable` checks it).
 /// `bs` and `es` hold at least `LANES · (blocks.len() + 1)` numbers (a packed store writes
 /// all four lanes).
@@ -430,7 +430,7 @@ impl CollisionOracle for Discs {
     }
 
     /// Analytic: a whole line costs what a segment does, so [`super::Bounded`] need not copy
-    /// the motion to clip it (the answer is the same set either way, issue 11).
+    /// the motion to clip it (the answer is the same set either way).
     fn prefers_unclipped(&self) -> bool {
         true
     }

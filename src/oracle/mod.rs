@@ -88,7 +88,7 @@ impl std::iter::Sum for CallCounts {
 }
 
 /// Reusable scratch space for [`CollisionOracle::intervals_into`]: each thread (each via-point
-/// search) keeps one, so that in steady state an intersect call allocates nothing (issue 11;
+/// search) keeps one, so that in steady state an intersect call allocates nothing (as
 /// proved by `tests/alloc_free.rs`). Oracles may use any buffer; none carries meaning between
 /// calls.
 #[derive(Debug, Default)]
@@ -135,7 +135,7 @@ pub trait CollisionOracle: Send + Sync {
 
     /// Allocation-free twin of [`intervals`](Self::intervals): writes the answer into `out`
     /// (overwriting it) using `ws` for scratch, so that the hot path allocates nothing per
-    /// call in steady state (issue 11). Same contract and same answer as `intervals`. The
+    /// call in steady state. Same contract and same answer as `intervals`. The
     /// default calls `intervals` (and so allocates); the oracles on the hot path override it.
     fn intervals_into(
         &self,

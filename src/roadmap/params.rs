@@ -61,7 +61,7 @@ pub struct LearnParams {
     /// The rest are OS94's random-bounce walks. Random bounces explore around difficult nodes;
     /// directed walks push a component's frontier out (Voronoi bias), meant for a start boxed
     /// in by a narrow passage. 0 (the default): bounces only — on alpha-1.5 (`solve --roadmap
-    /// --time 30`, 3 seeds, 2026-12-01) a share of 0.5 solved no more than 0 did (0 of 3 each),
+    /// --time 30`, 3 seeds) a share of 0.5 solved no more than 0 did (0 of 3 each),
     /// so it stays an option to measure. Learning without a pair ignores it.
     pub directed_share: f64,
 }

@@ -38,7 +38,7 @@ use std::path::{Path, PathBuf};
 pub const MAGIC: [u8; 8] = *b"VIAROADM";
 
 /// The version of the layout written by this build (and the only one it reads). Version 3
-/// stores the local method as a typed [`LocalSpec`] instead of its spec string (issue 11).
+/// stores the local method as a typed [`LocalSpec`] instead of its spec string.
 pub const FORMAT_VERSION: u32 = 3;
 
 /// Bytes before the payload.

@@ -51,8 +51,8 @@ pub const ATTACH_SHARE: u32 = 2;
 
 /// An answer still longer than this many times [`QueryOptions::exact_shortening_limit`]
 /// corners after a greedy pass (a tree answer, or a roadmap answer through kept staircases) is
-/// shortened by greedy passes alone, not by the visibility graph. Since 2026-12-05 for roadmap
-/// answers too: in the cage workcell one of 230 corners took the visibility graph 0.9 s for 18 %
+/// shortened by greedy passes alone, not by the visibility graph. Roadmap answers
+/// too: in the cage workcell one of 230 corners took the visibility graph 0.9 s for 18 %
 /// fewer corners (query p95 0.75–1.09 s → 0.27–0.36 s, length p50 3–4 % longer).
 pub const TREE_SHORTENING_FACTOR: usize = 4;
 
@@ -78,7 +78,7 @@ pub struct QueryOptions {
     /// second-nearest node is cheaper than a search to the nearest that fails (OMPL.app's
     /// Home, query 17: 268 calls failing for the nearest node, 2 for the next; the 50 Home
     /// queries on a 10 000-node roadmap: 0.71× the instructions). 0: the local method from
-    /// the first candidate on, as before 2026-12-02.
+    /// the first candidate on.
     pub attach_direct_candidates: usize,
     /// Try start to goal quickly before using the roadmap ([`Self::direct_calls`]), and with
     /// the full local method where the roadmap cannot join them.
@@ -104,7 +104,7 @@ pub struct QueryOptions {
     /// step (no gain, [`crate::local::shorten::UNCHECKED`]) while the greedy pass does: with
     /// 32 corners for the Panda's 7 joints, the greedy pass cost more than it saved (the box
     /// workcell's query p50 2.5–2.7 → 2.0–2.2 ms with 112, the same lengths; bookshelf_thin
-    /// and the cage within their noise; 2026-12-05). Spaces of one or two groups (Home) keep
+    /// and the cage within their noise). Spaces of one or two groups (Home) keep
     /// 32 corners.
     pub exact_shortening_limit: usize,
     /// Landmarks for A*'s heuristic ([`super::Landmarks`]): the space's distance, or the
@@ -162,7 +162,7 @@ pub struct QueryOptions {
     /// answer stopping the other ([`crate::deadline::race`]), rather than growing the trees
     /// only after attaching failed. In a workcell whose goals the roadmap rarely reaches (the
     /// Panda's cage) attaching costs tens of milliseconds before the trees start: query p50
-    /// 92 → 17 ms with 2 ms (2026-12-05); the head start keeps the quick answers off the pool.
+    /// 92 → 17 ms with 2 ms; the head start keeps the quick answers off the pool.
     /// The trees' path is shortened by greedy shortcut passes
     /// ([`super::tree::shortcut_passes`]). `None` (the default): in turn.
     pub race: Option<Duration>,
@@ -174,7 +174,7 @@ pub struct QueryOptions {
     /// between corners when shortening. The answer then moves several joints
     /// per pair of corners where it cuts across (every pair of corners is one straight motion,
     /// [`crate::local::path_pieces`]). On by default; no effect in other spaces (or with
-    /// continuous joints). The Panda's workcells (2026-12-05, seed 1): half the path length in
+    /// continuous joints). The Panda's workcells (seed 1): half the path length in
     /// six of seven families, and the cage's query p50 13.4 → 1.3 ms (a goal inside attaches
     /// straight to a kept answer's corner where every staircase swings into the bars).
     pub straight_shortcuts: bool,
@@ -1263,7 +1263,7 @@ impl<'a> QueryPlanner<'a> {
             };
             // the visibility graph costs up to m²/2 checks and an A* search per blocked pair:
             // not over what is still hundreds of corners (an answer through kept staircases in
-            // the cage, 2026-12-05: 230 corners, 0.9 s), which greedy passes shorten instead
+            // the cage: 230 corners, 0.9 s), which greedy passes shorten instead
             let path = if corners.len() > self.long_path() {
                 self.greedy_passes(corners, &mut known, &mut result.counts, deadline)?
             } else {

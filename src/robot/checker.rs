@@ -1,4 +1,4 @@
-//! The independent arm checker (issue 10, part 7): parry's `intersection_test` on every
+//! The independent arm checker: parry's `intersection_test` on every
 //! non-exempt link pair and every link–obstacle pair at a configuration, and along a path by
 //! sampling each segment finely.
 //!
@@ -16,7 +16,7 @@
 //! Two safe culls come first: bounding balls, and for mesh parts parry's convex hull of the
 //! mesh (a pair whose hulls are apart is apart, surfaces and solids; primitives are their own
 //! hulls). They change no verdict ([`ArmChecker::without_hulls`] is the reference) and spare
-//! most of the triangle tests near obstacles (23× faster along MBM paths, 2026-12-05).
+//! most of the triangle tests near obstacles (23× faster along MotionBenchMaker's paths).
 //!
 //! Along a path it samples, not certifies: each segment `a → b` is checked at `k/n`,
 //! `n = ⌈‖b − a‖₂ / max_step⌉` — OMPL's `DiscreteMotionValidator` with `max_step` = its

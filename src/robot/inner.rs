@@ -3,8 +3,8 @@
 //! The exact static test ([`super::ArmOracle::collides`]) shows a configuration free only
 //! after every close pair of bodies has been shown apart, and finds a collision only when a
 //! face pair meets: on the Panda in MotionBenchMaker's box a colliding configuration cost
-//! 24–44 µs against 5–10 µs for a free one (`ARM_MOVES=states cargo bench --bench arm`,
-//! 2026-12-05), and shortening asks mostly about corners inside an obstacle. A ball that lies
+//! 24–44 µs against 5–10 µs for a free one (`ARM_MOVES=states cargo bench --bench arm`),
+//! and shortening asks mostly about corners inside an obstacle. A ball that lies
 //! inside a link and reaches into an obstacle's true shape (box, cylinder, sphere: each inside
 //! the polytope that stands for it) proves the collision in a few flops, and two links whose
 //! inner balls overlap collide too. The test only ever answers "collides" where the exact

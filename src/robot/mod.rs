@@ -1,4 +1,4 @@
-//! Robot arms (issue 10): URDF + SRDF models, forward kinematics, collision geometry and an
+//! Robot arms: URDF + SRDF models, forward kinematics, collision geometry and an
 //! independent collision checker.
 //!
 //! The seed names "a robot arm whose links may only move one at a time" as a use where the
@@ -77,7 +77,7 @@ pub enum RobotError {
 }
 
 /// Parses a finite number, refusing magnitudes beyond [`crate::limits::MAX_COORDINATE`]
-/// (issue 16: later products must not overflow).
+/// (later products must not overflow).
 pub(crate) fn parse_number(text: &str) -> Option<f64> {
     let v: f64 = text.trim().parse().ok()?;
     (v.is_finite() && v.abs() <= crate::limits::MAX_COORDINATE).then_some(v)

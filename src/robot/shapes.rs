@@ -322,7 +322,7 @@ pub struct Envelope {
 /// independent checker keeps the mesh). VAMP's UR5 carries a Robotiq gripper base and a
 /// force–torque sensor of 40 112 and 43 473 triangles, a housing and a puck: enveloped by 564
 /// and 636 triangles (gaps 17 and 11 mm), its first 20 problems per family went from 110 to
-/// 133 and 131 solved of 140 at 5 s in two runs (2026-12-05).
+/// 133 and 131 solved of 140 at 5 s in two runs (the *ur5-fetch* results).
 pub fn envelope(mesh: &TriMesh) -> Option<Envelope> {
     if mesh.triangles.len() <= ENVELOPE_ABOVE {
         return None;

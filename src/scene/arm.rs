@@ -1,4 +1,4 @@
-//! Arm scenes (issue 10): a URDF robot's planning group among a MoveIt PlanningScene, as a
+//! Arm scenes: a URDF robot's planning group among a MoveIt PlanningScene, as a
 //! TOML scene of `[space] kind = "arm"`.
 //!
 //! ```toml

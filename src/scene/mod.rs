@@ -132,7 +132,7 @@ pub(crate) fn read_input_text_within(path: &Path, limit: u64) -> Result<String, 
 
 /// Refuses robot and obstacle coordinates beyond [`crate::limits::MAX_COORDINATE`] (and disc
 /// radii beyond it): the oracles square and multiply coordinates, which would overflow into
-/// infinities and NaNs (issue 16). The bounds are checked by [`Space`] itself.
+/// infinities and NaNs. The bounds are checked by [`Space`] itself.
 pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
     let max = crate::limits::MAX_COORDINATE;
     let too_big = |what: String| SceneError::Invalid {
@@ -206,7 +206,7 @@ pub(crate) fn default_name(path: &Path) -> String {
 
 /// Warnings for the scene's SE(3) queries whose quaternion is not of unit length (within
 /// 10⁻⁶): they are normalised, as OMPL's `SO3StateSpace::enforceBounds` does, but a length far
-/// from 1 may be a typo, so it is said rather than corrected silently (issue 16).
+/// from 1 may be a typo, so it is said rather than corrected silently.
 pub(crate) fn quaternion_warnings(scene: &Scene) -> Vec<String> {
     if scene.space.kind() != SpaceKind::Se3 {
         return Vec::new();
@@ -236,7 +236,7 @@ pub enum Robot {
     Polygons(Vec<Polygon>),
     /// A triangle mesh in the body frame (SE(3) scenes); the reference point is the origin.
     Mesh(TriMesh),
-    /// A robot arm's planning group among a MoveIt environment (joint-space scenes, issue 10);
+    /// A robot arm's planning group among a MoveIt environment (joint-space scenes);
     /// the environment lives here, not in [`Scene::obstacles`].
     Arm(Box<arm::ArmRobot>),
     /// Several bodies that move concurrently (SE(2)^k scenes, [`crate::space::bodies`]), in

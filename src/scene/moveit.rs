@@ -1,4 +1,4 @@
-//! MoveIt's own formats (issue 10, part 2): a PlanningScene YAML (the environment: collision
+//! MoveIt's own formats: a PlanningScene YAML (the environment: collision
 //! objects, the robot's state, the allowed-collision matrix) and a MotionPlanRequest YAML (the
 //! query: group, start state, goal joint constraints), as MotionBenchMaker writes them.
 //!

@@ -41,7 +41,7 @@ use std::path::Path;
 /// Loads an OMPL.app problem (see the module documentation).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let text = super::read_input_text(path)?;
-    let problem = Problem::parse(&text, path)?;
+    let problem = Problem::parse(&text, path, "problem")?;
     let mut warnings = Vec::new();
     if let Some(control) = problem.text("control") {
         warnings.push(format!(
@@ -271,14 +271,35 @@ fn read_rows(path: &Path, space: &Space, per_line: usize) -> Result<Vec<Vec<Conf
     Ok(rows)
 }
 
-/// The `[problem]` section: key → (value, line number).
+/// The time OMPL.app's benchmark gives the problem (`[benchmark] time_limit`, seconds), if the
+/// file names a positive one: what `viaroad solve` plans a `.cfg` within unless told otherwise,
+/// so that it is judged on the terms the problem was published with.
+pub fn time_limit(path: &Path) -> Result<Option<f64>, SceneError> {
+    let text = super::read_input_text(path)?;
+    let benchmark = match Problem::parse(&text, path, "benchmark") {
+        Ok(b) => b,
+        Err(SceneError::Parse { message, .. }) if message.starts_with("no [benchmark]") => {
+            return Ok(None)
+        }
+        Err(e) => return Err(e),
+    };
+    match benchmark.optional_number("time_limit")? {
+        Some(t) if t > 0.0 => Ok(Some(t)),
+        Some(t) => Err(benchmark.invalid(format!(
+            "[benchmark] time_limit = {t}: expected a positive number of seconds"
+        ))),
+        None => Ok(None),
+    }
+}
+
+/// One section of the INI file (`[problem]`, `[benchmark]`): key → (value, line number).
 struct Problem<'a> {
     path: &'a Path,
     keys: HashMap<String, (String, usize)>,
 }
 
 impl<'a> Problem<'a> {
-    fn parse(text: &str, path: &'a Path) -> Result<Problem<'a>, SceneError> {
+    fn parse(text: &str, path: &'a Path, wanted: &str) -> Result<Problem<'a>, SceneError> {
         let mut keys = HashMap::new();
         let mut section = String::new();
         let mut seen_problem = false;
@@ -295,16 +316,16 @@ impl<'a> Problem<'a> {
                     });
                 };
                 section = name.trim().to_string();
-                seen_problem |= section == "problem";
+                seen_problem |= section == wanted;
                 continue;
             }
-            if section != "problem" {
+            if section != wanted {
                 continue; // other sections are not ours to judge
             }
             let Some((key, value)) = content.split_once('=') else {
                 return Err(SceneError::Parse {
                     path: path.to_path_buf(),
-                    message: format!("line {}: expected key = value in [problem]", k + 1),
+                    message: format!("line {}: expected key = value in [{wanted}]", k + 1),
                 });
             };
             keys.insert(key.trim().to_string(), (value.trim().to_string(), k + 1));
@@ -312,7 +333,10 @@ impl<'a> Problem<'a> {
         if !seen_problem {
             return Err(SceneError::Parse {
                 path: path.to_path_buf(),
-                message: "no [problem] section: not an OMPL.app problem".into(),
+                message: match wanted {
+                    "problem" => "no [problem] section: not an OMPL.app problem".into(),
+                    _ => format!("no [{wanted}] section"),
+                },
             });
         }
         Ok(Problem { path, keys })

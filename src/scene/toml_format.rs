@@ -688,7 +688,7 @@ impl Reader<'_> {
         let v = self.points::<2>(what, "polygon vertex", &p.vertices)?;
         let vertices: Vec<Point2<f64>> = v.iter().map(|[x, y]| Point2::new(*x, *y)).collect();
         // crossing edges first: a bow tie has zero signed area, and "needs a positive area"
-        // would not say what is wrong with it (issue 16)
+        // would not say what is wrong with it
         // (vertices all on one line have no area in any sense: that message stays theirs)
         let spread = vertices.windows(2).skip(1).any(|w| {
             let (a, b) = (w[0] - vertices[0], w[1] - vertices[0]);

@@ -1,4 +1,4 @@
-//! The joint space of a robot arm's planning group (issue 10).
+//! The joint space of a robot arm's planning group.
 //!
 //! A configuration is the group's joint values in group order, one number per joint. Joint
 //! limits are the bounds (outside them counts as obstacle, as for R^n). Every joint is a DOF

@@ -23,7 +23,7 @@ use std::f64::consts::{PI, TAU};
 use std::ops::Range;
 
 /// Appends a configuration's few numbers one by one: for vectors this short a call of the
-/// library's `memmove` cost more than the copy itself (issue 11's profile).
+/// library's `memmove` cost more than the copy itself (perf of `bench discs`).
 #[inline]
 pub fn extend_small(dst: &mut Vec<f64>, src: &[f64]) {
     dst.reserve(src.len());
@@ -44,7 +44,7 @@ pub enum SpaceKind {
     Se2,
     /// SE(3): `[x, y, z, qx, qy, qz, qw]`, a unit quaternion in OMPL's order.
     Se3,
-    /// The joint values of an arm's planning group, in group order (issue 10, see
+    /// The joint values of an arm's planning group, in group order (see
     /// [`joints`]): one DOF group per joint, because moving one joint turns the distal part
     /// rigidly about a fixed axis (CHS §1.5, §2.3.2).
     Joints {
@@ -241,7 +241,7 @@ impl Space {
                     short::num(*u)
                 )));
             }
-            // decided in issue 16: a flat coordinate leaves no room beside a motion for the
+            // a flat coordinate leaves no room beside a motion for the
             // via points, and every motion in the flat space runs into every obstacle on it
             if l == u {
                 return Err(SpaceError::Bounds(format!(
@@ -250,7 +250,7 @@ impl Space {
                     short::num(*l)
                 )));
             }
-            // beyond this, widths, distances and their squares overflow (issue 16)
+            // beyond this, widths, distances and their squares overflow
             let max = crate::limits::MAX_COORDINATE;
             if l.abs() > max || u.abs() > max {
                 return Err(SpaceError::Bounds(format!(
@@ -609,7 +609,7 @@ impl Space {
     }
 
     /// Allocation-free twin of [`group_motion`](Self::group_motion): overwrites `out`,
-    /// reusing its buffers (the via-point search keeps one motion per group, issue 11).
+    /// reusing its buffers (the via-point search keeps one motion per group).
     pub fn group_motion_into(&self, a: &[f64], z: &[f64], group: &Group, out: &mut Motion) {
         match group.kind {
             GroupKind::Linear => {

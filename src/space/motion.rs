@@ -55,7 +55,7 @@ pub struct Motion {
 }
 
 /// A segment of no coordinates: a slot to be overwritten by the `*_into` builders of
-/// [`Space`](super::Space) (the via-point search keeps such slots, issue 11).
+/// [`Space`](super::Space) (the via-point search keeps such slots).
 impl Default for Motion {
     fn default() -> Self {
         Motion::segment(Vec::new(), Change::Linear(Vec::new()))
@@ -102,7 +102,7 @@ impl Motion {
     }
 
     /// Overwrites `self` with `other`, keeping `self`'s buffers where the kinds of change
-    /// agree (the allocation-free hot path, issue 11).
+    /// agree (the allocation-free hot path).
     pub fn copy_from(&mut self, other: &Motion) {
         self.origin.clear();
         extend_small(&mut self.origin, &other.origin);

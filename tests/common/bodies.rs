@@ -1,10 +1,10 @@
 //! The independent validity check for paths of several bodies in the plane (SE(2)^k): the
-//! library's checker (`viaroad::bench::validity::bodies`, parry polygons pairwise, body–obstacle
+//! library's checker (`viaroad::checker::bodies`, parry polygons pairwise, body–obstacle
 //! and body–body, by conservative advancement along every motion; no code shared with the exact
 //! oracle), with the panicking constructor tests want.
 #![allow(dead_code)]
 
-use viaroad::bench::validity::bodies;
+use viaroad::checker::bodies;
 use viaroad::scene::Scene;
 
 pub struct BodiesChecker(bodies::BodiesChecker);

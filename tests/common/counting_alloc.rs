@@ -1,4 +1,4 @@
-//! A counting global allocator for the allocation-free tests (issue 11): it counts the
+//! A counting global allocator for the allocation-free tests: it counts the
 //! allocations of the current thread, so other test threads do not disturb a measurement.
 //! A test binary installs it with
 //! `#[global_allocator] static GLOBAL: counting_alloc::Counting = counting_alloc::Counting;`.

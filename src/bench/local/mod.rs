@@ -16,7 +16,7 @@
 //! mixtures) are compared the same way: `--samplers A B C` crosses every method with every
 //! sampler, and the label of a run with a non-default sampler ends in ` @SPEC`.
 //!
-//! **Seedings** ([`crate::global::Seeding`], issue 14) too: `--seed-from plain cones` crosses
+//! **Seedings** ([`crate::global::Seeding`]) too: `--seed-from plain cones` crosses
 //! every method and sampler with a roadmap learnt from nothing and one learnt from the seed
 //! roadmap of Brooks's freeways (label ` from cones`). A seeded run builds its freeways and
 //! checks its seeds first; that time and those oracle calls count as learning (every stage's

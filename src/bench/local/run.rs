@@ -78,7 +78,7 @@ pub struct StageRecord {
     pub eval_seconds: f64,
 }
 
-/// The seed roadmap a seeded run started from ([`crate::global::Seeding`], issue 14).
+/// The seed roadmap a seeded run started from ([`crate::global::Seeding`]).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SeedRecord {
     /// Freeways (generalized cones) the seeds came from.

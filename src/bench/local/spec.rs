@@ -178,7 +178,7 @@ mod spec_text {
 /// One benchmarked method: a local method, whether what it discovers is fed back into the
 /// roadmap ([`crate::roadmap::LearnParams::feedback`], CHS §1.6), where construction draws
 /// its nodes ([`crate::roadmap::LearnParams::sampler`]) and what the roadmap starts from
-/// ([`Seeding`]: nothing, or the freeways of Brooks's cones, issue 14): samplers and seedings
+/// ([`Seeding`]: nothing, or the freeways of Brooks's cones): samplers and seedings
 /// are compared like local methods, inside the same learner on the same queries.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Method {

@@ -53,7 +53,7 @@ pub struct Crossing<'a> {
 }
 
 /// Reusable buffers for [`borderlines_into`]: the motions are slots overwritten round after
-/// round, so that erecting borderlines allocates nothing in steady state (issue 11).
+/// round, so that erecting borderlines allocates nothing in steady state.
 #[derive(Debug, Default)]
 pub struct Lines {
     /// Motion slots and the group each one dodges in; the first [`Lines::len`] are current.
@@ -224,7 +224,7 @@ fn sidestep_lines(
 /// motion and base point: rounds after the first hold only the blocked group's rotated bases
 /// (or nothing for random directions, an angle, or a plane whose one perpendicular has no
 /// rotation), so the search can mark a node's rounds exhausted without building the blocked
-/// motion and erecting nothing (issue 11: in the disc experiment two in five calls of
+/// motion and erecting nothing (in the disc experiment two in five calls of
 /// `extend_vias` were such an empty round). `false` means "ask [`borderlines_into`]".
 pub fn round_is_empty(
     groups: &[Group],

@@ -12,7 +12,7 @@ use crate::space::extend_small;
 use rand::Rng;
 use rand_distr_free::standard_normal;
 
-/// Reusable buffers for [`perpendicular_into`], kept in the search (issue 11).
+/// Reusable buffers for [`perpendicular_into`], kept in the search.
 #[derive(Debug, Default)]
 pub struct DirScratch {
     axes: Vec<usize>,

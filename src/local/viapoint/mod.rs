@@ -57,7 +57,7 @@ impl LocalMethod for ViaPoint {
         deadline: &Deadline,
     ) -> Result<Connection, OracleError> {
         // the groups and the search's buffers are kept per thread between connections, so
-        // that a search in steady state allocates nothing but its answer (issue 11)
+        // that a search in steady state allocates nothing but its answer
         let (mut groups, buffers) = SCRATCH.with(|c| c.take());
         space.groups_into(self.options.split_axes, &mut groups);
         let o = &self.options;

@@ -246,7 +246,7 @@ impl<'a> Learner<'a> {
 
     /// [`learn_in_stages`](Self::learn_in_stages) starting from `base` (copied with its
     /// indices, as in [`learn_from`](Self::learn_from)) when one is given: `bench local
-    /// --seed-from cones` grows the seed roadmap of Brooks's freeways in stages (issue 14).
+    /// --seed-from cones` grows the seed roadmap of Brooks's freeways in stages.
     /// The stages count the copied nodes; a stage not above the base's node count is reached
     /// at once, without a round.
     #[allow(clippy::too_many_arguments)]
@@ -286,7 +286,7 @@ impl<'a> Learner<'a> {
 impl Learner<'_> {
     /// [`learn_within`](Self::learn_within) starting from `base` instead of nothing: its nodes
     /// and edges are copied with their indices and learning continues until the budget (which
-    /// counts the copied nodes too). For roadmaps seeded by a global method (issue 14: the
+    /// counts the copied nodes too). For roadmaps seeded by a global method (the
     /// spine points of Brooks's freeways, `build --seed-from cones`).
     pub fn learn_from(
         &self,

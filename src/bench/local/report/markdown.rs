@@ -135,7 +135,7 @@ impl Report {
         self.seeding_table(o, s);
     }
 
-    /// What the cone seeds are worth (issue 14): methods that differ only in seeding, side
+    /// What the cone seeds are worth: methods that differ only in seeding, side
     /// by side.
     fn seeding_table(&self, o: &mut String, s: &SceneReport) {
         let pct = 100.0 * self.plan.target;
@@ -145,7 +145,7 @@ impl Report {
         }
         let _ = writeln!(
             o,
-            "\nWhat the seeds are worth (issue 14): the same method learnt from nothing and from the seed roadmap, medians; learning time and calls of a seeded run include building and checking its seeds:\n"
+            "\nWhat the seeds are worth: the same method learnt from nothing and from the seed roadmap, medians; learning time and calls of a seeded run include building and checking its seeds:\n"
         );
         let _ = writeln!(
             o,
