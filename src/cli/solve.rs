@@ -354,7 +354,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
 }
 
 /// The independent checker's verdict on a raw path and its shortened version.
-fn check_both(
+pub(super) fn check_both(
     checker: &viaroad::bench::validity::Checker,
     raw: &[viaroad::space::Config],
     shortened: &[viaroad::space::Config],
@@ -368,7 +368,7 @@ fn check_both(
 }
 
 /// `--check`'s verdict as the end of a line of text.
-fn verdict_text(verdict: Option<&Result<(), String>>) -> String {
+pub(super) fn verdict_text(verdict: Option<&Result<(), String>>) -> String {
     match verdict {
         None => String::new(),
         Some(Ok(())) => ", certified".into(),

@@ -23,8 +23,8 @@ pub struct SolveArgs {
     #[arg(long, value_name = "FILE")]
     pub path_out: Option<PathBuf>,
     /// Re-check every solved path, raw and shortened, with the scene's independent checker
-    /// (as `query --check`), outside the query's time: the local method alone and `--roadmap`
-    /// say `certified` or why not (JSON: `"certified"`, `"check_error"`).
+    /// (as `query --check`), outside the query's time: each solved query says `certified` or
+    /// why not (JSON: `"certified"`, `"check_error"`); not with `--tree`.
     #[arg(long)]
     pub check: bool,
     /// Seconds each query may take (checked before every oracle call). Default: the `.cfg`
