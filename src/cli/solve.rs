@@ -49,7 +49,7 @@ fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     let groups = spec.build().groups(&scene.space);
-    let checker = super::query::independent_checker(&scene, a.check)?;
+    let checker = super::query::independent_checker(scene, a.check)?;
     let mut path_out = match &a.path_out {
         Some(base) => Some(super::path_out::PathOut::new(base, scene.queries.len())?),
         None => None,

@@ -170,7 +170,9 @@ impl PlanarBodies {
         };
         let t = if t.is_finite() { t } else { 0.0 };
         let (x, y) = (d0[0] + t * dm[0], d0[1] + t * dm[1]);
-        !(x.hypot(y) > reach)
+        // a NaN distance may meet: only a sure miss skips the pair
+        let d = x.hypot(y);
+        d <= reach || d.is_nan()
     }
 
     /// The parts a motion asks: each as (oracle, motion of one robot), in a fixed order.

@@ -403,6 +403,7 @@ mod tests {
             group: 0,
             base: &base,
         };
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
         let plain = ViaPointOptions {
             split_axes: true,
