@@ -420,7 +420,9 @@ mod tests {
             &space, &groups, &stepping, &crossing, 0, &mut rng, &mut lines,
         );
         assert_eq!(lines.len(), 3);
-        for (sign, (m, g)) in [1.0, -1.0].iter().zip(&lines.as_slice()[1..]) {
+        // the sidesteps come first, then the line along y through the base point
+        assert_eq!(lines.as_slice()[2].0.origin, vec![4.0, 5.0]);
+        for (sign, (m, g)) in [1.0, -1.0].iter().zip(&lines.as_slice()[..2]) {
             // stepped by a quarter of the blocked motion's length (8) in y, running along x
             assert_eq!(*g, 0);
             assert_eq!(m.origin, vec![4.0, 5.0 + sign * 2.0]);
