@@ -281,6 +281,18 @@ impl Solver {
         Ok(s)
     }
 
+    /// The grown roadmap alone (what [`Self::plan`] races against the trees): for callers that
+    /// want the roadmap itself, as `view --show-roadmap` draws it.
+    pub fn plan_by_roadmap(
+        &self,
+        scene: &Scene,
+        oracle: &dyn CollisionOracle,
+        ends: (&Config, &Config),
+        deadline: &Deadline,
+    ) -> Result<Solution, SolveError> {
+        self.grown_roadmap(scene, oracle, ends, deadline, deadline)
+    }
+
     /// A roadmap grown from start and goal until they share a component (OMPL's PRM `solve`),
     /// searching until `search`, the path through it shortened until `whole`.
     fn grown_roadmap(

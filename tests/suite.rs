@@ -46,6 +46,7 @@ mod minkowski;
 mod oracle_polygons;
 mod oracle_polyhedra;
 mod roadmap_learn;
+mod roadmap_merge;
 mod roadmap_nn;
 mod roadmap_persist;
 mod roadmap_query;

@@ -151,6 +151,9 @@ pub(super) fn load_moveit(
     request: &Bound<'_, PyAny>,
 ) -> PyResult<Scene> {
     let (robot, scene, request) = (file_path(robot)?, file_path(scene)?, file_path(request)?);
+    let absolute = |p: &std::path::PathBuf| std::path::absolute(p).unwrap_or_else(|_| p.clone());
+    let origin =
+        super::merge::SceneOrigin::MoveIt(absolute(&robot), absolute(&scene), absolute(&request));
     let loaded = py
         .detach(|| {
             let arm = viaroad::bench::mbm::load_robot(&robot).map_err(|e| one_line(&e))?;
@@ -168,6 +171,7 @@ pub(super) fn load_moveit(
         data: Arc::new(SceneData {
             scene: loaded,
             oracle,
+            origin,
         }),
     })
 }

@@ -26,6 +26,7 @@ use viaroad::space::Config;
 
 mod certify;
 mod interrupt;
+mod merge;
 use interrupt::{interruptible, interruptible_with};
 
 create_exception!(
@@ -87,6 +88,8 @@ fn one_line(e: &(dyn std::error::Error + 'static)) -> String {
 struct SceneData {
     scene: RustScene,
     oracle: Box<dyn CollisionOracle>,
+    /// How to load the scene again, for pickling ([`merge::SceneOrigin`]).
+    origin: merge::SceneOrigin,
 }
 
 /// A configuration from any sequence of numbers or a 1-d array.
@@ -229,8 +232,18 @@ impl Scene {
         }
         let oracle = scene.oracle();
         Ok(Scene {
-            data: Arc::new(SceneData { scene, oracle }),
+            data: Arc::new(SceneData {
+                scene,
+                oracle,
+                origin: merge::SceneOrigin::File(std::path::absolute(&path).unwrap_or(path)),
+            }),
         })
+    }
+
+    /// Pickles as its file: loading it again (the same absolute path must hold the same scene
+    /// where it is unpickled; a scene of `load_moveit` names its three files).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        merge::reduce_scene(py, &self.data.origin)
     }
 
     /// The scene's name.
@@ -620,8 +633,13 @@ impl Roadmap {
     /// round with a dict (`rounds`, `nodes`, `edges`, `components`, `seconds`) on the calling
     /// thread; an exception it raises, or Ctrl-C, stops learning and is raised here. The
     /// interpreter is released while learning.
+    ///
+    /// `shard=(i, n)` learns shard `i` of `n` (1 ≤ i ≤ n) of a roadmap learnt apart and joined
+    /// by `Roadmap.merge`, as `viaroad build --shard I/N`: its own random streams, derived from
+    /// `seed`, `i` and `n`, and its share of `nodes` (`time` is the shard's own).
     #[staticmethod]
-    #[pyo3(signature = (scene, *, time = None, nodes = None, seed = 1, local = None, progress = None))]
+    #[pyo3(signature = (scene, *, time = None, nodes = None, seed = 1, local = None, progress = None, shard = None))]
+    #[allow(clippy::too_many_arguments)]
     fn build(
         py: Python<'_>,
         scene: &Scene,
@@ -630,7 +648,12 @@ impl Roadmap {
         seed: u64,
         local: Option<&str>,
         progress: Option<Py<PyAny>>,
+        shard: Option<(u64, u64)>,
     ) -> PyResult<Roadmap> {
+        let shard = shard
+            .map(|(i, n)| viaroad::roadmap::Shard::new(i, n))
+            .transpose()
+            .map_err(|e| LearnError::new_err(e.to_string()))?;
         let spec: LocalSpec = match local {
             Some(s) => s
                 .parse::<LocalSpec>()
@@ -684,17 +707,19 @@ impl Roadmap {
             let method = spec.build();
             let learner = Learner::for_scene(&data.scene, data.oracle.as_ref(), method.as_ref())
                 .with_attempt_cap(budget.time.map(Learner::attempt_cap_for));
-            learner.learn_within(
-                &LearnParams::default(),
-                &budget,
-                seed,
-                &watch.deadline(),
-                &mut |p: &Progress| {
-                    if wants_progress {
-                        watch.send(p.clone());
-                    }
-                },
-            )
+            let mut on_round = |p: &Progress| {
+                if wants_progress {
+                    watch.send(p.clone());
+                }
+            };
+            let params = LearnParams::default();
+            let deadline = watch.deadline();
+            match shard {
+                None => learner.learn_within(&params, &budget, seed, &deadline, &mut on_round),
+                Some(shard) => {
+                    learner.learn_shard(&params, &budget, (seed, shard), &deadline, &mut on_round)
+                }
+            }
         })?;
         let learnt = learnt.map_err(|e| LearnError::new_err(one_line(&e)))?;
         Ok(Roadmap {
@@ -716,6 +741,107 @@ impl Roadmap {
             scene: scene.data.clone(),
             roadmap: Arc::new(roadmap),
         })
+    }
+
+    /// Merges roadmaps of `scene` learnt apart (shards, other merges) into one, as `viaroad
+    /// merge`: the union of their nodes and edges, then connections across parts with the
+    /// parts' local method. The same parts give the same roadmap in any order. `into`, if
+    /// given, is a base that keeps its node indices (a deployed roadmap grown by parts learnt
+    /// later). `time` stops connecting after that many seconds (not reproducible). Parts of
+    /// another scene or local method raise `RoadmapError`. Releases the interpreter; Ctrl-C
+    /// stops the connecting and keeps what is joined.
+    #[staticmethod]
+    #[pyo3(signature = (parts, scene, *, time = None, into = None))]
+    fn merge(
+        py: Python<'_>,
+        parts: Vec<PyRef<'_, Roadmap>>,
+        scene: &Scene,
+        time: Option<f64>,
+        into: Option<PyRef<'_, Roadmap>>,
+    ) -> PyResult<Roadmap> {
+        let parts: Vec<Arc<RustRoadmap>> = parts.iter().map(|p| p.roadmap.clone()).collect();
+        let base = into.map(|b| b.roadmap.clone());
+        let merged = merge::merge(py, &scene.data, base, parts, time)?;
+        Ok(Roadmap {
+            scene: scene.data.clone(),
+            roadmap: Arc::new(merged),
+        })
+    }
+
+    /// The roadmap file's bytes (what `save` writes).
+    fn to_bytes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyBytes>> {
+        let bytes = py
+            .detach(|| self.roadmap.to_bytes())
+            .map_err(|e| RoadmapError::new_err(one_line(&e)))?;
+        Ok(pyo3::types::PyBytes::new(py, &bytes))
+    }
+
+    /// A roadmap from a file's bytes, checked like `load` (format, checksums, the scene).
+    #[staticmethod]
+    fn from_bytes(py: Python<'_>, data: &[u8], scene: &Scene) -> PyResult<Roadmap> {
+        let fp = scene.data.scene.fingerprint();
+        let roadmap = py
+            .detach(|| RustRoadmap::from_bytes(data, fp))
+            .map_err(|e| RoadmapError::new_err(one_line(&e)))?;
+        Ok(Roadmap {
+            scene: scene.data.clone(),
+            roadmap: Arc::new(roadmap),
+        })
+    }
+
+    /// Pickles through its bytes and its scene (which pickles as its file), so that Ray and
+    /// `multiprocessing` can ship roadmaps.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let bytes = self.to_bytes(py)?;
+        let scene = Scene {
+            data: self.scene.clone(),
+        };
+        let rebuild = py.import("viaroad")?.getattr("_roadmap_from_bytes")?;
+        PyTuple::new(
+            py,
+            [
+                rebuild,
+                PyTuple::new(py, [bytes.into_any(), Bound::new(py, scene)?.into_any()])?.into_any(),
+            ],
+        )
+    }
+
+    /// A digest of the roadmap's content (equal roadmaps, equal digests): how merges order
+    /// their parts.
+    fn digest(&self, py: Python<'_>) -> PyResult<u64> {
+        py.detach(|| self.roadmap.digest())
+            .map_err(|e| RoadmapError::new_err(one_line(&e)))
+    }
+
+    /// The nodes, an `(n, dof)` array in index order.
+    fn nodes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let dof = self.roadmap.dim();
+        PyArray1::from_slice(py, self.roadmap.coords()).reshape([self.roadmap.node_count(), dof])
+    }
+
+    /// The edges' end nodes, an `(m, 2)` array of node indices.
+    fn edge_ends<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u32>>> {
+        let ends: Vec<u32> = self
+            .roadmap
+            .edges()
+            .iter()
+            .flat_map(|e| [e.a, e.b])
+            .collect();
+        PyArray1::from_vec(py, ends).reshape([self.roadmap.edge_count(), 2])
+    }
+
+    /// Edge `i`'s path from its first end to its second, corners included, `(k, dof)`; every
+    /// consecutive pair is one straight motion of the local method's DOF groups.
+    fn edge_path<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let Some(e) = self.roadmap.edges().get(i) else {
+            return Err(PyValueError::new_err(format!(
+                "edge {i} does not exist: the roadmap has {} edges",
+                self.roadmap.edge_count()
+            )));
+        };
+        let path = self.roadmap.edge_path(i, e.a);
+        let k = path.len();
+        PyArray1::from_vec(py, path.concat()).reshape([k, self.roadmap.dim()])
     }
 
     /// Saves the roadmap (atomically: a failed save keeps the previous file).

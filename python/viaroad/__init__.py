@@ -26,6 +26,23 @@ from ._viaroad import (
     __version__,
 )
 
+
+
+def _scene_from_file(path):
+    """Unpickles a `Scene`: loads its file again."""
+    return Scene.load(path)
+
+
+def _scene_from_moveit(robot, scene, request):
+    """Unpickles a `Scene` of `Scene.load_moveit`: loads its three files again."""
+    return Scene.load_moveit(robot, scene, request)
+
+
+def _roadmap_from_bytes(data, scene):
+    """Unpickles a `Roadmap`: its file's bytes, checked against its scene."""
+    return Roadmap.from_bytes(data, scene)
+
+
 __all__ = [
     "Scene",
     "Roadmap",

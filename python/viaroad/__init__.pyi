@@ -91,10 +91,36 @@ class Roadmap:
         seed: int = 1,
         local: Optional[str] = None,
         progress: Optional[Callable[[dict], None]] = None,
+        shard: Optional[tuple[int, int]] = None,
     ) -> "Roadmap":
         """Learns a roadmap until `nodes` nodes (at most 10 000 000) or `time` seconds (1000 nodes
         if neither); releases the GIL; `LearnError`. `progress` runs on the calling thread; its
-        exception, or Ctrl-C, stops learning."""
+        exception, or Ctrl-C, stops learning. `shard=(i, n)` (1 <= i <= n) learns shard i of n:
+        its own random streams and its share of `nodes`, for `Roadmap.merge`."""
+    @staticmethod
+    def merge(
+        parts: Sequence["Roadmap"],
+        scene: Scene,
+        *,
+        time: Optional[float] = None,
+        into: Optional["Roadmap"] = None,
+    ) -> "Roadmap":
+        """Joins roadmaps of `scene` learnt apart: their union, then connections across parts.
+        The same parts give the same roadmap in any order; `into` keeps its node indices.
+        `RoadmapError` for a part of another scene or local method. Releases the GIL."""
+    @staticmethod
+    def from_bytes(data: bytes, scene: Scene) -> "Roadmap":
+        """A roadmap from a file's bytes, checked like `load`; `RoadmapError`."""
+    def to_bytes(self) -> bytes:
+        """The roadmap file's bytes; a `Roadmap` pickles through them (and its scene's path)."""
+    def digest(self) -> int:
+        """A digest of the content: equal roadmaps, equal digests."""
+    def nodes(self) -> npt.NDArray[np.float64]:
+        """The nodes, (n, dof), in index order."""
+    def edge_ends(self) -> npt.NDArray[np.uint32]:
+        """The edges' end nodes, (m, 2)."""
+    def edge_path(self, i: int) -> npt.NDArray[np.float64]:
+        """Edge i's path from its first end to its second, corners included, (k, dof)."""
     @staticmethod
     def load(path: PathLike, scene: Scene) -> "Roadmap":
         """Reads a roadmap file learnt for `scene`; `RoadmapError`."""

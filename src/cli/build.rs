@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use viaroad::deadline::Deadline;
 use viaroad::global::Seeding;
 use viaroad::local::LocalSpec;
-use viaroad::roadmap::{Learner, Learnt, Progress};
+use viaroad::roadmap::{Learner, Learnt, Progress, Shard};
 use viaroad::scene::Scene;
 
 /// Arguments of `build`.
@@ -28,14 +28,30 @@ pub struct BuildArgs {
     /// the node budget, `cones:nodes=N` at most N), or `plain` (from nothing, the default).
     #[arg(long, value_name = "SEEDING", help_heading = "Tuning")]
     pub seed_from: Option<viaroad::global::Seeding>,
+    /// Learn shard I of N (1 ≤ I ≤ N) of a roadmap learnt apart and joined by `viaroad merge`:
+    /// the shard draws from its own random streams, derived from --seed, I and N, and learns
+    /// its share of --nodes (a --time budget is each shard's own).
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<Shard>,
 }
 
-/// Learns a roadmap of `scene` with a progress bar; `what` names it on the bar.
+/// Learns a roadmap of `scene` with a progress bar.
 pub fn learn(
     scene: &Scene,
     local: &LocalArgs,
     learn: &LearnArgs,
     default_nodes: usize,
+) -> anyhow::Result<Learnt> {
+    learn_part(scene, local, learn, default_nodes, None)
+}
+
+/// [`learn`], or one shard of it.
+fn learn_part(
+    scene: &Scene,
+    local: &LocalArgs,
+    learn: &LearnArgs,
+    default_nodes: usize,
+    shard: Option<Shard>,
 ) -> anyhow::Result<Learnt> {
     let spec = local.spec_or(LocalSpec::roadmap_default())?;
     if matches!(&spec, LocalSpec::ViaPoint(o) if o.sidestep.is_some()) {
@@ -51,28 +67,31 @@ pub fn learn(
     let learner = Learner::for_scene(scene, oracle.as_ref(), method.as_ref())
         .with_attempt_cap(budget.time.map(Learner::attempt_cap_for));
     let bar = match budget.nodes {
-        Some(n) => super::progress_bar(n as u64, "nodes"),
+        Some(n) => super::progress_bar(shard.map_or(n, |s| s.nodes(n)) as u64, "nodes"),
         None => super::progress_bar(budget.time.map_or(0, |t| t.as_secs().max(1)), "seconds"),
     };
     let by_nodes = budget.nodes.is_some();
     // the time budget holds inside every connection attempt; Ctrl-C stops learning the same way
     let deadline = super::interrupt::on_ctrl_c(Deadline::none());
-    let learnt = learner
-        .learn_within(
+    let mut on_progress = |p: &Progress| {
+        if by_nodes {
+            bar.set_position(p.nodes as u64);
+        } else {
+            bar.set_position(p.elapsed.as_secs());
+        }
+        bar.set_message(format!("{} components", p.components));
+    };
+    let learnt = match shard {
+        None => learner.learn_within(&params, &budget, learn.seed, &deadline, &mut on_progress),
+        Some(shard) => learner.learn_shard(
             &params,
             &budget,
-            learn.seed,
+            (learn.seed, shard),
             &deadline,
-            &mut |p: &Progress| {
-                if by_nodes {
-                    bar.set_position(p.nodes as u64);
-                } else {
-                    bar.set_position(p.elapsed.as_secs());
-                }
-                bar.set_message(format!("{} components", p.components));
-            },
-        )
-        .context("learning")?;
+            &mut on_progress,
+        ),
+    }
+    .context("learning")?;
     bar.finish_and_clear();
     Ok(learnt)
 }
@@ -113,11 +132,21 @@ pub fn run(a: BuildArgs) -> anyhow::Result<()> {
     // a target that cannot be saved to is refused before the learning, not after it
     viaroad::safe_file::resolve_target(&a.output)?;
     let learnt = match a.seed_from.unwrap_or_default() {
-        Seeding::Plain => learn(&scene, &a.local, &a.learn, 1000)?,
+        Seeding::Plain => learn_part(&scene, &a.local, &a.learn, 1000, a.shard)?,
+        _ if a.shard.is_some() => {
+            anyhow::bail!("--shard learns from nothing: it cannot be combined with --seed-from")
+        }
         seeding => super::global::learn_seeded(&scene, seeding, &a.local, &a.learn, 1000)?,
     };
     super::output::create_parent(&a.output)?;
     learnt.roadmap.save(&a.output)?;
+    if let Some(shard) = a.shard {
+        println!(
+            "shard {shard} of seed {}: learnt with seed {}",
+            a.learn.seed,
+            learnt.roadmap.header().seed
+        );
+    }
     report(&learnt, &a.output);
     Ok(())
 }

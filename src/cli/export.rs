@@ -38,7 +38,9 @@ pub struct PlanArgs {
     /// robot follows it; `off` draws the raw path alone.
     #[arg(long, value_enum, default_value_t = Shortening::Fast, help_heading = "Tuning")]
     pub shorten: Shortening,
-    /// Also draw the roadmap's nodes and edges (at the robot's reference point).
+    /// Also draw the roadmap's nodes and edges (at the robot's reference point): the saved one,
+    /// or else the query is planned by a roadmap grown from start and goal (as `solve
+    /// --roadmap`) rather than by `solve`'s default.
     #[arg(long)]
     pub show_roadmap: bool,
     /// Most nodes of the trees and roadmaps grown to plan the query (no `--roadmap`, no
@@ -349,7 +351,11 @@ fn plan_as_solve(
         ..viaroad::solve::Solver::default()
     };
     let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(Some(time));
-    let s = solver.plan(scene, oracle, (&q.start, &q.goal), &deadline)?;
+    // a roadmap to draw is a roadmap to plan with
+    let s = match a.show_roadmap {
+        true => solver.plan_by_roadmap(scene, oracle, (&q.start, &q.goal), &deadline)?,
+        false => solver.plan(scene, oracle, (&q.start, &q.goal), &deadline)?,
+    };
     if let Some(w) = &s.warning {
         eprintln!("warning: {w}");
     }

@@ -12,6 +12,7 @@ mod interrupt;
 mod learn_args;
 mod limits;
 mod local_args;
+mod merge;
 mod output;
 mod path_out;
 mod probe;
@@ -41,6 +42,9 @@ enum Command {
     Demo(demo::DemoArgs),
     /// Learn a roadmap of a scene and save it.
     Build(build::BuildArgs),
+    /// Join roadmaps of one scene learnt apart (shards, other merges) into one, or grow a
+    /// roadmap by parts learnt later.
+    Merge(merge::MergeArgs),
     /// Answer queries against a saved roadmap.
     Query(query::QueryArgs),
     /// Show what a roadmap file holds.
@@ -71,6 +75,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Demo(a) => demo::run(a),
         Command::Build(a) => build::run(a),
+        Command::Merge(a) => merge::run(a),
         Command::Query(a) => query::run(a),
         Command::Info(a) => info::run(a),
         Command::Solve(a) => solve::run(a),

@@ -9,7 +9,8 @@
 //! | [`graph`] | nodes, edges, components: the [`Roadmap`] |
 //! | [`header`] | how a roadmap was learnt and for which scene: the [`Header`] |
 //! | [`bounce`] | random-bounce walks driven by exact free sections |
-//! | [`learn`] | construction and expansion in reproducible parallel rounds; answers kept ([`Roadmap::with_path`]) |
+//! | [`learn`] | construction and expansion in reproducible parallel rounds; answers kept ([`Roadmap::with_path`]); merges ([`Learner::merge`]) |
+//! | [`shard`] | one of N roadmaps learnt apart, from its own random streams |
 //! | [`persist`] | the file: magic, version, header, checksum, atomic save |
 //! | [`query`] | attach, A*, shorten; batches in parallel |
 //! | [`landmarks`] | landmark lower bounds that guide A* around obstacles |
@@ -54,13 +55,17 @@ pub mod persist;
 pub mod query;
 pub mod rooted;
 pub mod sampler;
+pub mod shard;
 pub mod tree;
 
 pub use graph::{Edge, Roadmap};
 pub use header::Header;
 pub use info::RoadmapInfo;
 pub use landmarks::Landmarks;
-pub use learn::{LearnError, LearnReport, Learner, Learnt, Phase, Progress, StopReason};
+pub use learn::{
+    LearnError, LearnReport, Learner, Learnt, MergeError, MergeProgress, MergeReport, MergeStop,
+    Merged, Phase, Progress, StopReason,
+};
 pub use nn::{KdTree, NearestNeighbours};
 pub use params::{Budget, LearnParams};
 pub use persist::{RoadmapError, FORMAT_VERSION, MAGIC};
@@ -69,3 +74,4 @@ pub use query::{
     ATTACH_SHARE, TREES_ATTACH_SHARE,
 };
 pub use sampler::Sampler;
+pub use shard::{Shard, ShardError};

@@ -221,6 +221,13 @@ impl Roadmap {
         Ok(out)
     }
 
+    /// A digest of the roadmap's content: the [`checksum`] of its file's bytes. Equal roadmaps
+    /// have equal digests; merges order their parts by it, so that the order parts are given
+    /// in does not matter.
+    pub fn digest(&self) -> Result<u64, RoadmapError> {
+        Ok(checksum(&self.to_bytes()?))
+    }
+
     /// Reads a roadmap from its bytes and checks that it was learnt for the scene with
     /// `expected_fingerprint`.
     pub fn from_bytes(bytes: &[u8], expected_fingerprint: u64) -> Result<Roadmap, RoadmapError> {

@@ -51,6 +51,7 @@
 //! | `construction` | construction rounds (`growRoadmap`) |
 //! | `expansion` | expansion rounds: random-bounce walks (`expandRoadmap`) |
 //! | `grow` | the loop: stages, rounds, snapshots |
+//! | `merge` | roadmaps learnt apart joined: union, then connections across parts |
 
 mod attempts;
 mod construction;
@@ -58,15 +59,18 @@ mod expansion;
 mod feedback;
 mod grow;
 mod keep;
+mod merge;
 mod outcome;
 mod streams;
 mod work;
 
+pub use merge::{MergeError, MergeProgress, MergeReport, MergeStop, Merged};
 pub use outcome::{LearnError, LearnReport, Learnt, PairLearnt, Phase, Progress, StopReason};
 pub use streams::stream;
 
 use super::graph::Roadmap;
 use super::params::{Budget, LearnParams};
+use super::shard::Shard;
 use crate::deadline::Deadline;
 use crate::local::LocalMethod;
 use crate::oracle::CollisionOracle;
@@ -303,6 +307,25 @@ impl Learner<'_> {
         };
         let (learnt, _) = self.grow_within(params, seeds, budget, seed, deadline, progress)?;
         Ok(learnt)
+    }
+
+    /// Learns shard `shard` of a roadmap whose shards share `seed` and `budget`
+    /// ([`super::shard`]): [`learn_within`](Self::learn_within) with the shard's seed
+    /// ([`Shard::seed`]) and its part of the node budget ([`Shard::nodes`]); a time budget is
+    /// the shard's own. The roadmap records the shard's seed.
+    pub fn learn_shard(
+        &self,
+        params: &LearnParams,
+        budget: &Budget,
+        (seed, shard): (u64, Shard),
+        deadline: &Deadline,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Result<Learnt, LearnError> {
+        let budget = Budget {
+            nodes: budget.nodes.map(|n| shard.nodes(n)),
+            time: budget.time,
+        };
+        self.learn_within(params, &budget, shard.seed(seed), deadline, progress)
     }
 
     /// The one-stage grow behind [`learn_within`](Self::learn_within),

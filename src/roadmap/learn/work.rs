@@ -106,6 +106,28 @@ impl<'s> Work<'s> {
         }
     }
 
+    /// Adds a roadmap's nodes (each one an identical node already there, or the next index)
+    /// and its edges (those not joining an already joined pair), for a merge. Returns the index
+    /// each of its nodes got.
+    pub(super) fn add_roadmap(&mut self, part: &Roadmap) -> Vec<u32> {
+        let ids: Vec<u32> = part.nodes().map(|q| self.add_node(q)).collect();
+        for e in part.edges() {
+            let (a, b) = (ids[e.a as usize], ids[e.b as usize]);
+            if a != b && self.edge_set.insert((a.min(b), a.max(b))) {
+                self.edges.push(Edge {
+                    a,
+                    b,
+                    length: e.length,
+                    corners: e.corners.clone(),
+                });
+                if self.uf.union(a, b) {
+                    self.components -= 1;
+                }
+            }
+        }
+        ids
+    }
+
     /// Adds the edge `a → corners → b` unless it is a loop or the pair is joined already.
     pub(super) fn add_edge(&mut self, a: u32, b: u32, corners: &[Config]) {
         if a == b || !self.edge_set.insert((a.min(b), a.max(b))) {
