@@ -8,7 +8,7 @@
 use crate::geometry::{Polygon, TriMesh};
 use crate::local::Borderline;
 use crate::roadmap::Roadmap;
-use crate::scene::{Obstacle, Robot, Scene};
+use crate::scene::{Body, Obstacle, Robot, Scene};
 use crate::space::{Config, SpaceKind};
 use nalgebra::{Point2, Rotation2};
 use std::fmt::Write as _;
@@ -34,6 +34,10 @@ mod style {
     pub const ROADMAP_EDGE: &str = "#cbd2d9";
     pub const ROADMAP_NODE: &str = "#7b8794";
     pub const ROBOT: &str = "#3ebd93";
+    /// One colour per body of a scene of several bodies, in turn.
+    pub const BODIES: [&str; 8] = [
+        "#3ebd93", "#e12d39", "#0967d2", "#f0b429", "#8719e0", "#c65d21", "#27ab83", "#da127d",
+    ];
     /// Picture width in pixels.
     pub const WIDTH: f64 = 800.0;
 }
@@ -130,6 +134,9 @@ impl Picture {
         if path.is_empty() {
             return self;
         }
+        if let Robot::Bodies(bodies) = &scene.robot {
+            return self.bodies_path(bodies, path, shortened);
+        }
         match (&scene.robot, scene.space.kind()) {
             (Robot::Polygons(parts), SpaceKind::Se2) => {
                 for q in path {
@@ -166,6 +173,64 @@ impl Picture {
             );
         }
         self
+    }
+
+    /// Several bodies along a path: each body in its own colour at every corner, the trace of
+    /// its reference point, and its name at the start.
+    fn bodies_path(&mut self, bodies: &[Body], path: &[Config], shortened: bool) -> &mut Self {
+        let dash = if shortened {
+            ""
+        } else {
+            r#" stroke-dasharray="6,3""#
+        };
+        let mut labels = String::new();
+        for (i, body) in bodies.iter().enumerate() {
+            let colour = style::BODIES[i % style::BODIES.len()];
+            let poses: Vec<&[f64]> = path
+                .iter()
+                .filter(|q| q.len() >= 3 * i + 3)
+                .map(|q| &q[3 * i..3 * i + 3])
+                .collect();
+            for q in &poses {
+                for part in &body.parts {
+                    self.part_at(part, q, colour, 0.12);
+                }
+            }
+            let pts: Vec<Point2<f64>> = poses.iter().map(|q| Point2::new(q[0], q[1])).collect();
+            let pts = self.polygon_points(&pts);
+            let _ = writeln!(
+                self.body,
+                r#"<polyline points="{pts}" fill="none" stroke="{colour}" stroke-width="2"{dash}/>"#
+            );
+            if let (Some(first), Some(last)) = (poses.first(), poses.last()) {
+                for part in &body.parts {
+                    self.part_at(part, last, colour, 0.5);
+                }
+                let _ = writeln!(
+                    labels,
+                    r#"<text x="{:.2}" y="{:.2}" font-size="16" font-weight="bold" font-family="sans-serif" text-anchor="middle" fill="{colour}">{}</text>"#,
+                    self.x(first[0]),
+                    self.y(first[1]) + 5.0,
+                    xml_escape(&body.name)
+                );
+            }
+        }
+        self.body.push_str(&labels);
+        self
+    }
+
+    fn part_at(&mut self, part: &Polygon, q: &[f64], colour: &str, opacity: f64) {
+        let r = Rotation2::new(q[2]);
+        let pts: Vec<Point2<f64>> = part
+            .vertices
+            .iter()
+            .map(|v| r * v + nalgebra::Vector2::new(q[0], q[1]))
+            .collect();
+        let pts = self.polygon_points(&pts);
+        let _ = writeln!(
+            self.body,
+            r#"<polygon points="{pts}" fill="{colour}" fill-opacity="{opacity}" stroke="{colour}" stroke-width="0.6"/>"#,
+        );
     }
 
     fn robot_at(&mut self, part: &Polygon, q: &[f64]) {
@@ -394,6 +459,14 @@ fn convex_hull(points: &[Point2<f64>]) -> Vec<Point2<f64>> {
         hull.pop();
     }
     hull
+}
+
+/// `s` with the characters XML gives meaning to escaped (body names are the user's text).
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 #[cfg(test)]

@@ -48,6 +48,9 @@ fn check(name: &str) {
             SpaceKind::Se2 => PlanarChecker::se2(&scene).certify_path(&r.path),
             SpaceKind::Se3 => RigidChecker::se3(&scene).certify_path(&r.path),
             SpaceKind::Joints { .. } => panic!("{name}: no arm roadmap is shipped"),
+            SpaceKind::Se2Bodies(_) => {
+                common::bodies::BodiesChecker::new(&scene).certify_path(&r.path)
+            }
         };
         verdict.unwrap_or_else(|e| panic!("{name} query {}: {e}", i + 1));
     }

@@ -25,6 +25,7 @@ mod arm_tree;
 mod arm_workcell;
 mod bench_cones;
 mod bench_local;
+mod bodies;
 mod budgets;
 mod certify;
 mod cli;

@@ -14,7 +14,10 @@
 //!   This is stronger than sampling at any resolution: it certifies the whole motion.
 //!   SE(3) containment (a robot wholly inside a closed obstacle or holding one) is checked at
 //!   the first configuration; surfaces that never touch cannot change it along the path.
+//! * Several bodies in the plane ([`bodies`]): the same parry polygons and advancement, over
+//!   every body–obstacle and body–body pair.
 
+pub mod bodies;
 pub mod planar;
 pub mod rigid;
 
@@ -40,6 +43,8 @@ pub enum Checker {
     Planar(planar::PlanarChecker),
     /// Meshes in space.
     Rigid(rigid::RigidChecker),
+    /// Several polygonal bodies in the plane.
+    Bodies(bodies::BodiesChecker),
     /// A jointed arm among MoveIt collision objects: parry on the exact primitives, sampled along
     /// every joint move at `step` (1/10 of OMPL's default resolution, 0.1 % of the joint space's
     /// extent), sharing no code with the exact single-joint oracle.
@@ -81,6 +86,9 @@ impl Checker {
                 planar::PlanarChecker::se2(scene).map(Checker::Planar)
             }
             (Robot::Mesh(_), SpaceKind::Se3) => rigid::RigidChecker::se3(scene).map(Checker::Rigid),
+            (Robot::Bodies(_), SpaceKind::Se2Bodies(_)) => {
+                bodies::BodiesChecker::new(scene).map(Checker::Bodies)
+            }
             (Robot::Arm(a), SpaceKind::Joints { .. }) => {
                 let checker =
                     crate::robot::ArmChecker::new(&a.arm, &a.objects).map_err(|e| e.to_string())?;
@@ -106,6 +114,7 @@ impl Checker {
             } => check_disc_path(path, centres, radii, lower, upper),
             Checker::Planar(c) => c.certify_path(path),
             Checker::Rigid(c) => c.certify_path(path),
+            Checker::Bodies(c) => c.certify_path(path),
             Checker::Arm { checker, step } => {
                 let report = checker.check_path(path, *step).map_err(|e| e.to_string())?;
                 match report.first_invalid {

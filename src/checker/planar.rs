@@ -34,7 +34,7 @@ fn triangles(p: &Polygon) -> Vec<[Point<f64>; 3]> {
     out
 }
 
-fn compound(polys: &[Polygon]) -> Result<Compound, String> {
+pub(super) fn compound(polys: &[Polygon]) -> Result<Compound, String> {
     let parts: Vec<(Isometry<f64>, SharedShape)> = polys
         .iter()
         .flat_map(triangles)

@@ -54,6 +54,12 @@ fn learn_part(
     shard: Option<Shard>,
 ) -> anyhow::Result<Learnt> {
     let spec = local.spec_or(LocalSpec::roadmap_default())?;
+    if matches!(&spec, LocalSpec::ViaPoint(o) if o.sidestep.is_some()) {
+        anyhow::bail!(
+            "--local {spec}: roadmap files do not record sidestep; build without it \
+             (solve, render and bench local take it)"
+        );
+    }
     let (params, budget) = learn.resolve(default_nodes)?;
     let method = spec.build();
     let oracle = scene.oracle();

@@ -29,6 +29,10 @@ pub struct RenderArgs {
     /// them instead of with the local method.
     #[arg(long)]
     pub freeways: bool,
+    /// Draw this path (an OMPL state file, as `--path-out` writes) instead of solving a query:
+    /// for paths found by `solve --roadmap`, `query` or another planner.
+    #[arg(long, value_name = "FILE", conflicts_with = "freeways")]
+    pub path: Option<PathBuf>,
 }
 
 /// Runs `render`.
@@ -46,7 +50,11 @@ pub fn run(a: RenderArgs) -> anyhow::Result<()> {
     let mut status = None;
     let mut picture = Picture::new(&scene);
     picture.obstacles(&scene);
-    if a.freeways {
+    if let Some(file) = &a.path {
+        let path = viaroad::scene::ompl_cfg::read_states(file, &scene.space)?;
+        picture.path(&scene, &path, true);
+        status = Some(format!("{}: {} states", file.display(), path.len()));
+    } else if a.freeways {
         let fw = viaroad::global::cones::Freeways::build(&scene).context("generalized cones")?;
         picture.freeways(&fw);
         if let Some(q) = a.query.checked_sub(1).and_then(|i| scene.queries.get(i)) {

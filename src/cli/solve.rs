@@ -49,6 +49,7 @@ fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     let groups = spec.build().groups(&scene.space);
+    let checker = super::query::independent_checker(scene, a.check)?;
     let mut path_out = match &a.path_out {
         Some(base) => Some(super::path_out::PathOut::new(base, scene.queries.len())?),
         None => None,
@@ -70,6 +71,10 @@ fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
             out.write(i, &s.shortened)?;
         }
         let c = &s.connection;
+        let verdict = match &checker {
+            Some(ch) if c.is_connected() => Some(check_both(ch, &c.path, &s.shortened)),
+            _ => None,
+        };
         if a.json {
             println!(
                 "{}",
@@ -79,11 +84,13 @@ fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
                     "shortened": s.shortened,
                     "calls": c.counts.intersect_calls(),
                     "depth": c.depth,
+                    "certified": verdict.as_ref().map(|v| v.is_ok()),
+                    "check_error": verdict.as_ref().and_then(|v| v.as_ref().err()),
                 })
             );
         } else if c.is_connected() {
             println!(
-                "query {}: solved, depth {}, {} intersect calls, {} corners, length {:.4} (shortened {} corners, {:.4})",
+                "query {}: solved, depth {}, {} intersect calls, {} corners, length {:.4} (shortened {} corners, {:.4}){}",
                 i + 1,
                 c.depth,
                 c.counts.intersect_calls(),
@@ -91,6 +98,7 @@ fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
                 path_length(&scene.space, &groups, &c.path),
                 s.shortened.len(),
                 path_length(&scene.space, &groups, &s.shortened),
+                verdict_text(verdict.as_ref()),
             );
         } else {
             println!(
@@ -118,6 +126,7 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
         mut path_out,
     } = SingleQuery::prepare(&a, &scene, "a roadmap that large does not fit in memory")?;
     let oracle = scene.oracle();
+    let checker = super::query::independent_checker(&scene, a.check)?;
     let method = spec.build();
     let learner = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
         .with_attempt_cap(time.map(Learner::attempt_cap_for));
@@ -156,6 +165,10 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
             answer = Some(planner.query(&q.start, &q.goal)?).filter(|r| r.is_solved());
         }
         let secs = began.elapsed().as_secs_f64();
+        let verdict = match (&checker, &answer) {
+            (Some(c), Some(r)) => Some(check_both(c, &r.raw_path, &r.path)),
+            _ => None,
+        };
         let calls = roadmap.header().counts.intersect_calls()
             + answer.as_ref().map_or(0, |r| r.counts.intersect_calls());
         if let (Some(out), Some(r)) = (&mut path_out, &answer) {
@@ -175,16 +188,19 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
                     "edges": roadmap.edge_count(),
                     "seconds": secs,
                     "stop": format!("{:?}", grown.learnt.report.stop),
+                    "certified": verdict.as_ref().map(|v| v.is_ok()),
+                    "check_error": verdict.as_ref().and_then(|v| v.as_ref().err()),
                 })
             );
         } else if let Some(r) = &answer {
             println!(
-                "query {}: solved by a roadmap of {} nodes in {secs:.3} s, {calls} intersect calls, {} corners, length {:.4} (raw {:.4})",
+                "query {}: solved by a roadmap of {} nodes in {secs:.3} s, {calls} intersect calls, {} corners, length {:.4} (raw {:.4}){}",
                 i + 1,
                 roadmap.node_count(),
                 r.path.len(),
                 path_length(&scene.space, &groups, &r.path),
                 r.raw_length,
+                verdict_text(verdict.as_ref()),
             );
         } else {
             println!(
@@ -335,4 +351,27 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         out.finish();
     }
     Ok(())
+}
+
+/// The independent checker's verdict on a raw path and its shortened version.
+pub(super) fn check_both(
+    checker: &viaroad::bench::validity::Checker,
+    raw: &[viaroad::space::Config],
+    shortened: &[viaroad::space::Config],
+) -> Result<(), String> {
+    checker
+        .check_path(raw)
+        .map_err(|e| format!("raw path: {e}"))?;
+    checker
+        .check_path(shortened)
+        .map_err(|e| format!("shortened path: {e}"))
+}
+
+/// `--check`'s verdict as the end of a line of text.
+pub(super) fn verdict_text(verdict: Option<&Result<(), String>>) -> String {
+    match verdict {
+        None => String::new(),
+        Some(Ok(())) => ", certified".into(),
+        Some(Err(e)) => format!(", NOT certified: {e}"),
+    }
 }

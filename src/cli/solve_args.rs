@@ -22,6 +22,11 @@ pub struct SolveArgs {
     /// several queries get `-1`, `-2`, … before the extension.
     #[arg(long, value_name = "FILE")]
     pub path_out: Option<PathBuf>,
+    /// Re-check every solved path, raw and shortened, with the scene's independent checker
+    /// (as `query --check`), outside the query's time: each solved query says `certified` or
+    /// why not (JSON: `"certified"`, `"check_error"`); not with `--tree`.
+    #[arg(long)]
+    pub check: bool,
     /// Seconds each query may take (checked before every oracle call). Default: the `.cfg`
     /// file's `[benchmark] time_limit`, else 60 s; no limit for the local method alone.
     #[arg(long, value_name = "SECONDS")]

@@ -24,6 +24,7 @@ pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
         mut path_out,
     } = SingleQuery::prepare(a, scene, "trees that large do not fit in memory")?;
     let oracle = scene.oracle();
+    let checker = super::query::independent_checker(scene, a.check)?;
     let groups = LocalSpec::default().build().groups(&scene.space);
     let length = |p: &Vec<_>| path_length(&scene.space, &groups, p);
     for (i, q) in queries.iter().enumerate() {
@@ -41,6 +42,10 @@ pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
         }
         let method = s.method.map(|m| m.name());
         let calls = s.counts.intersect_calls();
+        let verdict = match &checker {
+            Some(c) if s.is_solved() => Some(super::solve::check_both(c, &s.raw, &s.shortened)),
+            _ => None,
+        };
         if a.json {
             let solved = s.is_solved();
             println!(
@@ -56,17 +61,20 @@ pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
                     "calls": calls,
                     "nodes": s.nodes,
                     "seconds": secs,
+                    "certified": verdict.as_ref().map(|v| v.is_ok()),
+                    "check_error": verdict.as_ref().and_then(|v| v.as_ref().err()),
                 })
             );
         } else if let Some(method) = method {
             println!(
-                "query {}: solved ({method}) in {secs:.3} s, {} nodes, {calls} intersect calls, {} corners (raw {}), length {:.4} (raw {:.4})",
+                "query {}: solved ({method}) in {secs:.3} s, {} nodes, {calls} intersect calls, {} corners (raw {}), length {:.4} (raw {:.4}){}",
                 i + 1,
                 s.nodes,
                 s.shortened.len(),
                 s.raw.len(),
                 length(&s.shortened),
                 length(&s.raw),
+                super::solve::verdict_text(verdict.as_ref()),
             );
         } else {
             println!(

@@ -105,7 +105,8 @@ pub fn pose(space: &Space, q: &[f64]) -> ([f64; 3], [f64; 4]) {
             }
             (p, [0.0, 0.0, 0.0, 1.0])
         }
-        SpaceKind::Se2 => {
+        // the first body's pose; each body's own is `pose(se2, q[3i..3i + 3])`
+        SpaceKind::Se2 | SpaceKind::Se2Bodies(_) => {
             let h = q[2] / 2.0;
             ([q[0], q[1], 0.0], [0.0, 0.0, h.sin(), h.cos()])
         }

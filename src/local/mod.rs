@@ -436,13 +436,13 @@ impl KnownPieces {
             if space.same_in_group(&cur, z, g) {
                 continue;
             }
-            next[g.coords.clone()].copy_from_slice(&z[g.coords.clone()]);
+            g.copy_coords(&mut next, z);
             if self.piece_known(&cur, &next, &mut buf) == Some(false)
                 || (next.as_slice() != z && self.corner_known(&next, &mut buf) == Some(false))
             {
                 return true;
             }
-            cur[g.coords.clone()].copy_from_slice(&z[g.coords.clone()]);
+            g.copy_coords(&mut cur, z);
         }
         false
     }

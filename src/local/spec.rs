@@ -50,7 +50,7 @@ pub struct SpecError {
 }
 
 /// The via-point planner's keys in a spec string (`viapoint:KEY=VALUE,…`).
-const VIAPOINT_KEYS: [&str; 12] = [
+const VIAPOINT_KEYS: [&str; 13] = [
     "depth",
     "max",
     "beta",
@@ -63,6 +63,7 @@ const VIAPOINT_KEYS: [&str; 12] = [
     "search",
     "calls",
     "seed",
+    "sidestep",
 ];
 
 impl LocalSpec {
@@ -315,6 +316,17 @@ impl LocalSpec {
                     }
                 }
                 "seed" => o.seed = parse_int(k, v)?,
+                "sidestep" => {
+                    o.sidestep = if v == "none" {
+                        None
+                    } else {
+                        let s = parse_num(k, v)?;
+                        if s <= 0.0 {
+                            return Err(format!("sidestep={v}; expected a positive share or none"));
+                        }
+                        Some(s)
+                    }
+                }
                 _ => return Err(format!("unknown key `{k}` for viapoint")),
             }
         }
@@ -445,7 +457,11 @@ impl fmt::Display for LocalSpec {
                     None => write!(f, ",calls=none")?,
                     Some(c) => write!(f, ",calls={c}")?,
                 }
-                write!(f, ",seed={}", o.seed)
+                write!(f, ",seed={}", o.seed)?;
+                match o.sidestep {
+                    Some(s) => write!(f, ",sidestep={s}"),
+                    None => Ok(()),
+                }
             }
         }
     }
@@ -481,6 +497,7 @@ mod tests {
             "viapoint:depth=deepen-reuse,beta=2/3,via=2",
             "viapoint:depth=9,via=all,base=centre-first,search=bfs,calls=none",
             "viapoint:dirs=random:4,split=true,seed=7",
+            "viapoint:split=true,sidestep=0.5",
         ] {
             let spec: LocalSpec = s.parse().unwrap();
             let again: LocalSpec = spec.to_string().parse().unwrap();

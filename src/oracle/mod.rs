@@ -10,12 +10,15 @@
 //! Implementations:
 //! - [`discs::Discs`]: a point among discs (balls in R^n), analytic (CHS Appendix A.1);
 //! - [`polygons`]: a polygonal robot among polygons in SE(2);
+//! - [`bodies::PlanarBodies`]: several polygonal bodies in the plane, all translating or one
+//!   turning (SE(2)^k);
 //! - [`polyhedra`]: a polyhedral robot among polyhedra in SE(3) (CHS Chapter 2);
 //! - [`minkowski::Minkowski`]: a translating polygon through its C-obstacles (LaValle 3.3.2);
 //! - [`sampled::Sampled`]: checks states at a resolution like OMPL's `DiscreteMotionValidator`
 //!   — the baseline the benchmarks compare against, never the default;
 //! - [`Bounded`]: adds "outside the bounds is obstacle" to any of them.
 
+pub mod bodies;
 pub mod discs;
 pub mod minkowski;
 pub mod polygons;

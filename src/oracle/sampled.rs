@@ -59,6 +59,12 @@ impl<O: CollisionOracle> Sampled<O> {
         let dt = (hi - lo).abs();
         let p = self.space.position_dim();
         let (trans, rot) = match &motion.change {
+            // several bodies: the fastest body decides
+            Change::Linear(d) if matches!(self.space.kind(), SpaceKind::Se2Bodies(_)) => {
+                d.chunks_exact(3).fold((0.0f64, 0.0f64), |(t, r), b| {
+                    (t.max(b[0].hypot(b[1]) * dt), r.max(b[2].abs() * dt))
+                })
+            }
             Change::Linear(d) => {
                 let trans = d[..p].iter().map(|v| v * v).sum::<f64>().sqrt() * dt;
                 let rot = if self.space.kind() == SpaceKind::Se2 {

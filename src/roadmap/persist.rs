@@ -322,8 +322,18 @@ impl Roadmap {
     /// Saves the roadmap to `path` atomically: the bytes go to a temporary file in the same
     /// directory ([`temp_path`]), which is flushed to disk and then renamed over `path`. If
     /// anything fails, `path` keeps its previous content and the temporary file is removed.
-    /// Special files are refused, never replaced ([`write_atomically`]).
+    /// Special files are refused, never replaced ([`write_atomically`]). A roadmap learnt with
+    /// a via-point `sidestep` is refused: the file would not record it.
     pub fn save(&self, path: &Path) -> Result<(), RoadmapError> {
+        if let LocalSpec::ViaPoint(o) = &self.header().local_spec {
+            if o.sidestep.is_some() {
+                return Err(RoadmapError::Encode(
+                    "the local method's sidestep is not recorded in roadmap files; learn the \
+                     roadmap to be saved without it"
+                        .into(),
+                ));
+            }
+        }
         let bytes = self.to_bytes()?;
         write_atomically(path, |w| w.write_all(&bytes))
     }
@@ -409,6 +419,10 @@ fn check_space(space: &Space) -> Result<(), RoadmapError> {
                 .map(|i| crate::space::joints::bit(continuous, i))
                 .collect();
             Space::joints(lower.to_vec(), upper.to_vec(), &flags).map_err(|e| e.to_string())
+        }
+        SpaceKind::Se2Bodies(k) if lower.len() == 3 * k && upper.len() == 3 * k => {
+            Space::se2_bodies(k, [lower[0], lower[1]], [upper[0], upper[1]], scale)
+                .map_err(|e| e.to_string())
         }
         _ => Err("bounds of the wrong dimension".into()),
     };

@@ -140,6 +140,11 @@ pub fn gaussian_near<R: Rng + ?Sized>(
             crate::space::joints::wrap_continuous(continuous, &mut q)
         }
         SpaceKind::Se2 => q[2] = rotation::wrap_angle(mean[2] + angle_sigma * normal(rng)),
+        SpaceKind::Se2Bodies(k) => {
+            for i in (0..k).map(|b| 3 * b + 2) {
+                q[i] = rotation::wrap_angle(mean[i] + angle_sigma * normal(rng));
+            }
+        }
         SpaceKind::Se3 => {
             if angle_sigma > std::f64::consts::FRAC_PI_2 {
                 let u = space.sample_uniform(rng);

@@ -860,7 +860,7 @@ fn across_of(motion: &crate::space::Motion, gi: usize, g: &Group) -> Across {
             axis: Some(*axis),
         },
         (Change::Linear(delta), GroupKind::Linear) => {
-            let d: Vec<f64> = delta[g.coords.clone()].to_vec();
+            let d: Vec<f64> = g.indices().map(|i| delta[i]).collect();
             let norm = d.iter().map(|x| x * x).sum::<f64>().sqrt();
             Across::Translation {
                 group: gi,

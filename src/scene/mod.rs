@@ -25,6 +25,7 @@ mod yaml_depth;
 pub use crate::geometry::hull as shapes;
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use crate::mesh_io::MeshError;
+use crate::oracle::bodies::PlanarBodies;
 use crate::oracle::discs::Discs;
 use crate::oracle::polygons::Polygons;
 use crate::oracle::polyhedra::Polyhedra;
@@ -156,6 +157,17 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
                 return Err(too_big("the robot".into()));
             }
         }
+        Robot::Bodies(bodies) => {
+            for b in bodies {
+                if b.parts
+                    .iter()
+                    .flat_map(|p| &p.vertices)
+                    .any(|v| big(v.x) || big(v.y))
+                {
+                    return Err(too_big(format!("body \"{}\"", b.name)));
+                }
+            }
+        }
     }
     for (i, o) in scene.obstacles.iter().enumerate() {
         let bad = match o {
@@ -227,6 +239,18 @@ pub enum Robot {
     /// A robot arm's planning group among a MoveIt environment (joint-space scenes);
     /// the environment lives here, not in [`Scene::obstacles`].
     Arm(Box<arm::ArmRobot>),
+    /// Several bodies that move concurrently (SE(2)^k scenes, [`crate::space::bodies`]), in
+    /// the order of their poses in a configuration.
+    Bodies(Vec<Body>),
+}
+
+/// One of several moving bodies.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    /// Its name in the scene file (unique within the scene).
+    pub name: String,
+    /// The union of polygons in its body frame; its reference point is the origin.
+    pub parts: Vec<Polygon>,
 }
 
 /// A fixed obstacle.
@@ -335,6 +359,21 @@ impl Scene {
                     Polyhedra::new(mesh.clone(), obstacles),
                 ))
             }
+            (Robot::Bodies(bodies), _) => {
+                let obstacles = self
+                    .obstacles
+                    .iter()
+                    .filter_map(|o| match o {
+                        Obstacle::Polygon(p) => Some(p.clone()),
+                        _ => None,
+                    })
+                    .collect();
+                let parts = bodies.iter().map(|b| b.parts.clone()).collect();
+                Box::new(Bounded::new(
+                    self.space.clone(),
+                    PlanarBodies::new(parts, obstacles),
+                ))
+            }
             (Robot::Arm(a), _) => Box::new(Bounded::new(
                 self.space.clone(),
                 arm::ArmCollision::new(a.arm_oracle().clone()),
@@ -392,6 +431,13 @@ impl Scene {
                 h.mesh(m);
             }
             Robot::Arm(a) => h.bytes(&a.digest().to_le_bytes()),
+            Robot::Bodies(bodies) => {
+                h.str("bodies");
+                for b in bodies {
+                    h.bytes(&(b.parts.len() as u64).to_le_bytes());
+                    b.parts.iter().for_each(|p| h.polygon(p));
+                }
+            }
         }
         for o in &self.obstacles {
             match o {

@@ -56,6 +56,8 @@
 //! ([`Polygon::rectangle`]) in se2; meshes in se2 become their footprints (OMPL.app's 2D
 //! problems are prisms extruded along z).
 
+mod bodies;
+
 use super::collada;
 use super::mesh_io::{self, is_dae, open_mesh_warning, vertex_mean};
 use super::shapes::{convex_hull_2d, convex_hull_3d, is_simple};
@@ -73,6 +75,8 @@ struct File {
     name: Option<String>,
     space: SpaceSpec,
     robot: Option<RobotSpec>,
+    #[serde(default, rename = "body")]
+    bodies: Vec<bodies::BodySpec>,
     #[serde(default, rename = "obstacle")]
     obstacles: Vec<ObstacleSpec>,
     #[serde(default, rename = "query")]
@@ -88,7 +92,7 @@ struct SpaceSpec {
     rotation_scale: Option<f64>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RobotSpec {
     #[serde(rename = "box")]
@@ -112,20 +116,20 @@ struct ObstacleSpec {
     disc: Option<DiscSpec>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct BoxSpec {
     center: Option<Vec<f64>>,
     half_extents: Vec<f64>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct PolygonSpec {
     vertices: Vec<Vec<f64>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ConvexSpec {
     points: Vec<Vec<f64>>,
@@ -259,6 +263,9 @@ impl Reader<'_> {
                 )));
             }
         }
+        if !file.bodies.is_empty() {
+            return self.bodies_scene(file, kind);
+        }
         let (robot, obstacles, space) = match kind {
             Kind::Euclidean => {
                 if file.space.rotation_scale.is_some() {
@@ -295,7 +302,7 @@ impl Reader<'_> {
                     )));
                 };
                 let robot = if kind == Kind::Se2 {
-                    Robot::Polygons(self.robot_2d(spec)?)
+                    Robot::Polygons(self.robot_2d("[robot]", spec)?)
                 } else {
                     Robot::Mesh(self.robot_3d(spec)?)
                 };
@@ -311,7 +318,7 @@ impl Reader<'_> {
                 let radius = match &robot {
                     Robot::Polygons(parts) => parts.iter().map(Polygon::radius).fold(0.0, f64::max),
                     Robot::Mesh(m) => m.radius(),
-                    Robot::Point | Robot::Arm(_) => 1.0,
+                    Robot::Point | Robot::Arm(_) | Robot::Bodies(_) => 1.0,
                 };
                 let max = crate::limits::MAX_COORDINATE;
                 if !(radius.is_finite() && radius <= max) {
@@ -536,12 +543,11 @@ impl Reader<'_> {
             }
             Shape::Disc(_) => unreachable!("a robot table has no disc"),
         };
-        let centre = self.centre(r.center.as_ref(), 3, mean.coords.as_slice())?;
+        let centre = self.centre(what, r.center.as_ref(), 3, mean.coords.as_slice())?;
         Ok(mesh.translated(-Vector3::new(centre[0], centre[1], centre[2])))
     }
 
-    fn robot_2d(&mut self, r: &RobotSpec) -> Result<Vec<Polygon>, SceneError> {
-        let what = "[robot]";
+    fn robot_2d(&mut self, what: &str, r: &RobotSpec) -> Result<Vec<Polygon>, SceneError> {
         let hint = "box, mesh, polygon(s) or convex";
         let shape = self.one_shape(what, "robot", r.shapes(), hint)?;
         let parts = match shape {
@@ -550,11 +556,11 @@ impl Reader<'_> {
             Shape::Polygon(p) => vec![self.polygon(what, p)?],
             Shape::Polygons(ps) => {
                 if ps.is_empty() {
-                    return Err(self.invalid("[robot]: polygons = [] is empty".into()));
+                    return Err(self.invalid(format!("{what}: polygons = [] is empty")));
                 }
                 ps.iter()
                     .enumerate()
-                    .map(|(k, p)| self.polygon(&format!("[robot] polygon {}", k + 1), p))
+                    .map(|(k, p)| self.polygon(&format!("{what} polygon {}", k + 1), p))
                     .collect::<Result<Vec<_>, _>>()?
             }
             Shape::Mesh(file) => {
@@ -569,14 +575,14 @@ impl Reader<'_> {
                     (m, Point2::new(c.x, c.y))
                 };
                 let parts = self.footprint(file, &mesh)?;
-                let offset = self.centre(r.center.as_ref(), 2, centre.coords.as_slice())?;
+                let offset = self.centre(what, r.center.as_ref(), 2, centre.coords.as_slice())?;
                 let shift = -Vector2::new(offset[0], offset[1]);
                 return Ok(parts.into_iter().map(|p| p.translated(shift)).collect());
             }
             Shape::Disc(_) => unreachable!("a robot table has no disc"),
         };
         let mean = polygon_mean(&parts);
-        let centre = self.centre(r.center.as_ref(), 2, mean.coords.as_slice())?;
+        let centre = self.centre(what, r.center.as_ref(), 2, mean.coords.as_slice())?;
         let shift = -Vector2::new(centre[0], centre[1]);
         Ok(parts.into_iter().map(|p| p.translated(shift)).collect())
     }
@@ -584,6 +590,7 @@ impl Reader<'_> {
     /// The reference point: the shape's origin, the mean of its vertices, or a given point.
     fn centre(
         &self,
+        what: &str,
         spec: Option<&toml::Value>,
         dim: usize,
         mean: &[f64],
@@ -601,12 +608,12 @@ impl Reader<'_> {
                     })
                     .collect();
                 match v {
-                    Some(v) => self.vector("[robot]", "center", Some(&v), dim),
-                    None => Err(self.invalid("[robot] center must hold numbers".into())),
+                    Some(v) => self.vector(what, "center", Some(&v), dim),
+                    None => Err(self.invalid(format!("{what} center must hold numbers"))),
                 }
             }
             Some(other) => Err(self.invalid(format!(
-                "[robot] center = {other} is neither \"mean\" nor a point [x, y{}]",
+                "{what} center = {other} is neither \"mean\" nor a point [x, y{}]",
                 if dim == 3 { ", z" } else { "" }
             ))),
         }

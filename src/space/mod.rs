@@ -8,6 +8,7 @@
 //! Only the position is bounded (as in OMPL); outside the bounds counts as obstacle, so every
 //! borderline has bounded free sections (see [`crate::oracle::Bounded`]).
 
+pub mod bodies;
 pub mod joints;
 pub mod motion;
 pub mod rotation;
@@ -52,6 +53,10 @@ pub enum SpaceKind {
         /// Bit `i` set: joint `i` is continuous (wraps like SE(2)'s angle, has no limits).
         continuous: u64,
     },
+    /// SE(2)^k: several polygonal bodies in the plane, `[x₀, y₀, θ₀, x₁, y₁, θ₁, …]`, the
+    /// bodies' poses concatenated (see [`bodies`]). Groups: all bodies translate at once, or
+    /// one body turns about its reference point (CHS Chapter 2).
+    Se2Bodies(usize),
 }
 
 impl std::fmt::Display for SpaceKind {
@@ -62,6 +67,7 @@ impl std::fmt::Display for SpaceKind {
             SpaceKind::Se2 => write!(f, "se2"),
             SpaceKind::Se3 => write!(f, "se3"),
             SpaceKind::Joints { dof, .. } => write!(f, "arm{dof}"),
+            SpaceKind::Se2Bodies(k) => write!(f, "se2x{k}"),
         }
     }
 }
@@ -79,23 +85,56 @@ pub enum GroupKind {
 }
 
 /// A group of coordinates that changes together.
+///
+/// Most groups are one run of coordinates, `coords`. The translation of several bodies at once
+/// repeats a run once per body: the coordinates are `coords` shifted by `b · stride` for every
+/// `b < repeats` (see [`indices`](Self::indices)).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Group {
     /// What the coordinates are.
     pub kind: GroupKind,
-    /// Their indices in a configuration.
+    /// Their indices in a configuration (the first run of them, if the group repeats).
     pub coords: Range<usize>,
+    /// Distance between repeated runs (0 for a group of one run).
+    pub stride: usize,
+    /// Number of runs (1 for a group of one run).
+    pub repeats: usize,
 }
 
 impl Group {
+    /// A group of the one run of coordinates `coords`.
+    pub fn run(kind: GroupKind, coords: Range<usize>) -> Group {
+        Group {
+            kind,
+            coords,
+            stride: 0,
+            repeats: 1,
+        }
+    }
+
     /// Number of coordinates.
     pub fn len(&self) -> usize {
-        self.coords.len()
+        self.coords.len() * self.repeats
     }
 
     /// Whether the group has no coordinates (never, for groups a space hands out).
     pub fn is_empty(&self) -> bool {
-        self.coords.is_empty()
+        self.len() == 0
+    }
+
+    /// The group's coordinate indices in increasing order.
+    pub fn indices(&self) -> impl Iterator<Item = usize> + Clone + '_ {
+        (0..self.repeats).flat_map(move |b| {
+            let shift = b * self.stride;
+            (self.coords.start + shift)..(self.coords.end + shift)
+        })
+    }
+
+    /// Copies the group's coordinates of `src` into `dst`.
+    pub fn copy_coords(&self, dst: &mut [f64], src: &[f64]) {
+        for i in self.indices() {
+            dst[i] = src[i];
+        }
     }
 }
 
@@ -253,10 +292,12 @@ impl Space {
             SpaceKind::Se2 => 3,
             SpaceKind::Se3 => 7,
             SpaceKind::Joints { dof, .. } => dof,
+            SpaceKind::Se2Bodies(k) => 3 * k,
         }
     }
 
-    /// Number of position coordinates (all of them for R^n).
+    /// Number of bounded coordinates (all of them for R^n; for several bodies all their
+    /// coordinates, the angles among them marked as [`wrapping`](Self::wrapping)).
     pub fn position_dim(&self) -> usize {
         self.lower.len()
     }
@@ -314,6 +355,7 @@ impl Space {
         match self.kind {
             SpaceKind::Euclidean(_) => {}
             SpaceKind::Joints { continuous, .. } => joints::wrap_continuous(continuous, q),
+            SpaceKind::Se2Bodies(_) => joints::wrap_continuous(self.wrapping(), q),
             SpaceKind::Se2 => q[2] = rotation::wrap_angle(q[2]),
             SpaceKind::Se3 => {
                 let n = q[3..7].iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -333,11 +375,12 @@ impl Space {
             .all(|(i, (v, (l, u)))| (*l <= *v && *v <= *u) || joints::bit(wraps, i))
     }
 
-    /// The continuous joints of a joint space as a bit set (none for other spaces): their
-    /// coordinates wrap and have no bounds.
+    /// The continuous joints of a joint space, or the bodies' angles of several bodies, as a
+    /// bit set (none for other spaces): their coordinates wrap and have no bounds.
     pub fn wrapping(&self) -> u64 {
         match self.kind {
             SpaceKind::Joints { continuous, .. } => continuous,
+            SpaceKind::Se2Bodies(k) => bodies::angle_bits(k),
             _ => 0,
         }
     }
@@ -370,8 +413,10 @@ impl Space {
     /// Distance: Euclidean for R^n; `‖Δp‖ + rotation_scale · angle` for rigid bodies, with the
     /// angle of the rotation between the orientations (at most π).
     pub fn distance(&self, a: &[f64], b: &[f64]) -> f64 {
-        if let SpaceKind::Joints { continuous, .. } = self.kind {
-            return joints::distance(continuous, a, b);
+        match self.kind {
+            SpaceKind::Joints { continuous, .. } => return joints::distance(continuous, a, b),
+            SpaceKind::Se2Bodies(_) => return bodies::distance(self.rotation_scale, a, b),
+            _ => {}
         }
         let p = self.position_dim();
         let dp = a[..p]
@@ -386,15 +431,19 @@ impl Space {
             SpaceKind::Se3 => {
                 dp + self.rotation_scale * rotation::rotation_angle(&a[3..7], &b[3..7])
             }
-            SpaceKind::Joints { .. } => unreachable!("answered above"),
+            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) => unreachable!("answered above"),
         }
     }
 
     /// Simultaneous interpolation of all coordinates (OMPL's `interpolate`): linear position,
     /// shortest-way angle, slerp for quaternions. Used by sampled checking, not by exact motions.
     pub fn interpolate(&self, a: &[f64], b: &[f64], t: f64) -> Config {
-        if let SpaceKind::Joints { continuous, .. } = self.kind {
-            return joints::interpolate(continuous, a, b, t);
+        match self.kind {
+            SpaceKind::Joints { continuous, .. } => {
+                return joints::interpolate(continuous, a, b, t)
+            }
+            SpaceKind::Se2Bodies(_) => return joints::interpolate(self.wrapping(), a, b, t),
+            _ => {}
         }
         let p = self.position_dim();
         let mut q: Config = a[..p]
@@ -417,7 +466,9 @@ impl Space {
                 q.extend_from_slice(&[0.0; 4]);
                 rotation::quat_to_slice(&r, &mut q[3..7]);
             }
-            SpaceKind::Joints { .. } => unreachable!("answered above"),
+            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) => {
+                unreachable!("answered above")
+            }
         }
         q
     }
@@ -435,6 +486,7 @@ impl Space {
             SpaceKind::Euclidean(_) => {}
             // continuous joints have bounds [-π, π]: drawn like the others, then wrapped
             SpaceKind::Joints { continuous, .. } => joints::wrap_continuous(continuous, &mut q),
+            SpaceKind::Se2Bodies(_) => joints::wrap_continuous(self.wrapping(), &mut q),
             SpaceKind::Se2 => q.push(rng.random_range(-PI..PI)),
             SpaceKind::Se3 => {
                 let (u1, u2, u3): (f64, f64, f64) = (rng.random(), rng.random(), rng.random());
@@ -465,10 +517,9 @@ impl Space {
     /// ask. `None` for other spaces, and where a joint wraps (a straight motion would not).
     pub fn straight_group(&self) -> Option<Group> {
         match self.kind {
-            SpaceKind::Joints { dof, continuous } if continuous == 0 && dof > 1 => Some(Group {
-                kind: GroupKind::Linear,
-                coords: 0..dof,
-            }),
+            SpaceKind::Joints { dof, continuous } if continuous == 0 && dof > 1 => {
+                Some(Group::run(GroupKind::Linear, 0..dof))
+            }
             _ => None,
         }
     }
@@ -481,38 +532,30 @@ impl Space {
         if let SpaceKind::Joints { dof, continuous } = self.kind {
             // one group per joint whatever `split_axes` says (CHS §1.5, seed l. 438: "a robot
             // arm whose links may only move one at a time")
-            groups.extend((0..dof).map(|i| Group {
-                kind: if joints::bit(continuous, i) {
+            groups.extend((0..dof).map(|i| {
+                let kind = if joints::bit(continuous, i) {
                     GroupKind::Angle
                 } else {
                     GroupKind::Linear
-                },
-                coords: i..i + 1,
+                };
+                Group::run(kind, i..i + 1)
             }));
             return;
         }
+        if let SpaceKind::Se2Bodies(k) = self.kind {
+            bodies::groups_into(k, split_axes, groups);
+            return;
+        }
         if split_axes {
-            groups.extend((0..p).map(|i| Group {
-                kind: GroupKind::Linear,
-                coords: i..i + 1,
-            }));
+            groups.extend((0..p).map(|i| Group::run(GroupKind::Linear, i..i + 1)));
         } else {
-            groups.push(Group {
-                kind: GroupKind::Linear,
-                coords: 0..p,
-            });
+            groups.push(Group::run(GroupKind::Linear, 0..p));
         }
         match self.kind {
             SpaceKind::Euclidean(_) => {}
-            SpaceKind::Se2 => groups.push(Group {
-                kind: GroupKind::Angle,
-                coords: 2..3,
-            }),
-            SpaceKind::Se3 => groups.push(Group {
-                kind: GroupKind::Quaternion,
-                coords: 3..7,
-            }),
-            SpaceKind::Joints { .. } => unreachable!("answered above"),
+            SpaceKind::Se2 => groups.push(Group::run(GroupKind::Angle, 2..3)),
+            SpaceKind::Se3 => groups.push(Group::run(GroupKind::Quaternion, 3..7)),
+            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) => unreachable!("answered above"),
         }
     }
 
@@ -520,7 +563,7 @@ impl Space {
     /// rotations, `q ≡ -q`).
     pub fn same_in_group(&self, a: &[f64], b: &[f64], group: &Group) -> bool {
         match group.kind {
-            GroupKind::Linear => a[group.coords.clone()] == b[group.coords.clone()],
+            GroupKind::Linear => group.indices().all(|i| a[i] == b[i]),
             GroupKind::Angle => {
                 let i = group.coords.start;
                 rotation::wrap_angle(b[i] - a[i]) == 0.0
@@ -534,7 +577,7 @@ impl Space {
     /// `a` with the coordinates of `group` taken from `b`.
     pub fn with_group_of(&self, a: &[f64], b: &[f64], group: &Group) -> Config {
         let mut q = a.to_vec();
-        q[group.coords.clone()].copy_from_slice(&b[group.coords.clone()]);
+        group.copy_coords(&mut q, b);
         q
     }
 
@@ -544,7 +587,7 @@ impl Space {
         let change = match group.kind {
             GroupKind::Linear => {
                 let mut delta = vec![0.0; a.len()];
-                for i in group.coords.clone() {
+                for i in group.indices() {
                     delta[i] = z[i] - a[i];
                 }
                 Change::Linear(delta)
@@ -571,7 +614,7 @@ impl Space {
         match group.kind {
             GroupKind::Linear => {
                 let delta = out.reset_linear(a, Interval::UNIT, Sweep::Segment);
-                for i in group.coords.clone() {
+                for i in group.indices() {
                     delta[i] = z[i] - a[i];
                 }
             }
@@ -593,7 +636,7 @@ impl Space {
     pub fn with_group_of_into(&self, a: &[f64], b: &[f64], group: &Group, out: &mut Vec<f64>) {
         out.clear();
         extend_small(out, a);
-        out[group.coords.clone()].copy_from_slice(&b[group.coords.clone()]);
+        group.copy_coords(out, b);
     }
 
     /// The straight motion from `a` to `z` when all coordinates may change at once (R^n only,
@@ -617,7 +660,7 @@ impl Space {
     pub fn line_through(&self, base: &[f64], group: &Group, direction: &[f64]) -> Motion {
         debug_assert_eq!(group.kind, GroupKind::Linear);
         let mut delta = vec![0.0; base.len()];
-        for (i, d) in group.coords.clone().zip(direction) {
+        for (i, d) in group.indices().zip(direction) {
             delta[i] = *d;
         }
         Motion::line(base.to_vec(), Change::Linear(delta))
@@ -633,7 +676,7 @@ impl Space {
     ) {
         debug_assert_eq!(group.kind, GroupKind::Linear);
         let delta = out.reset_linear(base, Interval::ALL, Sweep::Line);
-        for (i, d) in group.coords.clone().zip(direction) {
+        for (i, d) in group.indices().zip(direction) {
             delta[i] = *d;
         }
     }
@@ -673,6 +716,9 @@ impl Space {
     pub fn motion_length(&self, motion: &Motion, t0: f64, t1: f64) -> f64 {
         let dt = (t1 - t0).abs();
         match &motion.change {
+            Change::Linear(delta) if matches!(self.kind, SpaceKind::Se2Bodies(_)) => {
+                dt * bodies::change_length(self.rotation_scale, delta)
+            }
             Change::Linear(delta) => {
                 let p = self.position_dim();
                 let lin = delta[..p].iter().map(|d| d * d).sum::<f64>().sqrt();
@@ -691,6 +737,9 @@ impl Space {
     /// bit for bit, without building the motion: it depends only on `group`'s coordinates of
     /// `a` and `z` (shortening measures every pair of a path's corners, group by group).
     pub fn group_length(&self, a: &[f64], z: &[f64], group: &Group) -> f64 {
+        if matches!(self.kind, SpaceKind::Se2Bodies(_)) {
+            return bodies::group_length(self.rotation_scale, a, z, group);
+        }
         let p = self.position_dim();
         // the terms `motion_length` sums, in its order (the zeros of other groups add nothing)
         let linear = |delta: &dyn Fn(usize) -> f64| {
@@ -730,6 +779,7 @@ impl Space {
         match self.kind {
             SpaceKind::Euclidean(_) => vec![q.to_vec()],
             SpaceKind::Joints { continuous, .. } => vec![joints::embedding(continuous, q)],
+            SpaceKind::Se2Bodies(_) => vec![bodies::embedding(s, q)],
             SpaceKind::Se2 => vec![vec![q[0], q[1], s * q[2].cos(), s * q[2].sin()]],
             SpaceKind::Se3 => {
                 let mut a = q[..3].to_vec();
@@ -748,6 +798,7 @@ impl Space {
             SpaceKind::Se2 => 4,
             SpaceKind::Se3 => 7,
             SpaceKind::Joints { dof, continuous } => dof + continuous.count_ones() as usize,
+            SpaceKind::Se2Bodies(k) => 4 * k,
         }
     }
 }

@@ -39,6 +39,7 @@ pub fn check_disc_path(
 }
 
 pub mod arms;
+pub mod bodies;
 pub mod cli;
 pub mod js;
 pub mod rigid;

@@ -150,6 +150,31 @@ impl<'de> Deserialize<'de> for SceneSource {
     }
 }
 
+/// A [`LocalSpec`] in reports and child jobs as its spec string: the typed form leaves out
+/// knobs that roadmap files do not record (`sidestep`).
+mod spec_text {
+    use crate::local::LocalSpec;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(spec: &LocalSpec, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&spec.to_string())
+    }
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Either {
+        Text(String),
+        Typed(LocalSpec),
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<LocalSpec, D::Error> {
+        match Either::deserialize(d)? {
+            Either::Text(s) => s.parse().map_err(serde::de::Error::custom),
+            Either::Typed(spec) => Ok(spec),
+        }
+    }
+}
+
 /// One benchmarked method: a local method, whether what it discovers is fed back into the
 /// roadmap ([`crate::roadmap::LearnParams::feedback`], CHS §1.6), where construction draws
 /// its nodes ([`crate::roadmap::LearnParams::sampler`]) and what the roadmap starts from
@@ -157,7 +182,9 @@ impl<'de> Deserialize<'de> for SceneSource {
 /// are compared like local methods, inside the same learner on the same queries.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Method {
-    /// The local method.
+    /// The local method (written as its spec string, which names every knob; read from a
+    /// string or from the typed form of older reports).
+    #[serde(with = "spec_text")]
     pub local: LocalSpec,
     /// Feedback of via points and free segments.
     pub feedback: bool,

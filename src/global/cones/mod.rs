@@ -168,6 +168,7 @@ fn robot_vertices(scene: &Scene) -> Result<Vec<P>, ConeError> {
             .collect(),
         Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
         Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
+        Robot::Bodies(_) => return Err(ConeError::Unsupported("several bodies".into())),
     })
 }
 
@@ -390,6 +391,7 @@ impl Freeways {
             Robot::Point | Robot::Polygons(_) => {}
             Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
             Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
+            Robot::Bodies(_) => return Err(ConeError::Unsupported("several bodies".into())),
         }
         for o in &scene.obstacles {
             match o {

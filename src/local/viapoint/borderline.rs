@@ -10,7 +10,6 @@
 use super::directions::{perpendicular_into, DirScratch};
 use super::options::{BasePoint, Directions, ViaPointOptions};
 use crate::interval::{Interval, IntervalList};
-use crate::space::extend_small;
 use crate::space::{Change, Config, Group, GroupKind, Motion, Space, Sweep};
 use rand::Rng;
 
@@ -109,7 +108,7 @@ pub fn borderlines_into(
         (GroupKind::Linear, Change::Linear(delta)) => {
             let mut u = std::mem::take(&mut lines.unit);
             u.clear();
-            extend_small(&mut u, &delta[g.coords.clone()]);
+            u.extend(g.indices().map(|i| delta[i]));
             let n = u.iter().map(|x| x * x).sum::<f64>().sqrt();
             if n > 0.0 {
                 u.iter_mut().for_each(|x| *x /= n);
@@ -129,6 +128,9 @@ pub fn borderlines_into(
                     slot.1 = blocked_group;
                 }
                 lines.dirs = dirs;
+                if let (0, Some(share)) = (round, options.sidestep) {
+                    sidestep_lines(space, groups, crossing, &u, share * n, lines);
+                }
             }
             lines.unit = u;
         }
@@ -183,6 +185,38 @@ pub fn borderlines_into(
             }
         }
         lines.unit = d;
+    }
+}
+
+/// The borderlines of CHS Fig 1.4, whose reference point lies off the blocked motion: the base
+/// point steps by `step` (both ways) along each axis of every other linear group, and a line
+/// through the stepped point runs along the blocked motion's unit direction `u`.
+fn sidestep_lines(
+    space: &Space,
+    groups: &[Group],
+    crossing: &Crossing,
+    u: &[f64],
+    step: f64,
+    lines: &mut Lines,
+) {
+    if !(step.is_finite() && step > 0.0) {
+        return;
+    }
+    let g = &groups[crossing.group];
+    let mut q = crossing.base.to_vec();
+    for (k, h) in groups.iter().enumerate() {
+        if k == crossing.group || h.kind != GroupKind::Linear {
+            continue;
+        }
+        for i in h.indices() {
+            for sign in [1.0, -1.0] {
+                q[i] = crossing.base[i] + sign * step;
+                let slot = lines.next_slot();
+                space.line_through_into(&q, g, u, &mut slot.0);
+                slot.1 = crossing.group;
+            }
+            q[i] = crossing.base[i];
+        }
     }
 }
 
@@ -357,6 +391,45 @@ mod tests {
     /// [`round_is_empty`] against [`borderlines_into`]: whenever it says "empty", erecting the
     /// borderlines of that round really gives none, for planar, spatial and rigid-body spaces,
     /// both direction strategies and random blocked motions.
+    #[test]
+    fn sidesteps_leave_the_blocked_motion_and_run_along_it() {
+        // CHS Fig 1.4: axis-parallel motions in the plane; x is blocked at the base point
+        let space = Space::euclidean(vec![0.0; 2], vec![10.0; 2]).unwrap();
+        let groups = space.groups(true);
+        let motion = space.group_motion(&[1.0, 5.0], &[9.0, 5.0], &groups[0]);
+        let base = [4.0, 5.0];
+        let crossing = Crossing {
+            motion: &motion,
+            group: 0,
+            base: &base,
+        };
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+        let plain = ViaPointOptions {
+            split_axes: true,
+            ..ViaPointOptions::default()
+        };
+        let mut lines = Lines::default();
+        borderlines_into(&space, &groups, &plain, &crossing, 0, &mut rng, &mut lines);
+        assert_eq!(lines.len(), 1, "one line along y through the base point");
+        let stepping = ViaPointOptions {
+            sidestep: Some(0.25),
+            ..plain
+        };
+        borderlines_into(
+            &space, &groups, &stepping, &crossing, 0, &mut rng, &mut lines,
+        );
+        assert_eq!(lines.len(), 3);
+        // the sidesteps come first, then the line along y through the base point
+        assert_eq!(lines.as_slice()[2].0.origin, vec![4.0, 5.0]);
+        for (sign, (m, g)) in [1.0, -1.0].iter().zip(&lines.as_slice()[..2]) {
+            // stepped by a quarter of the blocked motion's length (8) in y, running along x
+            assert_eq!(*g, 0);
+            assert_eq!(m.origin, vec![4.0, 5.0 + sign * 2.0]);
+            assert_eq!(m.change, Change::Linear(vec![1.0, 0.0]));
+        }
+    }
+
     #[test]
     fn empty_rounds_are_really_empty() {
         use rand::SeedableRng;

@@ -177,6 +177,15 @@ pub struct ViaPointOptions {
     /// roadmap's feedback). Benchmarks of the search alone turn it off: the record grows with
     /// the number of calls.
     pub discoveries: bool,
+    /// Borderlines whose reference point lies off the blocked motion (CHS §1.4, Fig 1.4): the
+    /// base point steps sideways by this share of the blocked motion's length, along each axis
+    /// of every other linear group and both ways, and a line through the stepped point runs
+    /// parallel to the blocked motion. Its via points differ from the base point in both
+    /// groups at once, which motions along the axes alone (`split`) cannot reach from one
+    /// borderline. `None`: only borderlines through the base point. Roadmap files do not
+    /// record it, so a roadmap learnt with it is not saved.
+    #[serde(skip)]
+    pub sidestep: Option<f64>,
 }
 
 impl Default for ViaPointOptions {
@@ -197,6 +206,7 @@ impl Default for ViaPointOptions {
             seed: 0,
             trace: false,
             discoveries: true,
+            sidestep: None,
         }
     }
 }

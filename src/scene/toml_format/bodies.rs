@@ -1,0 +1,161 @@
+//! Scenes of several moving bodies: `[[body]]` tables in place of the one `[robot]`.
+//!
+//! ```toml
+//! [space]
+//! kind = "se2"
+//! lower = [0.0, 0.0]                  # every body's reference point stays in this box
+//! upper = [6.0, 2.0]
+//!
+//! [[body]]                            # in configuration order; at least one
+//! name = "left"                       # unique
+//! polygon = { vertices = [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]] }
+//! # any shape a se2 [robot] takes (box, polygon, polygons, convex, mesh), and its center
+//!
+//! [[body]]
+//! name = "right"
+//! box = { half_extents = [0.5, 0.5] }
+//!
+//! [[query]]
+//! start = [1.0, 0.5, 0.0, 3.0, 0.5, 0.0]   # the bodies' poses x y θ, concatenated
+//! goal  = [3.0, 0.5, 0.0, 1.0, 0.5, 0.0]
+//! ```
+//!
+//! The rotation scale defaults to the largest body's radius about its reference point.
+
+use super::{BoxSpec, ConvexSpec};
+use super::{File, Kind, PolygonSpec, Reader, RobotSpec};
+use crate::geometry::Polygon;
+use crate::scene::{default_name, Body, Obstacle, Query, Robot, Scene, SceneError};
+use crate::space::bodies::MAX_BODIES;
+use crate::space::Space;
+use serde::Deserialize;
+
+/// A `[[body]]` table: a name and the shape of a se2 `[robot]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct BodySpec {
+    name: Option<String>,
+    #[serde(rename = "box")]
+    cuboid: Option<BoxSpec>,
+    mesh: Option<String>,
+    polygon: Option<PolygonSpec>,
+    polygons: Option<Vec<PolygonSpec>>,
+    convex: Option<ConvexSpec>,
+    center: Option<toml::Value>,
+}
+
+impl BodySpec {
+    fn shape(&self) -> RobotSpec {
+        RobotSpec {
+            cuboid: self.cuboid.clone(),
+            mesh: self.mesh.clone(),
+            polygon: self.polygon.clone(),
+            polygons: self.polygons.clone(),
+            convex: self.convex.clone(),
+            center: self.center.clone(),
+        }
+    }
+}
+
+impl Reader<'_> {
+    /// A scene of the bodies of `file` (which has at least one `[[body]]`).
+    pub(super) fn bodies_scene(&mut self, file: File, kind: Kind) -> Result<Scene, SceneError> {
+        if kind != Kind::Se2 {
+            return Err(self.invalid(format!(
+                "[[body]] tables move several bodies in a se2 space; a {} scene {}",
+                file.space.kind,
+                if kind == Kind::Se3 {
+                    "moves one [robot]"
+                } else {
+                    "moves a point"
+                }
+            )));
+        }
+        if file.robot.is_some() {
+            return Err(self.invalid(
+                "a scene has either one [robot] or several [[body]] tables, not both".into(),
+            ));
+        }
+        if file.bodies.len() > MAX_BODIES {
+            return Err(self.invalid(format!(
+                "{} [[body]] tables; at most {MAX_BODIES} bodies are accepted",
+                file.bodies.len()
+            )));
+        }
+        let mut bodies: Vec<Body> = Vec::with_capacity(file.bodies.len());
+        for (i, spec) in file.bodies.iter().enumerate() {
+            let name = match &spec.name {
+                Some(n) if !n.trim().is_empty() => n.clone(),
+                _ => return Err(self.invalid(format!("[[body]] {}: give it a name", i + 1))),
+            };
+            if bodies.iter().any(|b| b.name == name) {
+                return Err(self.invalid(format!(
+                    "[[body]] {}: the name \"{name}\" is taken by an earlier body",
+                    i + 1
+                )));
+            }
+            let parts = self.robot_2d(&format!("body \"{name}\""), &spec.shape())?;
+            bodies.push(Body { name, parts });
+        }
+        let obstacles: Vec<Obstacle> = file
+            .obstacles
+            .iter()
+            .enumerate()
+            .map(|(i, o)| self.rigid_obstacle(i + 1, o, kind))
+            .collect::<Result<Vec<_>, _>>()?
+            .into_iter()
+            .flatten()
+            .collect();
+        let space = self.bodies_space(&file, &bodies)?;
+        Ok(Scene {
+            name: file.name.unwrap_or_else(|| default_name(self.path)),
+            space,
+            robot: Robot::Bodies(bodies),
+            obstacles,
+            queries: file
+                .queries
+                .into_iter()
+                .map(|q| Query {
+                    start: q.start,
+                    goal: q.goal,
+                })
+                .collect(),
+            source: Some(self.path.to_path_buf()),
+            warnings: std::mem::take(&mut self.warnings),
+        })
+    }
+
+    fn bodies_space(&self, file: &File, bodies: &[Body]) -> Result<Space, SceneError> {
+        let radius = bodies
+            .iter()
+            .flat_map(|b| &b.parts)
+            .map(Polygon::radius)
+            .fold(0.0, f64::max);
+        let max = crate::limits::MAX_COORDINATE;
+        if !(radius.is_finite() && radius <= max) {
+            return Err(self.invalid(format!(
+                "a body is too large: its radius about its reference point is {radius:?}, more \
+                 than {max:e}, where distances overflow"
+            )));
+        }
+        let scale = match file.space.rotation_scale {
+            Some(s) if !(s.is_finite() && s > 0.0) => {
+                return Err(self.invalid(format!(
+                    "[space] rotation_scale must be a positive number, got {s}"
+                )))
+            }
+            Some(s) => s,
+            None if radius > 0.0 => radius,
+            None => {
+                return Err(self.invalid(
+                    "every body's radius about its reference point is 0; give [space] \
+                     rotation_scale"
+                        .into(),
+                ))
+            }
+        };
+        let (lo, hi) = (&file.space.lower, &file.space.upper);
+        Space::se2_bodies(bodies.len(), [lo[0], lo[1]], [hi[0], hi[1]], scale)
+            .map_err(|e| self.invalid(format!("[space] {e}")))
+    }
+}
