@@ -586,6 +586,49 @@ fn read_bounded_line(
     }
 }
 
+/// One planner per shortening a request may ask for, each with the server's options.
+fn planners<'a>(
+    a: &ServeArgs,
+    scene: &Scene,
+    roadmap: &'a Roadmap,
+    oracle: &'a dyn viaroad::oracle::CollisionOracle,
+    time: std::time::Duration,
+) -> anyhow::Result<Vec<QueryPlanner<'a>>> {
+    let mut planners = Vec::new();
+    for (_, s) in SHORTENINGS {
+        let planner = QueryPlanner::new(roadmap, oracle).context("roadmap")?;
+        let mut options = planner.options().clone();
+        options.time = Some(time);
+        options.grow = !a.no_grow;
+        options.trees = a.trees.params(&scene.space);
+        options.race = a.race.race(&scene.space);
+        options.straight_shortcuts = !a.no_straight;
+        match s {
+            Shortening::Fast => {}
+            Shortening::Exact => options.exact_shortening_limit = usize::MAX,
+            Shortening::Off => options.shorten = false,
+        }
+        planners.push(planner.with_options(options));
+    }
+    Ok(planners)
+}
+
+/// What an `info` request answers: the roadmap's header, the scene and the server's threads.
+fn server_info(scene: &Scene, roadmap: &Roadmap, threads: usize) -> anyhow::Result<Value> {
+    let mut info = serde_json::to_value(roadmap.info()).context("roadmap info")?;
+    if let Value::Object(m) = &mut info {
+        let extra: Map<String, Value> = [
+            ("scene".to_string(), Value::from(scene.name.clone())),
+            ("dof".to_string(), Value::from(scene.space.dim())),
+            ("threads".to_string(), Value::from(threads)),
+        ]
+        .into_iter()
+        .collect();
+        m.extend(extra);
+    }
+    Ok(info)
+}
+
 /// Runs `serve`.
 pub fn run(a: ServeArgs) -> anyhow::Result<()> {
     let idle = super::limits::parse_seconds(
@@ -619,33 +662,8 @@ pub fn run(a: ServeArgs) -> anyhow::Result<()> {
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
     let oracle = scene.oracle();
-    let mut planners = Vec::new();
-    for (_, s) in SHORTENINGS {
-        let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
-        let mut options = planner.options().clone();
-        options.time = Some(time);
-        options.grow = !a.no_grow;
-        options.trees = a.trees.params(&scene.space);
-        options.race = a.race.race(&scene.space);
-        options.straight_shortcuts = !a.no_straight;
-        match s {
-            Shortening::Fast => {}
-            Shortening::Exact => options.exact_shortening_limit = usize::MAX,
-            Shortening::Off => options.shorten = false,
-        }
-        planners.push(planner.with_options(options));
-    }
-    let mut info = serde_json::to_value(roadmap.info()).context("roadmap info")?;
-    if let Value::Object(m) = &mut info {
-        let extra: Map<String, Value> = [
-            ("scene".to_string(), Value::from(scene.name.clone())),
-            ("dof".to_string(), Value::from(scene.space.dim())),
-            ("threads".to_string(), Value::from(threads)),
-        ]
-        .into_iter()
-        .collect();
-        m.extend(extra);
-    }
+    let planners = planners(&a, &scene, &roadmap, oracle.as_ref(), time)?;
+    let info = server_info(&scene, &roadmap, threads)?;
     let checker = super::query::independent_checker(&scene, a.check)?;
     let server = Server {
         checker,

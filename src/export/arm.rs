@@ -76,18 +76,8 @@ fn trs(p: &Isometry3<f64>) -> Trs {
     }
 }
 
-/// The arm's obstacles, its links following the plan (joint vectors of the arm's group; the
-/// shortened path, or the raw one where there is none) and the traces of the group's tip link
-/// along both paths, as a glTF document. MoveIt scenes are Z-up. `wrapping` marks the
-/// continuous joints, which turn the shorter way round (bit `i`: joint `i`).
-pub fn arm_gltf(
-    arm: &Arm,
-    objects: &[CollisionObject],
-    plan: &Plan,
-    wrapping: u64,
-    legend: &Legend,
-) -> Result<Gltf, ExportError> {
-    let dof = arm.group.dof();
+/// Both paths of `plan` hold `dof` finite joint values per corner.
+fn check_joint_paths(plan: &Plan, dof: usize) -> Result<(), ExportError> {
     for (which, path) in [("raw", &plan.raw), ("shortened", &plan.shortened)] {
         for (index, q) in path.iter().enumerate() {
             if q.len() != dof || q.iter().any(|v| !v.is_finite()) {
@@ -102,6 +92,22 @@ pub fn arm_gltf(
             }
         }
     }
+    Ok(())
+}
+
+/// The arm's obstacles, its links following the plan (joint vectors of the arm's group; the
+/// shortened path, or the raw one where there is none) and the traces of the group's tip link
+/// along both paths, as a glTF document. MoveIt scenes are Z-up. `wrapping` marks the
+/// continuous joints, which turn the shorter way round (bit `i`: joint `i`).
+pub fn arm_gltf(
+    arm: &Arm,
+    objects: &[CollisionObject],
+    plan: &Plan,
+    wrapping: u64,
+    legend: &Legend,
+) -> Result<Gltf, ExportError> {
+    let dof = arm.group.dof();
+    check_joint_paths(plan, dof)?;
     let path = plan.animated();
     let mut g = Gltf::new();
     let world = world_node(&mut g, true);

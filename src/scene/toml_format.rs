@@ -327,22 +327,8 @@ impl Reader<'_> {
                          {radius:?}, more than {max:e}, where distances overflow"
                     )));
                 }
-                let scale = match file.space.rotation_scale {
-                    Some(s) if !(s.is_finite() && s > 0.0) => {
-                        return Err(self.invalid(format!(
-                            "[space] rotation_scale must be a positive number, got {s}"
-                        )))
-                    }
-                    Some(s) => s,
-                    None if radius > 0.0 => radius,
-                    None => {
-                        return Err(self.invalid(
-                            "the robot's radius about its reference point is 0; give \
-                             [space] rotation_scale"
-                                .into(),
-                        ))
-                    }
-                };
+                let scale =
+                    self.rotation_scale(file.space.rotation_scale, radius, "the robot's")?;
                 let (lo, hi) = (&file.space.lower, &file.space.upper);
                 let space = if kind == Kind::Se2 {
                     Space::se2([lo[0], lo[1]], [hi[0], hi[1]], scale)
@@ -369,6 +355,27 @@ impl Reader<'_> {
             source: Some(self.path.to_path_buf()),
             warnings: std::mem::take(&mut self.warnings),
         })
+    }
+
+    /// The weight of a turn against a translation: as given, else the robot's radius about its
+    /// reference point (so a turn costs what its farthest point travels).
+    /// `whose` names the radius in the error ("the robot's").
+    fn rotation_scale(
+        &self,
+        given: Option<f64>,
+        radius: f64,
+        whose: &str,
+    ) -> Result<f64, SceneError> {
+        match given {
+            Some(s) if !(s.is_finite() && s > 0.0) => Err(self.invalid(format!(
+                "[space] rotation_scale must be a positive number, got {s}"
+            ))),
+            Some(s) => Ok(s),
+            None if radius > 0.0 => Ok(radius),
+            None => Err(self.invalid(format!(
+                "{whose} radius about its reference point is 0; give [space] rotation_scale"
+            ))),
+        }
     }
 
     /// The kind and the number of position bounds it needs.

@@ -138,22 +138,7 @@ impl Reader<'_> {
                  than {max:e}, where distances overflow"
             )));
         }
-        let scale = match file.space.rotation_scale {
-            Some(s) if !(s.is_finite() && s > 0.0) => {
-                return Err(self.invalid(format!(
-                    "[space] rotation_scale must be a positive number, got {s}"
-                )))
-            }
-            Some(s) => s,
-            None if radius > 0.0 => radius,
-            None => {
-                return Err(self.invalid(
-                    "every body's radius about its reference point is 0; give [space] \
-                     rotation_scale"
-                        .into(),
-                ))
-            }
-        };
+        let scale = self.rotation_scale(file.space.rotation_scale, radius, "every body's")?;
         let (lo, hi) = (&file.space.lower, &file.space.upper);
         Space::se2_bodies(bodies.len(), [lo[0], lo[1]], [hi[0], hi[1]], scale)
             .map_err(|e| self.invalid(format!("[space] {e}")))
