@@ -991,7 +991,9 @@ mod tests {
                 along: along.then(|| Along {
                     bodies: [
                         Moving {
-                            velocity: offset + axis.cross(&c.coords) * angle,
+                            // the turn is about the axis through the origin before the
+                            // slide: the centre's lever arm leaves the slide out
+                            velocity: offset + axis.cross(&(c.coords - offset * t)) * angle,
                             spin: axis.into_inner() * angle,
                             radius,
                         },

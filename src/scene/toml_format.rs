@@ -306,15 +306,7 @@ impl Reader<'_> {
                 } else {
                     Robot::Mesh(self.robot_3d(spec)?)
                 };
-                let obstacles: Vec<Obstacle> = file
-                    .obstacles
-                    .iter()
-                    .enumerate()
-                    .map(|(i, o)| self.rigid_obstacle(i + 1, o, kind))
-                    .collect::<Result<Vec<_>, _>>()?
-                    .into_iter()
-                    .flatten()
-                    .collect();
+                let obstacles = self.rigid_obstacles(&file, kind)?;
                 let radius = match &robot {
                     Robot::Polygons(parts) => parts.iter().map(Polygon::radius).fold(0.0, f64::max),
                     Robot::Mesh(m) => m.radius(),
@@ -339,7 +331,19 @@ impl Reader<'_> {
                 (robot, obstacles, space)
             }
         };
-        Ok(Scene {
+        Ok(self.assemble(file, space, robot, obstacles))
+    }
+
+    /// The scene of `file` with its space, robot and obstacles read: its name (the file's stem
+    /// by default), queries and the warnings gathered on the way.
+    fn assemble(
+        &mut self,
+        file: File,
+        space: Space,
+        robot: Robot,
+        obstacles: Vec<Obstacle>,
+    ) -> Scene {
+        Scene {
             name: file.name.unwrap_or_else(|| default_name(self.path)),
             space,
             robot,
@@ -354,7 +358,20 @@ impl Reader<'_> {
                 .collect(),
             source: Some(self.path.to_path_buf()),
             warnings: std::mem::take(&mut self.warnings),
-        })
+        }
+    }
+
+    /// The obstacles of a rigid-body scene, each `[[obstacle]]` one or more.
+    fn rigid_obstacles(&mut self, file: &File, kind: Kind) -> Result<Vec<Obstacle>, SceneError> {
+        Ok(file
+            .obstacles
+            .iter()
+            .enumerate()
+            .map(|(i, o)| self.rigid_obstacle(i + 1, o, kind))
+            .collect::<Result<Vec<_>, _>>()?
+            .into_iter()
+            .flatten()
+            .collect())
     }
 
     /// The weight of a turn against a translation: as given, else the robot's radius about its

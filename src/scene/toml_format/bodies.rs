@@ -25,7 +25,7 @@
 use super::{BoxSpec, ConvexSpec};
 use super::{File, Kind, PolygonSpec, Reader, RobotSpec};
 use crate::geometry::Polygon;
-use crate::scene::{default_name, Body, Obstacle, Query, Robot, Scene, SceneError};
+use crate::scene::{Body, Robot, Scene, SceneError};
 use crate::space::bodies::MAX_BODIES;
 use crate::space::Space;
 use serde::Deserialize;
@@ -97,32 +97,9 @@ impl Reader<'_> {
             let parts = self.robot_2d(&format!("body \"{name}\""), &spec.shape())?;
             bodies.push(Body { name, parts });
         }
-        let obstacles: Vec<Obstacle> = file
-            .obstacles
-            .iter()
-            .enumerate()
-            .map(|(i, o)| self.rigid_obstacle(i + 1, o, kind))
-            .collect::<Result<Vec<_>, _>>()?
-            .into_iter()
-            .flatten()
-            .collect();
+        let obstacles = self.rigid_obstacles(&file, kind)?;
         let space = self.bodies_space(&file, &bodies)?;
-        Ok(Scene {
-            name: file.name.unwrap_or_else(|| default_name(self.path)),
-            space,
-            robot: Robot::Bodies(bodies),
-            obstacles,
-            queries: file
-                .queries
-                .into_iter()
-                .map(|q| Query {
-                    start: q.start,
-                    goal: q.goal,
-                })
-                .collect(),
-            source: Some(self.path.to_path_buf()),
-            warnings: std::mem::take(&mut self.warnings),
-        })
+        Ok(self.assemble(file, space, Robot::Bodies(bodies), obstacles))
     }
 
     fn bodies_space(&self, file: &File, bodies: &[Body]) -> Result<Space, SceneError> {
