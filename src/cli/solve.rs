@@ -2,7 +2,7 @@
 //! ([`super::solver`]), or by one planner asked for: the local method alone, a grown roadmap
 //! or two trees.
 
-use super::solve_args::{solve_query, SingleQuery, SolveArgs};
+use super::solve_args::{check_both, solve_query, verdict_text, SingleQuery, SolveArgs};
 use anyhow::Context;
 use serde_json::json;
 use std::time::Instant;
@@ -351,27 +351,4 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         out.finish();
     }
     Ok(())
-}
-
-/// The independent checker's verdict on a raw path and its shortened version.
-pub(super) fn check_both(
-    checker: &viaroad::bench::validity::Checker,
-    raw: &[viaroad::space::Config],
-    shortened: &[viaroad::space::Config],
-) -> Result<(), String> {
-    checker
-        .check_path(raw)
-        .map_err(|e| format!("raw path: {e}"))?;
-    checker
-        .check_path(shortened)
-        .map_err(|e| format!("shortened path: {e}"))
-}
-
-/// `--check`'s verdict as the end of a line of text.
-pub(super) fn verdict_text(verdict: Option<&Result<(), String>>) -> String {
-    match verdict {
-        None => String::new(),
-        Some(Ok(())) => ", certified".into(),
-        Some(Err(e)) => format!(", NOT certified: {e}"),
-    }
 }

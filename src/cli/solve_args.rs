@@ -253,3 +253,26 @@ pub fn default_seconds(scene: &std::path::Path) -> anyhow::Result<f64> {
     };
     Ok(limit.unwrap_or(60.0))
 }
+
+/// The independent checker's verdict on a raw path and its shortened version.
+pub(super) fn check_both(
+    checker: &viaroad::bench::validity::Checker,
+    raw: &[viaroad::space::Config],
+    shortened: &[viaroad::space::Config],
+) -> Result<(), String> {
+    checker
+        .check_path(raw)
+        .map_err(|e| format!("raw path: {e}"))?;
+    checker
+        .check_path(shortened)
+        .map_err(|e| format!("shortened path: {e}"))
+}
+
+/// `--check`'s verdict as the end of a line of text.
+pub(super) fn verdict_text(verdict: Option<&Result<(), String>>) -> String {
+    match verdict {
+        None => String::new(),
+        Some(Ok(())) => ", certified".into(),
+        Some(Err(e)) => format!(", NOT certified: {e}"),
+    }
+}

@@ -43,7 +43,9 @@ pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
         let method = s.method.map(|m| m.name());
         let calls = s.counts.intersect_calls();
         let verdict = match &checker {
-            Some(c) if s.is_solved() => Some(super::solve::check_both(c, &s.raw, &s.shortened)),
+            Some(c) if s.is_solved() => {
+                Some(super::solve_args::check_both(c, &s.raw, &s.shortened))
+            }
             _ => None,
         };
         if a.json {
@@ -74,7 +76,7 @@ pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
                 s.raw.len(),
                 length(&s.shortened),
                 length(&s.raw),
-                super::solve::verdict_text(verdict.as_ref()),
+                super::solve_args::verdict_text(verdict.as_ref()),
             );
         } else {
             println!(
