@@ -234,19 +234,7 @@ impl Picture {
     }
 
     fn robot_at(&mut self, part: &Polygon, q: &[f64]) {
-        let r = Rotation2::new(q[2]);
-        let pts: Vec<Point2<f64>> = part
-            .vertices
-            .iter()
-            .map(|v| r * v + nalgebra::Vector2::new(q[0], q[1]))
-            .collect();
-        let pts = self.polygon_points(&pts);
-        let _ = writeln!(
-            self.body,
-            r#"<polygon points="{pts}" fill="{}" fill-opacity="0.25" stroke="{}" stroke-width="0.6"/>"#,
-            style::ROBOT,
-            style::ROBOT
-        );
+        self.part_at(part, q, style::ROBOT, 0.25);
     }
 
     /// Draws the projection of an SE(3) robot placed at `q` onto the xy-plane: its triangles

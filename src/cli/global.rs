@@ -10,7 +10,7 @@ use viaroad::global::cones::{ConeOutcome, Freeways};
 use viaroad::local::{path_length, LocalSpec};
 use viaroad::oracle::minkowski::Minkowski;
 use viaroad::oracle::Bounded;
-use viaroad::scene::{Obstacle, Robot, Scene};
+use viaroad::scene::{Robot, Scene};
 use viaroad::space::Space;
 
 /// `solve --global METHOD`.
@@ -95,14 +95,7 @@ pub fn run_minkowski(a: &SolveArgs, spec: &LocalSpec) -> anyhow::Result<()> {
     if queries.is_empty() {
         anyhow::bail!("{} has no [[query]]", a.scene.display());
     }
-    let obstacles: Vec<_> = scene
-        .obstacles
-        .iter()
-        .filter_map(|o| match o {
-            Obstacle::Polygon(p) => Some(p.clone()),
-            _ => None,
-        })
-        .collect();
+    let obstacles = scene.polygon_obstacles();
     let (lo, hi) = (scene.space.lower(), scene.space.upper());
     let plane = Space::euclidean(lo[..2].to_vec(), hi[..2].to_vec())?;
     let translating = Scene {

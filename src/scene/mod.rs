@@ -314,6 +314,17 @@ impl Scene {
         toml_format::checked_queries(self)
     }
 
+    /// The polygonal obstacles of a planar scene (none in other scenes).
+    pub fn polygon_obstacles(&self) -> Vec<Polygon> {
+        self.obstacles
+            .iter()
+            .filter_map(|o| match o {
+                Obstacle::Polygon(p) => Some(p.clone()),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The collision oracle of this scene, with "outside the bounds is obstacle".
     pub fn oracle(&self) -> Box<dyn CollisionOracle> {
         match (&self.robot, self.space.kind()) {
@@ -332,14 +343,7 @@ impl Scene {
                 ))
             }
             (Robot::Polygons(parts), _) => {
-                let obstacles = self
-                    .obstacles
-                    .iter()
-                    .filter_map(|o| match o {
-                        Obstacle::Polygon(p) => Some(p.clone()),
-                        _ => None,
-                    })
-                    .collect();
+                let obstacles = self.polygon_obstacles();
                 Box::new(Bounded::new(
                     self.space.clone(),
                     Polygons::new(parts.clone(), obstacles),
@@ -360,14 +364,7 @@ impl Scene {
                 ))
             }
             (Robot::Bodies(bodies), _) => {
-                let obstacles = self
-                    .obstacles
-                    .iter()
-                    .filter_map(|o| match o {
-                        Obstacle::Polygon(p) => Some(p.clone()),
-                        _ => None,
-                    })
-                    .collect();
+                let obstacles = self.polygon_obstacles();
                 let parts = bodies.iter().map(|b| b.parts.clone()).collect();
                 Box::new(Bounded::new(
                     self.space.clone(),
