@@ -298,7 +298,9 @@ impl SampledParry {
             Change::Linear(d) => {
                 (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() / self.translation_step
             }
-            Change::Rotation { angle, .. } => angle.abs() / self.rotation_step,
+            Change::Rotation { angle, .. } | Change::BodyRotation { angle, .. } => {
+                angle.abs() / self.rotation_step
+            }
         };
         (n.ceil() as usize).max(1)
     }

@@ -191,7 +191,7 @@ fn bad_scenes_of_several_bodies_are_refused() {
             "[space]\nkind = \"se3\"\nlower = [0.0, 0.0, 0.0]\nupper = [4.0, 4.0, 4.0]\n"
                 .to_string()
                 + body,
-            "se2 space",
+            "half_extents has 2 numbers, the space needs 3",
         ),
         (
             format!("{space}{body}[[query]]\nstart = [1.0, 1.0, 0.0]\ngoal = [2.0, 2.0]\n"),

@@ -873,6 +873,7 @@ proptest! {
                     prop_assert!(near || turn.contains(t) == other, "t = {}: {:?} / {:?} {:?}", t, turn, fwd, bwd);
                 }
             }
+            Change::BodyRotation { .. } => unreachable!("one body's motions only"),
         }
 
         // the static test at sample points

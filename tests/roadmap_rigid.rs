@@ -21,7 +21,7 @@ impl CollisionOracle for PositionBalls {
         counts.pairs_tested += self.balls.len() as u64;
         let v: Vec<f64> = match &m.change {
             Change::Linear(d) => d[..self.dim].to_vec(),
-            Change::Rotation { .. } => vec![0.0; self.dim],
+            Change::Rotation { .. } | Change::BodyRotation { .. } => vec![0.0; self.dim],
         };
         let mut hits = Vec::new();
         for (c, r) in &self.balls {

@@ -1548,7 +1548,7 @@ fn ompl_problems_match_the_table() {
                 );
             }
             Robot::Polygons(parts) => assert!(!parts.is_empty()),
-            Robot::Point | Robot::Arm(_) | Robot::Bodies(_) => {
+            Robot::Point | Robot::Arm(_) | Robot::Bodies(_) | Robot::MeshBodies(_) => {
                 panic!("{}: not a rigid robot", p.cfg)
             }
         }
@@ -1743,7 +1743,9 @@ fn ompl_state_collides(scene: &Scene, q: &[f64]) -> bool {
                     .unwrap()
             })
         }
-        Robot::Point | Robot::Arm(_) | Robot::Bodies(_) => panic!("not a rigid robot"),
+        Robot::Point | Robot::Arm(_) | Robot::Bodies(_) | Robot::MeshBodies(_) => {
+            panic!("not a rigid robot")
+        }
     }
 }
 

@@ -51,6 +51,9 @@ fn check(name: &str) {
             SpaceKind::Se2Bodies(_) => {
                 common::bodies::BodiesChecker::new(&scene).certify_path(&r.path)
             }
+            SpaceKind::Se3Bodies(_) => {
+                common::bodies3::SolidBodiesChecker::new(&scene).certify_path(&r.path)
+            }
         };
         verdict.unwrap_or_else(|e| panic!("{name} query {}: {e}", i + 1));
     }

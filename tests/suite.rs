@@ -26,6 +26,7 @@ mod arm_workcell;
 mod bench_cones;
 mod bench_local;
 mod bodies;
+mod bodies3;
 mod budgets;
 mod certify;
 mod cli;

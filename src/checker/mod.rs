@@ -16,8 +16,11 @@
 //!   the first configuration; surfaces that never touch cannot change it along the path.
 //! * Several bodies in the plane ([`bodies`]): the same parry polygons and advancement, over
 //!   every body–obstacle and body–body pair.
+//! * Several bodies in space ([`bodies3`]): the same parry trimeshes and advancement, over
+//!   every body–obstacle and body–body pair, containment at the first corner.
 
 pub mod bodies;
+pub mod bodies3;
 pub mod planar;
 pub mod rigid;
 
@@ -45,6 +48,8 @@ pub enum Checker {
     Rigid(rigid::RigidChecker),
     /// Several polygonal bodies in the plane.
     Bodies(bodies::BodiesChecker),
+    /// Several polyhedral bodies in space.
+    SolidBodies(bodies3::SolidBodiesChecker),
     /// A jointed arm among MoveIt collision objects: parry on the exact primitives, sampled along
     /// every joint move at `step` (1/10 of OMPL's default resolution, 0.1 % of the joint space's
     /// extent), sharing no code with the exact single-joint oracle.
@@ -89,6 +94,9 @@ impl Checker {
             (Robot::Bodies(_), SpaceKind::Se2Bodies(_)) => {
                 bodies::BodiesChecker::new(scene).map(Checker::Bodies)
             }
+            (Robot::MeshBodies(_), SpaceKind::Se3Bodies(_)) => {
+                bodies3::SolidBodiesChecker::new(scene).map(Checker::SolidBodies)
+            }
             (Robot::Arm(a), SpaceKind::Joints { .. }) => {
                 let checker =
                     crate::robot::ArmChecker::new(&a.arm, &a.objects).map_err(|e| e.to_string())?;
@@ -115,6 +123,7 @@ impl Checker {
             Checker::Planar(c) => c.certify_path(path),
             Checker::Rigid(c) => c.certify_path(path),
             Checker::Bodies(c) => c.certify_path(path),
+            Checker::SolidBodies(c) => c.certify_path(path),
             Checker::Arm { checker, step } => {
                 let report = checker.check_path(path, *step).map_err(|e| e.to_string())?;
                 match report.first_invalid {

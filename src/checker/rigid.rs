@@ -6,7 +6,7 @@ use parry3d_f64::na::{Quaternion, Unit, UnitQuaternion};
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
 
-fn parry_mesh(m: &crate::geometry::TriMesh) -> Result<TriMesh, String> {
+pub(super) fn parry_mesh(m: &crate::geometry::TriMesh) -> Result<TriMesh, String> {
     TriMesh::with_flags(
         m.vertices.clone(),
         m.triangles.clone(),

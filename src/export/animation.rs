@@ -112,7 +112,8 @@ pub fn pose(space: &Space, q: &[f64]) -> ([f64; 3], [f64; 4]) {
         }
         // an arm's joints place no single body: its links are placed by forward kinematics
         SpaceKind::Joints { .. } => ([0.0; 3], [0.0, 0.0, 0.0, 1.0]),
-        SpaceKind::Se3 => {
+        // the first body's pose (exporting several bodies in space is refused before)
+        SpaceKind::Se3 | SpaceKind::Se3Bodies(_) => {
             let r =
                 UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[6], q[3], q[4], q[5]));
             ([q[0], q[1], q[2]], [r.i, r.j, r.k, r.w])

@@ -464,7 +464,7 @@ pub fn scene_gltf(
         }
         Robot::Mesh(m) => body.mesh(m, |v| v),
         Robot::Arm(_) => unreachable!("arms are drawn by arm::arm_gltf"),
-        Robot::Bodies(_) => unreachable!("refused with their space above"),
+        Robot::Bodies(_) | Robot::MeshBodies(_) => unreachable!("refused with their space above"),
     }
     let path = plan.animated();
     let start = path.first().map_or(Trs::IDENTITY, |q| {

@@ -353,7 +353,7 @@ impl Discs {
                 d.len(),
                 self.dim
             ))),
-            Change::Rotation { .. } => Err(OracleError::Unsupported(
+            Change::Rotation { .. } | Change::BodyRotation { .. } => Err(OracleError::Unsupported(
                 "a rotation of a point robot".into(),
             )),
         }

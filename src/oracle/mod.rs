@@ -12,6 +12,8 @@
 //! - [`polygons`]: a polygonal robot among polygons in SE(2);
 //! - [`bodies::PlanarBodies`]: several polygonal bodies in the plane, all translating or one
 //!   turning (SE(2)^k);
+//! - [`bodies3::SolidBodies`]: several polyhedral bodies in space, all translating or one
+//!   turning about a fixed axis (SE(3)^k);
 //! - [`polyhedra`]: a polyhedral robot among polyhedra in SE(3) (CHS Chapter 2);
 //! - [`minkowski::Minkowski`]: a translating polygon through its C-obstacles (LaValle 3.3.2);
 //! - [`sampled::Sampled`]: checks states at a resolution like OMPL's `DiscreteMotionValidator`
@@ -19,6 +21,7 @@
 //! - [`Bounded`]: adds "outside the bounds is obstacle" to any of them.
 
 pub mod bodies;
+pub mod bodies3;
 pub mod discs;
 pub mod minkowski;
 pub mod polygons;

@@ -74,7 +74,9 @@ impl<O: CollisionOracle> Sampled<O> {
                 };
                 (trans, rot)
             }
-            Change::Rotation { angle, .. } => (0.0, angle.abs() * dt),
+            Change::Rotation { angle, .. } | Change::BodyRotation { angle, .. } => {
+                (0.0, angle.abs() * dt)
+            }
         };
         let n_t = if self.translation_step > 0.0 {
             (trans / self.translation_step).ceil()

@@ -130,7 +130,9 @@ fn reverse(motion: &mut crate::space::Motion) {
     match &mut motion.change {
         Change::Linear(delta) => delta.iter_mut().for_each(|d| *d = -*d),
         // about the opposite axis: the oracles take turns by a positive angle
-        Change::Rotation { axis, .. } => axis.iter_mut().for_each(|a| *a = -*a),
+        Change::Rotation { axis, .. } | Change::BodyRotation { axis, .. } => {
+            axis.iter_mut().for_each(|a| *a = -*a)
+        }
     }
 }
 

@@ -424,6 +424,13 @@ fn check_space(space: &Space) -> Result<(), RoadmapError> {
             Space::se2_bodies(k, [lower[0], lower[1]], [upper[0], upper[1]], scale)
                 .map_err(|e| e.to_string())
         }
+        SpaceKind::Se3Bodies(k) if lower.len() == 7 * k && upper.len() == 7 * k => {
+            let (lo, hi) = (
+                [lower[0], lower[1], lower[2]],
+                [upper[0], upper[1], upper[2]],
+            );
+            Space::se3_bodies(k, lo, hi, scale).map_err(|e| e.to_string())
+        }
         _ => Err("bounds of the wrong dimension".into()),
     };
     match rebuilt {

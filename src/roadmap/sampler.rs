@@ -145,6 +145,9 @@ pub fn gaussian_near<R: Rng + ?Sized>(
                 q[i] = rotation::wrap_angle(mean[i] + angle_sigma * normal(rng));
             }
         }
+        SpaceKind::Se3Bodies(_) => {
+            crate::space::bodies3::perturb_orientations(&mut q, mean, angle_sigma, rng, normal)
+        }
         SpaceKind::Se3 => {
             if angle_sigma > std::f64::consts::FRAC_PI_2 {
                 let u = space.sample_uniform(rng);

@@ -855,7 +855,7 @@ impl Grower<'_> {
 fn across_of(motion: &crate::space::Motion, gi: usize, g: &Group) -> Across {
     use crate::space::Change;
     match (&motion.change, g.kind) {
-        (Change::Rotation { axis, .. }, _) => Across::Turn {
+        (Change::Rotation { axis, .. } | Change::BodyRotation { axis, .. }, _) => Across::Turn {
             group: gi,
             axis: Some(*axis),
         },

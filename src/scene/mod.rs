@@ -26,6 +26,7 @@ pub use crate::geometry::hull as shapes;
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use crate::mesh_io::MeshError;
 use crate::oracle::bodies::PlanarBodies;
+use crate::oracle::bodies3::SolidBodies;
 use crate::oracle::discs::Discs;
 use crate::oracle::polygons::Polygons;
 use crate::oracle::polyhedra::Polyhedra;
@@ -168,6 +169,17 @@ pub(crate) fn check_magnitudes(scene: &Scene) -> Result<(), SceneError> {
                 }
             }
         }
+        Robot::MeshBodies(bodies) => {
+            for b in bodies {
+                if b.mesh
+                    .vertices
+                    .iter()
+                    .any(|v| big(v.x) || big(v.y) || big(v.z))
+                {
+                    return Err(too_big(format!("body \"{}\"", b.name)));
+                }
+            }
+        }
     }
     for (i, o) in scene.obstacles.iter().enumerate() {
         let bad = match o {
@@ -242,6 +254,18 @@ pub enum Robot {
     /// Several bodies that move concurrently (SE(2)^k scenes, [`crate::space::bodies`]), in
     /// the order of their poses in a configuration.
     Bodies(Vec<Body>),
+    /// Several rigid bodies that move concurrently in space (SE(3)^k scenes,
+    /// [`crate::space::bodies3`]), in the order of their poses in a configuration.
+    MeshBodies(Vec<MeshBody>),
+}
+
+/// One of several moving bodies in space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshBody {
+    /// Its name in the scene file (unique within the scene).
+    pub name: String,
+    /// A triangle mesh in its body frame; its reference point is the origin.
+    pub mesh: TriMesh,
 }
 
 /// One of several moving bodies.
@@ -325,6 +349,17 @@ impl Scene {
             .collect()
     }
 
+    /// The mesh obstacles of a scene in space (none in other scenes).
+    pub fn mesh_obstacles(&self) -> Vec<TriMesh> {
+        self.obstacles
+            .iter()
+            .filter_map(|o| match o {
+                Obstacle::Mesh(m) => Some(m.clone()),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The collision oracle of this scene, with "outside the bounds is obstacle".
     pub fn oracle(&self) -> Box<dyn CollisionOracle> {
         match (&self.robot, self.space.kind()) {
@@ -369,6 +404,13 @@ impl Scene {
                 Box::new(Bounded::new(
                     self.space.clone(),
                     PlanarBodies::new(parts, obstacles),
+                ))
+            }
+            (Robot::MeshBodies(bodies), _) => {
+                let meshes = bodies.iter().map(|b| b.mesh.clone()).collect();
+                Box::new(Bounded::new(
+                    self.space.clone(),
+                    SolidBodies::new(meshes, self.mesh_obstacles()),
                 ))
             }
             (Robot::Arm(a), _) => Box::new(Bounded::new(
@@ -434,6 +476,10 @@ impl Scene {
                     h.bytes(&(b.parts.len() as u64).to_le_bytes());
                     b.parts.iter().for_each(|p| h.polygon(p));
                 }
+            }
+            Robot::MeshBodies(bodies) => {
+                h.str("mesh bodies");
+                bodies.iter().for_each(|b| h.mesh(&b.mesh));
             }
         }
         for o in &self.obstacles {

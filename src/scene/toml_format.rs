@@ -57,6 +57,7 @@
 //! problems are prisms extruded along z).
 
 mod bodies;
+mod bodies3;
 
 use super::collada;
 use super::mesh_io::{self, is_dae, open_mesh_warning, vertex_mean};
@@ -304,13 +305,13 @@ impl Reader<'_> {
                 let robot = if kind == Kind::Se2 {
                     Robot::Polygons(self.robot_2d("[robot]", spec)?)
                 } else {
-                    Robot::Mesh(self.robot_3d(spec)?)
+                    Robot::Mesh(self.robot_3d("[robot]", spec)?)
                 };
                 let obstacles = self.rigid_obstacles(&file, kind)?;
                 let radius = match &robot {
                     Robot::Polygons(parts) => parts.iter().map(Polygon::radius).fold(0.0, f64::max),
                     Robot::Mesh(m) => m.radius(),
-                    Robot::Point | Robot::Arm(_) | Robot::Bodies(_) => 1.0,
+                    Robot::Point | Robot::Arm(_) | Robot::Bodies(_) | Robot::MeshBodies(_) => 1.0,
                 };
                 let max = crate::limits::MAX_COORDINATE;
                 if !(radius.is_finite() && radius <= max) {
@@ -531,8 +532,8 @@ impl Reader<'_> {
         Ok(polygons.into_iter().map(Obstacle::Polygon).collect())
     }
 
-    fn robot_3d(&mut self, r: &RobotSpec) -> Result<TriMesh, SceneError> {
-        let what = "[robot]";
+    /// A polyhedral robot (`what` names it in errors: "[robot]", a body) in its body frame.
+    fn robot_3d(&mut self, what: &str, r: &RobotSpec) -> Result<TriMesh, SceneError> {
         let shape = self.one_shape(what, "robot", r.shapes(), "box, mesh or convex")?;
         let (mesh, mean) = match shape {
             Shape::Box(b) => {
@@ -559,11 +560,10 @@ impl Reader<'_> {
                 }
             }
             Shape::Polygon(_) | Shape::Polygons(_) => {
-                return Err(self.invalid(
-                    "[robot]: polygons describe se2 robots; in a se3 scene use box, convex or \
+                return Err(self.invalid(format!(
+                    "{what}: polygons describe se2 robots; in a se3 scene use box, convex or \
                      mesh"
-                        .into(),
-                ))
+                )))
             }
             Shape::Disc(_) => unreachable!("a robot table has no disc"),
         };

@@ -54,7 +54,7 @@ impl Space {
     /// Number of bodies: `k` for SE(2)^k, 1 for a space of one rigid body or a point.
     pub fn body_count(&self) -> usize {
         match self.kind {
-            SpaceKind::Se2Bodies(k) => k,
+            SpaceKind::Se2Bodies(k) | SpaceKind::Se3Bodies(k) => k,
             _ => 1,
         }
     }

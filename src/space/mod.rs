@@ -9,6 +9,7 @@
 //! borderline has bounded free sections (see [`crate::oracle::Bounded`]).
 
 pub mod bodies;
+pub mod bodies3;
 pub mod joints;
 pub mod motion;
 pub mod rotation;
@@ -57,6 +58,10 @@ pub enum SpaceKind {
     /// bodies' poses concatenated (see [`bodies`]). Groups: all bodies translate at once, or
     /// one body turns about its reference point (CHS Chapter 2).
     Se2Bodies(usize),
+    /// SE(3)^k: several rigid bodies in space, the bodies' SE(3) poses concatenated (see
+    /// [`bodies3`]). Groups: all bodies translate at once, or one body turns about a fixed
+    /// axis through its reference point (CHS Chapter 2).
+    Se3Bodies(usize),
 }
 
 impl std::fmt::Display for SpaceKind {
@@ -68,6 +73,7 @@ impl std::fmt::Display for SpaceKind {
             SpaceKind::Se3 => write!(f, "se3"),
             SpaceKind::Joints { dof, .. } => write!(f, "arm{dof}"),
             SpaceKind::Se2Bodies(k) => write!(f, "se2x{k}"),
+            SpaceKind::Se3Bodies(k) => write!(f, "se3x{k}"),
         }
     }
 }
@@ -293,6 +299,7 @@ impl Space {
             SpaceKind::Se3 => 7,
             SpaceKind::Joints { dof, .. } => dof,
             SpaceKind::Se2Bodies(k) => 3 * k,
+            SpaceKind::Se3Bodies(k) => bodies3::POSE * k,
         }
     }
 
@@ -347,6 +354,12 @@ impl Space {
                 return Err(SpaceError::Quaternion(n));
             }
         }
+        if let Some(n) = matches!(self.kind, SpaceKind::Se3Bodies(_))
+            .then(|| bodies3::degenerate_quaternion(q))
+            .flatten()
+        {
+            return Err(SpaceError::Quaternion(n));
+        }
         Ok(())
     }
 
@@ -356,6 +369,7 @@ impl Space {
             SpaceKind::Euclidean(_) => {}
             SpaceKind::Joints { continuous, .. } => joints::wrap_continuous(continuous, q),
             SpaceKind::Se2Bodies(_) => joints::wrap_continuous(self.wrapping(), q),
+            SpaceKind::Se3Bodies(_) => bodies3::normalize(q),
             SpaceKind::Se2 => q[2] = rotation::wrap_angle(q[2]),
             SpaceKind::Se3 => {
                 let n = q[3..7].iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -381,6 +395,7 @@ impl Space {
         match self.kind {
             SpaceKind::Joints { continuous, .. } => continuous,
             SpaceKind::Se2Bodies(k) => bodies::angle_bits(k),
+            SpaceKind::Se3Bodies(k) => bodies3::quaternion_bits(k),
             _ => 0,
         }
     }
@@ -416,6 +431,7 @@ impl Space {
         match self.kind {
             SpaceKind::Joints { continuous, .. } => return joints::distance(continuous, a, b),
             SpaceKind::Se2Bodies(_) => return bodies::distance(self.rotation_scale, a, b),
+            SpaceKind::Se3Bodies(_) => return bodies3::distance(self.rotation_scale, a, b),
             _ => {}
         }
         let p = self.position_dim();
@@ -431,7 +447,9 @@ impl Space {
             SpaceKind::Se3 => {
                 dp + self.rotation_scale * rotation::rotation_angle(&a[3..7], &b[3..7])
             }
-            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) => unreachable!("answered above"),
+            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) | SpaceKind::Se3Bodies(_) => {
+                unreachable!("answered above")
+            }
         }
     }
 
@@ -443,6 +461,7 @@ impl Space {
                 return joints::interpolate(continuous, a, b, t)
             }
             SpaceKind::Se2Bodies(_) => return joints::interpolate(self.wrapping(), a, b, t),
+            SpaceKind::Se3Bodies(_) => return bodies3::interpolate(a, b, t),
             _ => {}
         }
         let p = self.position_dim();
@@ -466,7 +485,7 @@ impl Space {
                 q.extend_from_slice(&[0.0; 4]);
                 rotation::quat_to_slice(&r, &mut q[3..7]);
             }
-            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) => {
+            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) | SpaceKind::Se3Bodies(_) => {
                 unreachable!("answered above")
             }
         }
@@ -487,6 +506,7 @@ impl Space {
             // continuous joints have bounds [-π, π]: drawn like the others, then wrapped
             SpaceKind::Joints { continuous, .. } => joints::wrap_continuous(continuous, &mut q),
             SpaceKind::Se2Bodies(_) => joints::wrap_continuous(self.wrapping(), &mut q),
+            SpaceKind::Se3Bodies(_) => bodies3::sample_orientations(&mut q, rng),
             SpaceKind::Se2 => q.push(rng.random_range(-PI..PI)),
             SpaceKind::Se3 => {
                 let (u1, u2, u3): (f64, f64, f64) = (rng.random(), rng.random(), rng.random());
@@ -546,6 +566,10 @@ impl Space {
             bodies::groups_into(k, split_axes, groups);
             return;
         }
+        if let SpaceKind::Se3Bodies(k) = self.kind {
+            bodies3::groups_into(k, split_axes, groups);
+            return;
+        }
         if split_axes {
             groups.extend((0..p).map(|i| Group::run(GroupKind::Linear, i..i + 1)));
         } else {
@@ -555,7 +579,9 @@ impl Space {
             SpaceKind::Euclidean(_) => {}
             SpaceKind::Se2 => groups.push(Group::run(GroupKind::Angle, 2..3)),
             SpaceKind::Se3 => groups.push(Group::run(GroupKind::Quaternion, 3..7)),
-            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) => unreachable!("answered above"),
+            SpaceKind::Joints { .. } | SpaceKind::Se2Bodies(_) | SpaceKind::Se3Bodies(_) => {
+                unreachable!("answered above")
+            }
         }
     }
 
@@ -569,7 +595,8 @@ impl Space {
                 rotation::wrap_angle(b[i] - a[i]) == 0.0
             }
             GroupKind::Quaternion => {
-                a[3..7] == b[3..7] || a[3..7].iter().zip(&b[3..7]).all(|(x, y)| *x == -*y)
+                let (a, b) = (&a[group.coords.clone()], &b[group.coords.clone()]);
+                a == b || a.iter().zip(b).all(|(x, y)| *x == -*y)
             }
         }
     }
@@ -598,6 +625,10 @@ impl Space {
                 delta[i] = rotation::wrap_angle(z[i] - a[i]);
                 Change::Linear(delta)
             }
+            GroupKind::Quaternion if matches!(self.kind, SpaceKind::Se3Bodies(_)) => {
+                let (axis, angle) = bodies3::relative_turn(a, z, group);
+                bodies3::turn(group, axis, angle)
+            }
             GroupKind::Quaternion => {
                 let qa = rotation::quat_from_slice(&a[3..7]);
                 let qz = rotation::quat_from_slice(&z[3..7]);
@@ -622,6 +653,11 @@ impl Space {
                 let delta = out.reset_linear(a, Interval::UNIT, Sweep::Segment);
                 let i = group.coords.start;
                 delta[i] = rotation::wrap_angle(z[i] - a[i]);
+            }
+            GroupKind::Quaternion if matches!(self.kind, SpaceKind::Se3Bodies(_)) => {
+                let (axis, angle) = bodies3::relative_turn(a, z, group);
+                let change = bodies3::turn(group, axis, angle);
+                out.reset_change(a, change, Interval::UNIT, Sweep::Segment);
             }
             GroupKind::Quaternion => {
                 let qa = rotation::quat_from_slice(&a[3..7]);
@@ -690,6 +726,9 @@ impl Space {
                 let delta = out.reset_linear(base, turn, Sweep::Turn);
                 delta[group.coords.start] = TAU;
             }
+            GroupKind::Quaternion if matches!(self.kind, SpaceKind::Se3Bodies(_)) => {
+                out.reset_change(base, bodies3::turn(group, axis, TAU), turn, Sweep::Turn)
+            }
             GroupKind::Quaternion => out.reset_rotation(base, axis, TAU, turn, Sweep::Turn),
             GroupKind::Linear => panic!("turn_through on a linear group"),
         }
@@ -703,6 +742,9 @@ impl Space {
                 let mut delta = vec![0.0; base.len()];
                 delta[group.coords.start] = TAU;
                 Motion::turn(base.to_vec(), Change::Linear(delta))
+            }
+            GroupKind::Quaternion if matches!(self.kind, SpaceKind::Se3Bodies(_)) => {
+                Motion::turn(base.to_vec(), bodies3::turn(group, axis, TAU))
             }
             GroupKind::Quaternion => {
                 Motion::turn(base.to_vec(), Change::Rotation { axis, angle: TAU })
@@ -719,6 +761,9 @@ impl Space {
             Change::Linear(delta) if matches!(self.kind, SpaceKind::Se2Bodies(_)) => {
                 dt * bodies::change_length(self.rotation_scale, delta)
             }
+            Change::Linear(delta) if matches!(self.kind, SpaceKind::Se3Bodies(_)) => {
+                dt * bodies3::change_length(delta)
+            }
             Change::Linear(delta) => {
                 let p = self.position_dim();
                 let lin = delta[..p].iter().map(|d| d * d).sum::<f64>().sqrt();
@@ -729,7 +774,9 @@ impl Space {
                 };
                 dt * (lin + self.rotation_scale * ang)
             }
-            Change::Rotation { angle, .. } => dt * angle.abs() * self.rotation_scale,
+            Change::Rotation { angle, .. } | Change::BodyRotation { angle, .. } => {
+                dt * angle.abs() * self.rotation_scale
+            }
         }
     }
 
@@ -739,6 +786,9 @@ impl Space {
     pub fn group_length(&self, a: &[f64], z: &[f64], group: &Group) -> f64 {
         if matches!(self.kind, SpaceKind::Se2Bodies(_)) {
             return bodies::group_length(self.rotation_scale, a, z, group);
+        }
+        if matches!(self.kind, SpaceKind::Se3Bodies(_)) {
+            return bodies3::group_length(self.rotation_scale, a, z, group);
         }
         let p = self.position_dim();
         // the terms `motion_length` sums, in its order (the zeros of other groups add nothing)
@@ -780,6 +830,7 @@ impl Space {
             SpaceKind::Euclidean(_) => vec![q.to_vec()],
             SpaceKind::Joints { continuous, .. } => vec![joints::embedding(continuous, q)],
             SpaceKind::Se2Bodies(_) => vec![bodies::embedding(s, q)],
+            SpaceKind::Se3Bodies(_) => vec![bodies3::embedding(s, q)],
             SpaceKind::Se2 => vec![vec![q[0], q[1], s * q[2].cos(), s * q[2].sin()]],
             SpaceKind::Se3 => {
                 let mut a = q[..3].to_vec();
@@ -799,6 +850,7 @@ impl Space {
             SpaceKind::Se3 => 7,
             SpaceKind::Joints { dof, continuous } => dof + continuous.count_ones() as usize,
             SpaceKind::Se2Bodies(k) => 4 * k,
+            SpaceKind::Se3Bodies(k) => bodies3::EMBEDDING * k,
         }
     }
 }

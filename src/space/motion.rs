@@ -27,6 +27,18 @@ pub enum Change {
         /// Angle in radians turned between `t = 0` and `t = 1`.
         angle: f64,
     },
+    /// One of several SE(3) bodies turns about the world-frame unit `axis` through its
+    /// reference point by `t · angle` radians; every other coordinate stays fixed. Acts on body
+    /// `body`'s quaternion, coordinates `7·body + 3..7·body + 7` (see
+    /// [`crate::space::bodies3`]); [`Change::Rotation`] is body 0 of one.
+    BodyRotation {
+        /// The turning body, in configuration order.
+        body: usize,
+        /// Unit axis of rotation in the world frame.
+        axis: [f64; 3],
+        /// Angle in radians turned between `t = 0` and `t = 1`.
+        angle: f64,
+    },
 }
 
 /// What kind of question a motion asks; decides how the call is counted.
@@ -138,7 +150,9 @@ impl Motion {
                 delta.resize(origin.len(), 0.0);
                 delta
             }
-            Change::Rotation { .. } => unreachable!("set to linear just above"),
+            Change::Rotation { .. } | Change::BodyRotation { .. } => {
+                unreachable!("set to linear just above")
+            }
         }
     }
 
@@ -156,6 +170,21 @@ impl Motion {
         self.range = range;
         self.sweep = sweep;
         self.change = Change::Rotation { axis, angle };
+    }
+
+    /// Resets `self` to a motion of `change` from `origin`, reusing the origin's buffer.
+    pub(crate) fn reset_change(
+        &mut self,
+        origin: &[f64],
+        change: Change,
+        range: Interval,
+        sweep: Sweep,
+    ) {
+        self.origin.clear();
+        extend_small(&mut self.origin, origin);
+        self.range = range;
+        self.sweep = sweep;
+        self.change = change;
     }
 
     /// The configuration at parameter `t` (not normalised: SE(2) angles are not wrapped).
@@ -180,6 +209,13 @@ impl Motion {
                 let q = rotation::axis_angle(*axis, t * angle) * q0;
                 rotation::quat_to_slice(&q, &mut out[3..7]);
             }
+            Change::BodyRotation { body, axis, angle } => {
+                out.copy_from_slice(&self.origin);
+                let c = 7 * body + 3..7 * body + 7;
+                let q0 = rotation::quat_from_slice(&self.origin[c.clone()]);
+                let q = rotation::axis_angle(*axis, t * angle) * q0;
+                rotation::quat_to_slice(&q, &mut out[c]);
+            }
         }
     }
 
@@ -188,7 +224,7 @@ impl Motion {
     pub fn translation_rate(&self, position_dim: usize) -> &[f64] {
         match &self.change {
             Change::Linear(delta) => &delta[..position_dim],
-            Change::Rotation { .. } => &[],
+            Change::Rotation { .. } | Change::BodyRotation { .. } => &[],
         }
     }
 }

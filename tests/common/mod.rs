@@ -40,6 +40,7 @@ pub fn check_disc_path(
 
 pub mod arms;
 pub mod bodies;
+pub mod bodies3;
 pub mod cli;
 pub mod js;
 pub mod rigid;

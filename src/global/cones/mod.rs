@@ -168,7 +168,9 @@ fn robot_vertices(scene: &Scene) -> Result<Vec<P>, ConeError> {
             .collect(),
         Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
         Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
-        Robot::Bodies(_) => return Err(ConeError::Unsupported("several bodies".into())),
+        Robot::Bodies(_) | Robot::MeshBodies(_) => {
+            return Err(ConeError::Unsupported("several bodies".into()))
+        }
     })
 }
 
@@ -391,7 +393,9 @@ impl Freeways {
             Robot::Point | Robot::Polygons(_) => {}
             Robot::Mesh(_) => return Err(ConeError::Unsupported("a mesh robot".into())),
             Robot::Arm(_) => return Err(ConeError::Unsupported("an arm".into())),
-            Robot::Bodies(_) => return Err(ConeError::Unsupported("several bodies".into())),
+            Robot::Bodies(_) | Robot::MeshBodies(_) => {
+                return Err(ConeError::Unsupported("several bodies".into()))
+            }
         }
         for o in &scene.obstacles {
             match o {

@@ -134,7 +134,10 @@ pub fn borderlines_into(
             }
             lines.unit = u;
         }
-        (GroupKind::Quaternion, Change::Rotation { axis, .. }) => {
+        (
+            GroupKind::Quaternion,
+            Change::Rotation { axis, .. } | Change::BodyRotation { axis, .. },
+        ) => {
             let mut dirs = std::mem::take(&mut lines.dirs);
             let count = perpendicular_into(
                 axis,
@@ -332,7 +335,7 @@ pub fn candidates_into(
     // another order and is asked as it is
     let speed = match motion.change {
         Change::Linear(_) => Some(space.motion_length(motion, 0.0, 1.0)),
-        Change::Rotation { .. } => None,
+        Change::Rotation { .. } | Change::BodyRotation { .. } => None,
     };
     let mut add = |t: f64, len: f64, scratch: &mut [f64]| {
         motion.write_at(t, scratch);

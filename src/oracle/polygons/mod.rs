@@ -408,7 +408,7 @@ impl Polygons {
     fn classify(motion: &Motion) -> Result<Kind, OracleError> {
         let delta = match &motion.change {
             Change::Linear(d) => d,
-            Change::Rotation { .. } => {
+            Change::Rotation { .. } | Change::BodyRotation { .. } => {
                 return Err(OracleError::Unsupported(
                     "polygons: an SE(3) rotation (Change::Rotation) in the plane".into(),
                 ))

@@ -462,6 +462,11 @@ impl Polyhedra {
                     }
                 }
             }
+            Change::BodyRotation { .. } => {
+                return Err(OracleError::Unsupported(
+                    "polyhedra: a turn of one of several bodies asked of one body".into(),
+                ))
+            }
         };
         Ok((pose, kind))
     }

@@ -34,7 +34,7 @@ use serde::Deserialize;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct BodySpec {
-    name: Option<String>,
+    pub(super) name: Option<String>,
     #[serde(rename = "box")]
     cuboid: Option<BoxSpec>,
     mesh: Option<String>,
@@ -45,7 +45,7 @@ pub(super) struct BodySpec {
 }
 
 impl BodySpec {
-    fn shape(&self) -> RobotSpec {
+    pub(super) fn shape(&self) -> RobotSpec {
         RobotSpec {
             cuboid: self.cuboid.clone(),
             mesh: self.mesh.clone(),
@@ -60,6 +60,9 @@ impl BodySpec {
 impl Reader<'_> {
     /// A scene of the bodies of `file` (which has at least one `[[body]]`).
     pub(super) fn bodies_scene(&mut self, file: File, kind: Kind) -> Result<Scene, SceneError> {
+        if kind == Kind::Se3 {
+            return self.bodies3_scene(file);
+        }
         if kind != Kind::Se2 {
             return Err(self.invalid(format!(
                 "[[body]] tables move several bodies in a se2 space; a {} scene {}",
