@@ -36,3 +36,12 @@ $V bench local scenes/bodies/cubes-into-boxes-2.toml \
   --methods straight sampled:res=0.01 viapoint:max=3,calls=1000 viapoint:max=3,calls=1000,split=true \
   --runs 3 --nodes 4000 --queries 20 --out "$T/bench2"
 cp "$T/bench2/summary.md" benches/results/2026-12-06-several-bodies-3d/bench-local-2-summary.md
+echo "## k=3 build --time 20 --local viapoint:max=3,calls=1000,split=true + query --check"
+S=scenes/bodies/cubes-into-boxes-3.toml
+$V build "$S" -o "$T/boxes3-split.bin" --time 20 --seed 1 --local viapoint:max=3,calls=1000,split=true
+$V query "$T/boxes3-split.bin" --scene "$S" --check --time 10
+echo "## bench local, k=3"
+$V bench local "$S" \
+  --methods straight sampled:res=0.01 viapoint:max=3,calls=1000 viapoint:max=3,calls=1000,split=true \
+  --runs 3 --nodes 4000 --queries 20 --out "$T/bench3"
+cp "$T/bench3/summary.md" benches/results/2026-12-06-several-bodies-3d/bench-local-3-summary.md
