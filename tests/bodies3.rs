@@ -253,3 +253,21 @@ fn oracle_calls_of_several_bodies_in_space_are_counted() {
     assert_eq!(counts.segment_calls, 5);
     assert!(counts.pairs_tested > 0, "{counts:?}");
 }
+
+#[test]
+fn quaternions_of_several_bodies_are_normalised_with_a_warning() {
+    let text = format!(
+        "{ROOM}[[query]]\nstart = [-2, -2, 1, 0, 0, 0, 1, 2, 2, 1, 0, 0, 0, 2, -2, 2, 1, 0, 0, 0, 1]\n\
+         goal = [-2, -2, 2, 0, 0, 0, 1, 2, 2, 2, 0, 0, 0, 1, -2, 2, 2, 0, 0, 0, 1]\n"
+    );
+    let scene = toml_format::from_str(&text, std::path::Path::new("room.toml")).unwrap();
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("start of query 1: body 2's quaternion of length 2")),
+        "{:?}",
+        scene.warnings
+    );
+    assert_eq!(scene.queries[0].start[13], 1.0);
+}

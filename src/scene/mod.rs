@@ -220,19 +220,30 @@ pub(crate) fn default_name(path: &Path) -> String {
 /// 10⁻⁶): they are normalised, as OMPL's `SO3StateSpace::enforceBounds` does, but a length far
 /// from 1 may be a typo, so it is said rather than corrected silently.
 pub(crate) fn quaternion_warnings(scene: &Scene) -> Vec<String> {
-    if scene.space.kind() != SpaceKind::Se3 {
-        return Vec::new();
-    }
+    let bodies = match scene.space.kind() {
+        SpaceKind::Se3 => 1,
+        SpaceKind::Se3Bodies(k) => k,
+        _ => return Vec::new(),
+    };
     let mut out = Vec::new();
     for (i, q) in scene.queries.iter().enumerate() {
         for (what, c) in [("start", &q.start), ("goal", &q.goal)] {
-            let Some(quat) = c.get(3..7) else { continue };
-            let n = quat.iter().map(|v| v * v).sum::<f64>().sqrt();
-            if n.is_finite() && n >= 1e-9 && (n - 1.0).abs() > 1e-6 {
-                out.push(format!(
-                    "{what} of query {}: quaternion of length {n} normalised to length 1",
-                    i + 1
-                ));
+            for b in 0..bodies {
+                let Some(quat) = c.get(7 * b + 3..7 * b + 7) else {
+                    continue;
+                };
+                let n = quat.iter().map(|v| v * v).sum::<f64>().sqrt();
+                if n.is_finite() && n >= 1e-9 && (n - 1.0).abs() > 1e-6 {
+                    let whose = if bodies > 1 {
+                        format!("body {}'s quaternion", b + 1)
+                    } else {
+                        "quaternion".into()
+                    };
+                    out.push(format!(
+                        "{what} of query {}: {whose} of length {n} normalised to length 1",
+                        i + 1
+                    ));
+                }
             }
         }
     }
