@@ -396,26 +396,79 @@ pub fn scene_gltf(
         (_, SpaceKind::Euclidean(2..=3) | SpaceKind::Se2 | SpaceKind::Se3) => {}
         _ => return Err(ExportError::Unsupported(kind.to_string())),
     }
-    let planar = space.position_dim() == 2;
-    let (lo, hi) = (space.lower(), space.upper());
-    let span = (0..space.position_dim())
-        .map(|i| hi[i] - lo[i])
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    // planar scenes stand on z = 0: obstacles this high, the robot a little lower, the traces
-    // just above everything
-    let height = 0.04 * span;
-    let robot_height = 0.6 * height;
-    let trace_z = if planar { 1.05 * height } else { 0.0 };
-
+    let layout = Layout::of(space);
     let mut g = Gltf::new();
     let world = world_node(&mut g, is_z_up(scene));
     // in 3D the robot passes behind walls and into rooms: translucent obstacles keep it in
     // sight; planar obstacles are low prisms seen from above, opaque
-    let opacity = if planar { 1.0 } else { 0.55 };
+    let opacity = if layout.planar { 1.0 } else { 0.55 };
     let m_obstacle = g.material("obstacle", colour::linear(colour::OBSTACLE, opacity), false);
     let m_robot = g.material("robot", colour::linear(colour::ROBOT, 1.0), false);
+    environment(&mut g, scene, &layout, m_obstacle, world);
+    animated_robot(&mut g, scene, groups, plan, &layout, m_robot, world);
+    path_traces(&mut g, space, plan, legend, &layout, world);
+    if let Some(r) = roadmap {
+        roadmap_traces(&mut g, space, r, &layout, world);
+    }
+    g.set_extras(serde_json::json!({
+        "legend": legend,
+        "duration": animation::DURATION,
+        "up": if is_z_up(scene) { "z" } else { "y" },
+    }));
+    Ok(g)
+}
 
+/// Sizes of a scene's drawing, from its space's bounds.
+struct Layout {
+    /// A planar scene, drawn as prisms standing on z = 0.
+    planar: bool,
+    /// The longest side of the bounds (at least the smallest positive float).
+    span: f64,
+    /// How high planar obstacles stand.
+    height: f64,
+    /// How high the planar robot stands: a little lower than the obstacles.
+    robot_height: f64,
+    /// Where planar traces lie: just above everything.
+    trace_z: f64,
+}
+
+impl Layout {
+    fn of(space: &Space) -> Layout {
+        let planar = space.position_dim() == 2;
+        let (lo, hi) = (space.lower(), space.upper());
+        let span = (0..space.position_dim())
+            .map(|i| hi[i] - lo[i])
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+        // planar scenes stand on z = 0: obstacles this high, the robot a little lower, the traces
+        // just above everything
+        let height = 0.04 * span;
+        Layout {
+            planar,
+            span,
+            height,
+            robot_height: 0.6 * height,
+            trace_z: if planar { 1.05 * height } else { 0.0 },
+        }
+    }
+
+    /// The reference point of each configuration, where its trace is drawn.
+    fn trace(&self, space: &Space, p: &[Config]) -> Vec<[f32; 3]> {
+        p.iter()
+            .map(|q| {
+                let (mut t, _) = animation::pose(space, q);
+                if self.planar {
+                    t[2] = self.trace_z;
+                }
+                t.map(|v| v as f32)
+            })
+            .collect()
+    }
+}
+
+/// The obstacles as one mesh and the space's bounds as lines.
+fn environment(g: &mut Gltf, scene: &Scene, layout: &Layout, m_obstacle: usize, world: usize) {
+    let Layout { planar, height, .. } = *layout;
     let mut env = Soup::default();
     for o in &scene.obstacles {
         match o {
@@ -432,8 +485,9 @@ pub fn scene_gltf(
             Obstacle::Mesh(m) => env.mesh(m, |v| v),
         }
     }
-    env.add(&mut g, names::ENVIRONMENT, m_obstacle, world);
+    env.add(g, names::ENVIRONMENT, m_obstacle, world);
 
+    let (lo, hi) = (scene.space.lower(), scene.space.upper());
     let (blo, bhi) = if planar {
         ([lo[0], lo[1], 0.0], [hi[0], hi[1], height])
     } else {
@@ -448,8 +502,26 @@ pub fn scene_gltf(
         m_bounds,
     );
     g.node(names::BOUNDS, b, Trs::IDENTITY, Some(world));
+}
 
-    // the robot in its body frame, the reference point at the origin
+/// The robot in its body frame (the reference point at the origin), placed at the path's
+/// start and animated along it.
+fn animated_robot(
+    g: &mut Gltf,
+    scene: &Scene,
+    groups: &[Group],
+    plan: &Plan,
+    layout: &Layout,
+    m_robot: usize,
+    world: usize,
+) {
+    let space = &scene.space;
+    let Layout {
+        planar,
+        span,
+        robot_height,
+        ..
+    } = *layout;
     let mut body = Soup::default();
     match &scene.robot {
         Robot::Point if planar => {
@@ -497,51 +569,49 @@ pub fn scene_gltf(
         rotations: rotations.iter().map(|r| r.map(|v| v as f32)).collect(),
     };
     g.animate(robot, &track);
+}
 
-    // traces of the reference point
-    let trace = |p: &[Config]| -> Vec<[f32; 3]> {
-        p.iter()
-            .map(|q| {
-                let (mut t, _) = animation::pose(space, q);
-                if planar {
-                    t[2] = trace_z;
-                }
-                t.map(|v| v as f32)
-            })
-            .collect()
-    };
+/// The traces of the reference point along the raw and the shortened path.
+fn path_traces(
+    g: &mut Gltf,
+    space: &Space,
+    plan: &Plan,
+    legend: &Legend,
+    layout: &Layout,
+    world: usize,
+) {
     for (name, path, hex) in [
         (names::RAW_PATH, &plan.raw, legend.raw_colour(plan)),
         (names::SHORT_PATH, &plan.shortened, colour::SHORT_PATH),
     ] {
         if path.len() >= 2 {
             let m = g.material(name, colour::linear(hex, 1.0), true);
-            let mesh = g.mesh(name, &trace(path), None, Mode::LineStrip, m);
+            let mesh = g.mesh(name, &layout.trace(space, path), None, Mode::LineStrip, m);
             g.node(name, mesh, Trs::IDENTITY, Some(world));
         }
     }
+}
 
-    if let Some(r) = roadmap {
-        let m = g.material(names::ROADMAP, colour::linear(colour::ROADMAP, 1.0), true);
-        let node = g.node(names::ROADMAP, None, Trs::IDENTITY, Some(world));
-        let nodes: Vec<Config> = r.nodes().map(<[f64]>::to_vec).collect();
-        let points = g.mesh("roadmap nodes", &trace(&nodes), None, Mode::Points, m);
-        g.node("roadmap nodes", points, Trs::IDENTITY, Some(node));
-        let mut segments = Vec::new();
-        for (e, edge) in r.edges().iter().enumerate() {
-            let corners = trace(&r.edge_path(e, edge.a));
-            for w in corners.windows(2) {
-                segments.extend_from_slice(w);
-            }
+/// The roadmap's nodes as points and its edges as lines, traced by the reference point.
+fn roadmap_traces(g: &mut Gltf, space: &Space, r: &Roadmap, layout: &Layout, world: usize) {
+    let m = g.material(names::ROADMAP, colour::linear(colour::ROADMAP, 1.0), true);
+    let node = g.node(names::ROADMAP, None, Trs::IDENTITY, Some(world));
+    let nodes: Vec<Config> = r.nodes().map(<[f64]>::to_vec).collect();
+    let points = g.mesh(
+        "roadmap nodes",
+        &layout.trace(space, &nodes),
+        None,
+        Mode::Points,
+        m,
+    );
+    g.node("roadmap nodes", points, Trs::IDENTITY, Some(node));
+    let mut segments = Vec::new();
+    for (e, edge) in r.edges().iter().enumerate() {
+        let corners = layout.trace(space, &r.edge_path(e, edge.a));
+        for w in corners.windows(2) {
+            segments.extend_from_slice(w);
         }
-        let lines = g.mesh("roadmap edges", &segments, None, Mode::Lines, m);
-        g.node("roadmap edges", lines, Trs::IDENTITY, Some(node));
     }
-
-    g.set_extras(serde_json::json!({
-        "legend": legend,
-        "duration": animation::DURATION,
-        "up": if is_z_up(scene) { "z" } else { "y" },
-    }));
-    Ok(g)
+    let lines = g.mesh("roadmap edges", &segments, None, Mode::Lines, m);
+    g.node("roadmap edges", lines, Trs::IDENTITY, Some(node));
 }
