@@ -670,7 +670,7 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     super::output::check_targets(&a.out, &["tables.md", "tables.csv", "tables.json"])?;
-    let bar = super::progress_bar(problems * rows.len() as u64, "problems");
+    let bar = super::progress::progress_bar(problems * rows.len() as u64, "problems");
     let start = std::time::Instant::now();
     tables::run_rows(&mut rows, problems, a.seed, a.radius, &|| bar.inc(1))?;
     bar.finish_and_clear();
@@ -826,7 +826,7 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     let jobs = plan.jobs();
-    let bar = super::progress_bar(jobs.len() as u64, "runs");
+    let bar = super::progress::progress_bar(jobs.len() as u64, "runs");
     bar.set_style(
         indicatif::ProgressStyle::with_template(
             "{prefix:>12} [{bar:40}] {pos}/{len} {elapsed_precise} eta {eta} {msg}",
@@ -1009,7 +1009,7 @@ fn certify(a: BenchCertifyArgs) -> anyhow::Result<()> {
         )),
         None => None,
     };
-    let bar = super::progress_bar(entries.len() as u64, "certify");
+    let bar = super::progress::progress_bar(entries.len() as u64, "certify");
     let mut results = Vec::with_capacity(entries.len());
     for e in &entries {
         let r = bc::run_entry(&arm, &robot_name, &a.problems, e, &options);

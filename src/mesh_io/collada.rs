@@ -22,7 +22,8 @@
 //! `<polygons>` with holes (`<ph>`) are refused, as assimp does not read them either.
 //! Controllers (skinned meshes) are ignored.
 
-use super::{MeshError, Welder};
+use super::input::{read_input, MeshError};
+use super::weld::Welder;
 use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
 use dae_parser::{
@@ -52,7 +53,7 @@ pub struct ColladaMesh {
 
 /// Reads a Collada file (see the module documentation for the conventions).
 pub fn load_collada(path: &Path) -> Result<ColladaMesh, MeshError> {
-    let text = super::read_input(path)?;
+    let text = read_input(path)?;
     let fail = |message: String| MeshError::Parse {
         path: path.to_path_buf(),
         message,

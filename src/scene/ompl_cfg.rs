@@ -25,10 +25,11 @@
 //!
 //! [`ColladaMesh::assimp_centre`]: super::collada::ColladaMesh::assimp_centre
 
+use super::checks::{check_magnitudes, check_queries_on_load, default_name, quaternion_warnings};
 use super::collada;
+use super::error::{read_input_text, SceneError};
 use super::mesh_io::{is_dae, load_mesh, vertex_mean};
-use super::{check_queries_on_load, default_name};
-use super::{Obstacle, Query, Robot, Scene, SceneError};
+use super::types::{Obstacle, Query, Robot, Scene};
 use crate::geometry::{GeometryError, Polygon};
 use crate::oracle::polygons::footprint_polygons;
 use crate::safe_file::FileError;
@@ -40,7 +41,7 @@ use std::path::Path;
 
 /// Loads an OMPL.app problem (see the module documentation).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = super::read_input_text(path)?;
+    let text = read_input_text(path)?;
     let problem = Problem::parse(&text, path, "problem")?;
     let mut warnings = Vec::new();
     if let Some(control) = problem.text("control") {
@@ -172,8 +173,8 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         source: Some(path.to_path_buf()),
         warnings,
     };
-    super::check_magnitudes(&scene)?;
-    scene.warnings.extend(super::quaternion_warnings(&scene));
+    check_magnitudes(&scene)?;
+    scene.warnings.extend(quaternion_warnings(&scene));
     check_queries_on_load(&mut scene)?;
     Ok(scene)
 }
@@ -226,7 +227,7 @@ pub fn read_query_pairs(path: &Path, space: &Space) -> Result<Vec<Query>, SceneE
 
 /// Rows of `per_line` states each.
 fn read_rows(path: &Path, space: &Space, per_line: usize) -> Result<Vec<Vec<Config>>, SceneError> {
-    let text = super::read_input_text(path)?;
+    let text = read_input_text(path)?;
     let parse = |line: usize, message: String| SceneError::Parse {
         path: path.to_path_buf(),
         message: format!("line {line}: {message}"),
@@ -275,7 +276,7 @@ fn read_rows(path: &Path, space: &Space, per_line: usize) -> Result<Vec<Vec<Conf
 /// file names a positive one: what `viaroad solve` plans a `.cfg` within unless told otherwise,
 /// so that it is judged on the terms the problem was published with.
 pub fn time_limit(path: &Path) -> Result<Option<f64>, SceneError> {
-    let text = super::read_input_text(path)?;
+    let text = read_input_text(path)?;
     let benchmark = match Problem::parse(&text, path, "benchmark") {
         Ok(b) => b,
         Err(SceneError::Parse { message, .. }) if message.starts_with("no [benchmark]") => {
