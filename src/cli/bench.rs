@@ -751,6 +751,43 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let date = machine::utc_now();
     let began = std::time::Instant::now();
+    let plan = local_plan(&a)?;
+    // outputs that could not be saved are refused before the scenes load and the runs run
+    super::output::check_targets(
+        &a.out,
+        &["summary.md", "runs.csv", "report.json", "results.db"],
+    )?;
+    let loaded = load_scenes(&plan)?;
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("cannot create {}", a.out.display()))?;
+    let jobs = plan.jobs();
+    let results = run_jobs(&a, &plan, &jobs, &loaded);
+    let (records, failures) = records_and_failures(&jobs, results);
+    let scenes = scene_reports(&plan, &loaded, &records);
+    let report = Report {
+        date,
+        host: machine::hostname(),
+        cpu: machine::cpu_info(),
+        command,
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        plan,
+        wall_seconds: began.elapsed().as_secs_f64(),
+        scenes,
+        failures,
+    };
+    write_local_report(&a, &report)?;
+    if !report.failures.is_empty() {
+        anyhow::bail!(
+            "{} run(s) failed (listed in summary.md)",
+            report.failures.len()
+        );
+    }
+    Ok(())
+}
+
+/// The benchmark's plan from the arguments: scenes, the methods crossed with the samplers
+/// and seedings, the query sets, the stages; validated.
+fn local_plan(a: &BenchLocalArgs) -> anyhow::Result<Plan> {
     let scenes: Vec<SceneSource> = a
         .scenes
         .iter()
@@ -799,13 +836,12 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     if a.jobs == 0 {
         anyhow::bail!("--jobs must be at least 1");
     }
-    // outputs that could not be saved are refused before the scenes load and the runs run
-    super::output::check_targets(
-        &a.out,
-        &["summary.md", "runs.csv", "report.json", "results.db"],
-    )?;
+    Ok(plan)
+}
 
-    // load every scene and its query set first: errors show before hours of running
+/// Every scene of the plan with its query set, loaded before any run so that errors show
+/// before hours of running.
+fn load_scenes(plan: &Plan) -> anyhow::Result<Vec<(viaroad::scene::Scene, QuerySet)>> {
     let mut loaded = Vec::new();
     for source in &plan.scenes {
         let scene = source.load().with_context(|| format!("scene {source}"))?;
@@ -823,9 +859,20 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         );
         loaded.push((scene, set));
     }
-    std::fs::create_dir_all(&a.out)
-        .with_context(|| format!("cannot create {}", a.out.display()))?;
-    let jobs = plan.jobs();
+    Ok(loaded)
+}
+
+/// What each job ended with, in job order (`None`: not run).
+type JobResults = Vec<Mutex<Option<Result<RunRecord, String>>>>;
+
+/// Runs the jobs under a progress bar: in this process one after another (`--in-process`),
+/// else in child processes, `--jobs` at a time.
+fn run_jobs(
+    a: &BenchLocalArgs,
+    plan: &Plan,
+    jobs: &[RunJob],
+    loaded: &[(viaroad::scene::Scene, QuerySet)],
+) -> JobResults {
     let bar = super::progress::progress_bar(jobs.len() as u64, "runs");
     bar.set_style(
         indicatif::ProgressStyle::with_template(
@@ -835,8 +882,7 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         .progress_chars("=> "),
     );
     let label = |job: &RunJob| format!("{} / {} / run {}", job.scene, job.method.label(), job.run);
-    let results: Vec<Mutex<Option<Result<RunRecord, String>>>> =
-        jobs.iter().map(|_| Mutex::new(None)).collect();
+    let results: JobResults = jobs.iter().map(|_| Mutex::new(None)).collect();
     if a.in_process {
         for (k, job) in jobs.iter().enumerate() {
             bar.set_message(label(job));
@@ -867,6 +913,11 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         });
     }
     bar.finish_and_clear();
+    results
+}
+
+/// The records of the runs that ended, and a line for each run that failed or did not run.
+fn records_and_failures(jobs: &[RunJob], results: JobResults) -> (Vec<RunRecord>, Vec<String>) {
     let mut failures = Vec::new();
     let mut records: Vec<RunRecord> = Vec::new();
     for (job, r) in jobs.iter().zip(results) {
@@ -886,11 +937,19 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
             )),
         }
     }
+    (records, failures)
+}
+
+/// One report per scene, of its runs by method.
+fn scene_reports(
+    plan: &Plan,
+    loaded: &[(viaroad::scene::Scene, QuerySet)],
+    records: &[RunRecord],
+) -> Vec<SceneReport> {
     let labels: Vec<String> = plan.methods.iter().map(Method::label).collect();
-    let scene_reports = plan
-        .scenes
+    plan.scenes
         .iter()
-        .zip(&loaded)
+        .zip(loaded)
         .map(|(source, (scene, set))| {
             let src = source.to_string();
             let runs: Vec<RunRecord> = records
@@ -905,18 +964,11 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
                 plan.target,
             )
         })
-        .collect();
-    let report = Report {
-        date,
-        host: machine::hostname(),
-        cpu: machine::cpu_info(),
-        command,
-        version: env!("CARGO_PKG_VERSION").to_string(),
-        plan,
-        wall_seconds: began.elapsed().as_secs_f64(),
-        scenes: scene_reports,
-        failures,
-    };
+        .collect()
+}
+
+/// The summary on stdout, and every output file in `--out`.
+fn write_local_report(a: &BenchLocalArgs, report: &Report) -> anyhow::Result<()> {
     let md = report.markdown();
     super::output::print_quietly(&md)?;
     let write = |name: &str, text: String| -> anyhow::Result<()> {
@@ -925,19 +977,13 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     write("summary.md", md)?;
     write("runs.csv", report.csv())?;
     write("report.json", report.json()?)?;
-    sqlite::write_database(&a.out.join("results.db"), &report)?;
-    let svgs = plots::write_plots(&a.out, &report)?;
+    sqlite::write_database(&a.out.join("results.db"), report)?;
+    let svgs = plots::write_plots(&a.out, report)?;
     eprintln!(
         "wrote summary.md, runs.csv, report.json, results.db (OMPL benchmark schema) and {} plots to {}",
         svgs.len(),
         a.out.display()
     );
-    if !report.failures.is_empty() {
-        anyhow::bail!(
-            "{} run(s) failed (listed in summary.md)",
-            report.failures.len()
-        );
-    }
     Ok(())
 }
 
