@@ -172,7 +172,10 @@ fn house_tool(script: &str, args: &[&str]) -> (bool, String) {
         .unwrap_or_else(|e| panic!("python3 tools/{script}: {e} (the house checks need python3)"));
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(stderr.trim().is_empty(), "tools/{script}: {stderr}");
-    (o.status.success(), String::from_utf8_lossy(&o.stdout).into_owned())
+    (
+        o.status.success(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+    )
 }
 
 /// Circles of imports, file by file, still to break, each as its files (sorted): their owner

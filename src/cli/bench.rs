@@ -358,6 +358,20 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
     }
     let problems = mbm::find_problems(&a.dir, a.limit)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
+    let options = mbm_options(&a, time)?;
+    options.tree.validate().map_err(anyhow::Error::msg)?;
+    if a.workcell {
+        return mbm_workcells(&a, &robot, &problems, &options);
+    }
+    mbm_problems(&a, &robot, &problems, &options)
+}
+
+/// `bench mbm`'s options of each problem's planning, from the arguments.
+fn mbm_options(
+    a: &MbmArgs,
+    time: std::time::Duration,
+) -> anyhow::Result<viaroad::bench::mbm::MbmOptions> {
+    use viaroad::bench::mbm;
     let race = match a.race {
         Some(ms) if !(0.0..=1e9).contains(&ms) => {
             anyhow::bail!("--race takes milliseconds from 0 to 1e9, got {ms}")
@@ -370,7 +384,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             a.trees_first
         );
     }
-    let options = mbm::MbmOptions {
+    Ok(mbm::MbmOptions {
         time,
         direct_calls: a.direct_calls,
         trees_first: (a.trees_first > 0.0).then_some(a.trees_first),
@@ -390,75 +404,95 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         },
         race,
         straight: !a.no_straight,
+    })
+}
+
+/// `bench mbm --workcell`: one roadmap per family answering all its requests; a table row per
+/// family, `workcell.md` and `workcell.json` in `--out`.
+fn mbm_workcells(
+    a: &MbmArgs,
+    robot: &viaroad::robot::Arm,
+    problems: &[viaroad::bench::mbm::Problem],
+    options: &viaroad::bench::mbm::MbmOptions,
+) -> anyhow::Result<()> {
+    use viaroad::bench::mbm;
+    let race = options.race;
+    let workcell = mbm::WorkcellOptions {
+        budget: viaroad::roadmap::Budget::nodes(a.nodes),
+        seed: a.seed,
+        query_time: super::limits::parse_seconds("--query-time", a.query_time)?,
+        trees: (a.planner == mbm::Planner::Tree).then(|| options.tree.clone()),
+        race,
+        keep_answers: a.keep_answers,
+        keep_trees: a.keep_trees,
+        trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
+        straight: !a.no_straight,
     };
-    options.tree.validate().map_err(anyhow::Error::msg)?;
-    if a.workcell {
-        let workcell = mbm::WorkcellOptions {
-            budget: viaroad::roadmap::Budget::nodes(a.nodes),
-            seed: a.seed,
-            query_time: super::limits::parse_seconds("--query-time", a.query_time)?,
-            trees: (a.planner == mbm::Planner::Tree).then(|| options.tree.clone()),
-            race,
-            keep_answers: a.keep_answers,
-            keep_trees: a.keep_trees,
-            trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
-            straight: !a.no_straight,
-        };
-        let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
-        families.dedup();
-        let mut md = String::from(
-            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms | raw length p50 | length p50 |\n\
-             |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
+    families.dedup();
+    let mut md = String::from(
+        "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms | raw length p50 | length p50 |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut all = Vec::new();
+    for f in &families {
+        let ps: Vec<mbm::Problem> = problems
+            .iter()
+            .filter(|p| &p.family == f)
+            .cloned()
+            .collect();
+        let save = a.out.join(format!("{f}.roadmap"));
+        let r = mbm::run_workcell(robot, &ps, &workcell, &save)
+            .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
+        let line = format!(
+            "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
+            r.family,
+            r.nodes,
+            r.learn_s,
+            r.learn_calls,
+            r.load_ms,
+            r.requests,
+            r.valid,
+            r.solved,
+            r.by_trees,
+            r.certified,
+            r.kept,
+            r.nodes_after,
+            r.query_ms.p50,
+            r.query_ms.p95,
+            r.query_ms.max,
+            r.found_ms.p50,
+            r.found_ms.p95,
+            r.raw_length.p50,
+            r.length.p50
         );
-        let mut all = Vec::new();
-        for f in &families {
-            let ps: Vec<mbm::Problem> = problems
-                .iter()
-                .filter(|p| &p.family == f)
-                .cloned()
-                .collect();
-            let save = a.out.join(format!("{f}.roadmap"));
-            let r = mbm::run_workcell(&robot, &ps, &workcell, &save)
-                .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
-            let line = format!(
-                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
-                r.family,
-                r.nodes,
-                r.learn_s,
-                r.learn_calls,
-                r.load_ms,
-                r.requests,
-                r.valid,
-                r.solved,
-                r.by_trees,
-                r.certified,
-                r.kept,
-                r.nodes_after,
-                r.query_ms.p50,
-                r.query_ms.p95,
-                r.query_ms.max,
-                r.found_ms.p50,
-                r.found_ms.p95,
-                r.raw_length.p50,
-                r.length.p50
-            );
-            eprint!("{line}");
-            md.push_str(&line);
-            all.push(r);
-        }
-        print!("{md}");
-        super::output::save(&a.out.join("workcell.md"), md.as_bytes())?;
-        super::output::save(
-            &a.out.join("workcell.json"),
-            serde_json::to_string_pretty(&all)?.as_bytes(),
-        )?;
-        return Ok(());
+        eprint!("{line}");
+        md.push_str(&line);
+        all.push(r);
     }
+    print!("{md}");
+    super::output::save(&a.out.join("workcell.md"), md.as_bytes())?;
+    super::output::save(
+        &a.out.join("workcell.json"),
+        serde_json::to_string_pretty(&all)?.as_bytes(),
+    )?;
+    Ok(())
+}
+
+/// `bench mbm`: each problem planned alone; a line per problem, `problems.csv` as it goes,
+/// `summary.md` and `report.json` in `--out`, the paths in `--paths-out`.
+fn mbm_problems(
+    a: &MbmArgs,
+    robot: &viaroad::robot::Arm,
+    problems: &[viaroad::bench::mbm::Problem],
+    options: &viaroad::bench::mbm::MbmOptions,
+) -> anyhow::Result<()> {
+    use viaroad::bench::mbm;
     if let Some(dir) = &a.paths_out {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     }
     let mut results = Vec::new();
-    for p in &problems {
+    for p in problems {
         let files = a.paths_out.as_ref().map(|dir| {
             let name = format!("{}_{}", p.family, p.id);
             (
@@ -470,7 +504,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             remove_stale(short)?;
             remove_stale(raw)?;
         }
-        let r = mbm::run_problem(&robot, p, &options);
+        let r = mbm::run_problem(robot, p, options);
         if let (Some((short, raw)), true) = (&files, r.solved) {
             viaroad::scene::ompl_cfg::write_states(short, &r.path)?;
             viaroad::scene::ompl_cfg::write_states(raw, &r.raw_path)?;
