@@ -6,8 +6,8 @@ use crate::short;
 /// Slack for rounding in the bounds and disc checks.
 pub(super) const TOL: f64 = 1e-9;
 
-/// Conservative advancement over `t ∈ [0, 1]` (the checker's module docs): fails where the clearance is zero
-/// or a piece shorter than 1e-10 still cannot be certified.
+/// Conservative advancement over `t ∈ [0, 1]` (the checker's module docs): fails where the
+/// clearance is zero or a piece shorter than 1e-10 still cannot be certified.
 pub(super) fn certify_by_advancement(
     rate: f64,
     clearance_at: impl Fn(f64) -> Result<f64, String>,

@@ -8,10 +8,10 @@
 //! | [`arm`] | a robot arm's links animated by forward kinematics |
 //! | [`html`] | the viewer page: three.js (vendored, pinned) and the `.glb`, both inline |
 //!
-//! The glTF frame is Y-up. Z-up scenes (viaroad's TOML, planar problems, MoveIt, and those
-//! of OMPL.app's 3D problems that stand on z = 0, see `scene::is_z_up`) sit under a root node turned
-//! by −90° about x; the others are written as they are. The robot's node is placed at the reference point
-//! with the state's quaternion, which glTF and OMPL both order `[x, y, z, w]`.
+//! The glTF frame is Y-up. Z-up scenes (viaroad's TOML, planar problems, MoveIt, and those of
+//! OMPL.app's 3D problems that stand on z = 0, see `scene::is_z_up`) sit under a root node turned
+//! by −90° about x; the others are written as they are. The robot's node is placed at the reference
+//! point with the state's quaternion, which glTF and OMPL both order `[x, y, z, w]`.
 
 pub mod animation;
 pub mod arm;

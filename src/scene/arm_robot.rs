@@ -10,9 +10,9 @@ use crate::space::{Change, Motion};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
-/// An arm in its environment: what a [`Robot::Arm`](super::Robot::Arm) scene holds. The arm has its other joints,
-/// base and allowed-collision exemptions set; `objects` are the environment as read (exact
-/// shapes, for the independent checker and for drawing).
+/// An arm in its environment: what a [`Robot::Arm`](super::Robot::Arm) scene holds. The arm has its
+/// other joints, base and allowed-collision exemptions set; `objects` are the environment as read
+/// (exact shapes, for the independent checker and for drawing).
 #[derive(Clone, Debug)]
 pub struct ArmRobot {
     /// The arm, ready for planning.
@@ -111,7 +111,8 @@ fn digest(arm: &Arm, objects: &[CollisionObject]) -> u64 {
 }
 
 /// The collision oracle of an arm scene (wrapped in [`crate::oracle::Bounded`] by
-/// [`Scene::oracle`](super::Scene::oracle)): single-joint motions exactly, configurations statically.
+/// [`Scene::oracle`](super::Scene::oracle)): single-joint motions exactly, configurations
+/// statically.
 ///
 /// Answers of single-joint moves are kept: the via-point search asks about a
 /// fifth of its moves again, the same question bit for bit (the same joint over its whole range

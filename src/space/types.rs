@@ -19,17 +19,17 @@ pub enum SpaceKind {
     /// SE(3): `[x, y, z, qx, qy, qz, qw]`, a unit quaternion in OMPL's order.
     Se3,
     /// The joint values of an arm's planning group, in group order (see
-    /// [`joints`](crate::space::joints)): one DOF group per joint, because moving one joint turns the distal part
-    /// rigidly about a fixed axis (CHS §1.5, §2.3.2).
+    /// [`joints`](crate::space::joints)): one DOF group per joint, because moving one joint turns
+    /// the distal part rigidly about a fixed axis (CHS §1.5, §2.3.2).
     Joints {
         /// Number of joints.
         dof: usize,
         /// Bit `i` set: joint `i` is continuous (wraps like SE(2)'s angle, has no limits).
         continuous: u64,
     },
-    /// SE(2)^k: several polygonal bodies in the plane, `[x₀, y₀, θ₀, x₁, y₁, θ₁, …]`, the
-    /// bodies' poses concatenated (see [`bodies`](crate::space::bodies)). Groups: all bodies translate at once, or
-    /// one body turns about its reference point (CHS Chapter 2).
+    /// SE(2)^k: several polygonal bodies in the plane, `[x₀, y₀, θ₀, x₁, y₁, θ₁, …]`, the bodies'
+    /// poses concatenated (see [`bodies`](crate::space::bodies)). Groups: all bodies translate at
+    /// once, or one body turns about its reference point (CHS Chapter 2).
     Se2Bodies(usize),
 }
 
