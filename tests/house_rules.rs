@@ -6,6 +6,9 @@
 //! `python/src/` (clap takes help texts from doc comments), and every line of `README.md`,
 //! `ARCHITECTURE.md` and `docs/*.md`. Code outside comments may hold dates (a test of a date
 //! formatter does).
+//!
+//! Also: no circles of imports and no function over 120 lines outside tests, by the scripts
+//! in `tools/` that a maintainer runs by hand.
 
 use std::path::{Path, PathBuf};
 
@@ -157,4 +160,71 @@ fn help_texts_put_knobs_under_tuning_and_cite_no_history() {
             assert!(options < h, "{args:?}: the options people need come first");
         }
     }
+}
+
+/// Runs one of the house's Python checks in `tools/` (the same code a maintainer runs by hand);
+/// returns its exit status and its standard output.
+fn house_tool(script: &str, args: &[&str]) -> (bool, String) {
+    let o = std::process::Command::new("python3")
+        .arg(root().join("tools").join(script))
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("python3 tools/{script}: {e} (the house checks need python3)"));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.trim().is_empty(), "tools/{script}: {stderr}");
+    (
+        o.status.success(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+    )
+}
+
+/// Circles of imports, file by file, still to break, each as its files (sorted): their owner
+/// splits them; once one is gone, its line goes too (the test fails until it does, so the list
+/// only shrinks).
+const CIRCLES_TO_BREAK: &[&[&str]] = &[&["robot/oracle.rs", "robot/oracle/straight.rs"]];
+
+/// An import graph of `src/`, file by file (`tools/import_graph.py --strict`: a `mod.rs` and
+/// the children it calls count too), has no circles: what a module and its children share
+/// lives in a file below both.
+#[test]
+fn no_circles_of_imports_file_by_file() {
+    let (ok, out) = house_tool("import_graph.py", &[]);
+    assert!(ok, "circles of imports between modules:\n{out}");
+    let (_, out) = house_tool("import_graph.py", &["--strict"]);
+    let mut circles: Vec<Vec<String>> = Vec::new();
+    for line in out.lines() {
+        if line.starts_with("circle ") {
+            circles.push(Vec::new());
+        } else if let (Some(c), Some(file)) = (circles.last_mut(), line.strip_prefix("  ")) {
+            if !file.starts_with(' ') {
+                c.push(file.trim().to_string());
+            }
+        }
+    }
+    for c in &mut circles {
+        c.sort();
+    }
+    let known: Vec<Vec<String>> = CIRCLES_TO_BREAK
+        .iter()
+        .map(|c| c.iter().map(|f| f.to_string()).collect())
+        .collect();
+    let new: Vec<&Vec<String>> = circles.iter().filter(|c| !known.contains(c)).collect();
+    assert!(
+        new.is_empty(),
+        "circles of imports (move what the files share into a file below them):\n{out}"
+    );
+    for k in &known {
+        assert!(
+            circles.contains(k),
+            "{k:?} is no circle any more: remove it from CIRCLES_TO_BREAK"
+        );
+    }
+}
+
+/// No function outside tests is longer than 120 lines (`tools/long_functions.py`): a long
+/// function reads better as named steps.
+#[test]
+fn no_function_outside_tests_is_over_120_lines() {
+    let (ok, out) = house_tool("long_functions.py", &["--max", "120"]);
+    assert!(ok, "split these into named steps:\n{out}");
 }

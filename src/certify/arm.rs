@@ -16,7 +16,7 @@
 //! with a witness.
 
 use super::locate::{locate, Prover};
-use super::{exact_collision, CertifyError, Verdict};
+use super::verdict::{exact_collision, CertifyError, Verdict};
 use crate::deadline::Deadline;
 use crate::oracle::CallCounts;
 use crate::robot::{ArmChecker, ArmOracle};

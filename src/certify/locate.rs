@@ -5,7 +5,7 @@
 //! them that the independent check confirms as colliding makes the verdict a collision; none
 //! found leaves it undecided (the bodies pass closer than the proof's margin).
 
-use super::{Collision, Verdict};
+use super::verdict::{fmt_intervals, CertifyError, Collision, Verdict};
 use crate::deadline::Deadline;
 
 /// Width (share of the segment) below which an unproved piece with a confirmed collision is
@@ -21,7 +21,7 @@ pub const MAX_PROOFS: usize = 512;
 /// the configuration at a parameter really collides (with the pairs that touch).
 pub(crate) trait Prover {
     /// Whether the motion over `[t0, t1]` is proved free.
-    fn proved_free(&mut self, t0: f64, t1: f64) -> Result<bool, super::CertifyError>;
+    fn proved_free(&mut self, t0: f64, t1: f64) -> Result<bool, CertifyError>;
     /// The touching pairs at `t` if the configuration there collides, `None` if it is free.
     fn witness(&mut self, t: f64) -> Option<Vec<[String; 2]>>;
     /// The configuration at `t`.
@@ -158,15 +158,6 @@ fn collision(p: &mut dyn Prover, leaves: &[Leaf], rest: &[(f64, f64)]) -> Verdic
         witness_t: t,
         pairs,
     })
-}
-
-/// Intervals as `[a, b] ∪ …`.
-pub(crate) fn fmt_intervals(intervals: &[[f64; 2]]) -> String {
-    intervals
-        .iter()
-        .map(|[a, b]| format!("[{a:.6}, {b:.6}]"))
-        .collect::<Vec<_>>()
-        .join(" ∪ ")
 }
 
 #[cfg(test)]

@@ -26,9 +26,13 @@ mod arm;
 mod locate;
 pub mod repair;
 mod rigid;
+mod verdict;
 
 pub use locate::COARSE;
 pub use repair::{repair, RepairOptions, RepairReport, Repaired};
+pub use verdict::{CertifyError, Collision, Verdict};
+
+use verdict::exact_collision;
 
 use crate::deadline::Deadline;
 use crate::local::direct_pieces;
@@ -37,28 +41,6 @@ use crate::scene::{Robot, Scene};
 use crate::space::{Config, SpaceKind};
 use serde::Serialize;
 use std::time::Instant;
-
-/// Why a path cannot be certified at all (a blocked or undecided segment is a result).
-#[derive(Debug, thiserror::Error)]
-pub enum CertifyError {
-    /// The path holds no waypoint.
-    #[error("the path holds no waypoint")]
-    Empty,
-    /// A waypoint has the wrong number of values or a value that is not finite.
-    #[error("waypoint {index}: {message}")]
-    Waypoint {
-        /// 0-based.
-        index: usize,
-        /// What is wrong.
-        message: String,
-    },
-    /// The scene's robot cannot be checked independently.
-    #[error("no independent check for this scene: {0}")]
-    Unsupported(String),
-    /// An oracle or robot model refused a question.
-    #[error("oracle: {0}")]
-    Oracle(String),
-}
 
 /// How the robot moves between two waypoints.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -81,55 +63,6 @@ impl std::str::FromStr for MotionModel {
             "interpolate" | "straight" | "ompl" => Ok(MotionModel::Interpolate),
             "direct" => Ok(MotionModel::Direct),
             _ => Err(format!("unknown motion model {s:?} (interpolate | direct)")),
-        }
-    }
-}
-
-/// A collision found on a segment.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Collision {
-    /// Closed intervals of the segment's parameter `t ∈ [0, 1]` that hold every collision:
-    /// exact ([`Self::exact`]), or unions of pieces of width [`Self::resolution`] not proved
-    /// free.
-    pub intervals: Vec<[f64; 2]>,
-    /// Whether the intervals are the oracle's exact collision set.
-    pub exact: bool,
-    /// The width of the pieces the intervals were located to (0 when exact).
-    pub resolution: f64,
-    /// A configuration on the segment in collision.
-    pub witness: Config,
-    /// Its parameter.
-    pub witness_t: f64,
-    /// The pairs that touch at the witness (link / obstacle names for arms).
-    pub pairs: Vec<[String; 2]>,
-    /// The segment is proved free over `[0, free_before]`.
-    pub free_before: f64,
-    /// … and over `[free_after, 1]` (where its end is free).
-    pub free_after: f64,
-}
-
-/// The verdict on one segment.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "verdict", rename_all = "lowercase")]
-pub enum Verdict {
-    /// Proved free.
-    Free,
-    /// Collides.
-    Collides(Collision),
-    /// Neither proved free nor a collision found.
-    Undecided {
-        /// Why.
-        reason: String,
-    },
-}
-
-impl Verdict {
-    /// The verdict's name (`free`, `collides`, `undecided`).
-    pub fn name(&self) -> &'static str {
-        match self {
-            Verdict::Free => "free",
-            Verdict::Collides(_) => "collides",
-            Verdict::Undecided { .. } => "undecided",
         }
     }
 }
@@ -416,44 +349,6 @@ impl<'a> Certifier<'a> {
     /// (confirmed by the independent check where it can be; else the interval's ends).
     fn exact_collision(&self, intervals: Vec<[f64; 2]>, at: impl Fn(f64) -> Config) -> Verdict {
         exact_collision(intervals, at, |q| self.witness(q))
-    }
-}
-
-/// [`Certifier::exact_collision`] with the witness check given.
-pub(crate) fn exact_collision(
-    intervals: Vec<[f64; 2]>,
-    at: impl Fn(f64) -> Config,
-    witness: impl Fn(&[f64]) -> Option<Vec<[String; 2]>>,
-) -> Verdict {
-    let candidates = intervals.iter().flat_map(|[lo, hi]| {
-        [
-            0.5 * (lo + hi),
-            *lo,
-            *hi,
-            0.25 * (3.0 * lo + hi),
-            0.25 * (lo + 3.0 * hi),
-        ]
-    });
-    for t in candidates {
-        let q = at(t);
-        if let Some(pairs) = witness(&q) {
-            return Verdict::Collides(Collision {
-                free_before: intervals[0][0],
-                free_after: intervals[intervals.len() - 1][1],
-                intervals,
-                exact: true,
-                resolution: 0.0,
-                witness: q,
-                witness_t: t,
-                pairs,
-            });
-        }
-    }
-    Verdict::Undecided {
-        reason: format!(
-            "the oracle's enclosing shapes collide within {}, the true shapes at no point tried",
-            locate::fmt_intervals(&intervals)
-        ),
     }
 }
 

@@ -9,7 +9,7 @@
 //! disc's distance for a point).
 
 use super::locate::{locate, Prover};
-use super::{exact_collision, CertifyError, Verdict};
+use super::verdict::{exact_collision, CertifyError, Verdict};
 use crate::checker::{planar::PlanarChecker, rigid::RigidChecker};
 use crate::deadline::Deadline;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};

@@ -10,7 +10,8 @@
 //! body–body pairs) cannot close before the parameter has advanced `d / (2 · maxᵢ vᵢ)`. It
 //! shares no code with the exact oracle ([`crate::oracle::bodies`]).
 
-use super::{certify_by_advancement, in_box, planar};
+use super::advance::{certify_by_advancement, in_box};
+use super::planar;
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::short;
 use crate::space::Config;

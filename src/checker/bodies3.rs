@@ -12,7 +12,8 @@
 //! is checked at the first corner; surfaces that never touch cannot change it along the path.
 //! It shares no code with the exact oracle ([`crate::oracle::bodies3`]).
 
-use super::{certify_by_advancement, in_box, rigid::parry_mesh};
+use super::advance::{certify_by_advancement, in_box};
+use super::rigid::parry_mesh;
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::short;
 use crate::space::Config;

@@ -19,15 +19,16 @@
 //! * Several bodies in space ([`bodies3`]): the same parry trimeshes and advancement, over
 //!   every body–obstacle and body–body pair, containment at the first corner.
 
+mod advance;
 pub mod bodies;
 pub mod bodies3;
 pub mod planar;
 pub mod rigid;
 
-use crate::geometry::Polygon;
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::short;
 use crate::space::{Config, SpaceKind};
+use advance::TOL;
 
 /// An independent path checker for one scene.
 pub enum Checker {
@@ -60,9 +61,6 @@ pub enum Checker {
         step: f64,
     },
 }
-
-/// Slack for rounding in the bounds and disc checks.
-const TOL: f64 = 1e-9;
 
 impl Checker {
     /// The checker of `scene`'s kind, or why there is none.
@@ -209,43 +207,6 @@ fn check_disc_path(
                     short::num(*r)
                 ));
             }
-        }
-    }
-    Ok(())
-}
-
-/// Conservative advancement over `t ∈ [0, 1]` (module docs): fails where the clearance is zero
-/// or a piece shorter than 1e-10 still cannot be certified.
-fn certify_by_advancement(
-    rate: f64,
-    clearance_at: impl Fn(f64) -> Result<f64, String>,
-) -> Result<(), String> {
-    let mut stack = vec![(0.0f64, 1.0f64)];
-    while let Some((t0, t1)) = stack.pop() {
-        let d = clearance_at(t0)?;
-        if d > rate * (t1 - t0) {
-            continue;
-        }
-        if d <= 0.0 || t1 - t0 < 1e-10 {
-            return Err(format!("touches an obstacle near t = {t0} (clearance {d})"));
-        }
-        let m = 0.5 * (t0 + t1);
-        stack.push((m, t1));
-        stack.push((t0, m));
-    }
-    // the end itself (the loop certifies [t0, t1) pieces up to their end by continuity, but a
-    // clearance of exactly 0 at t = 1 is a touch)
-    let d = clearance_at(1.0)?;
-    if d <= 0.0 {
-        return Err(format!("touches an obstacle at t = 1 (clearance {d})"));
-    }
-    Ok(())
-}
-
-fn in_box(q: &[f64], lower: &[f64], upper: &[f64]) -> Result<(), String> {
-    for i in 0..lower.len() {
-        if !(q[i] >= lower[i] - TOL && q[i] <= upper[i] + TOL) {
-            return Err(format!("{} lies outside the bounds", short::config(q)));
         }
     }
     Ok(())

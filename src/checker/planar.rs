@@ -1,6 +1,9 @@
 //! The SE(2) checker: parry2d compounds of ear-clipped triangles.
 
-use super::*;
+use super::advance::{certify_by_advancement, in_box};
+use crate::geometry::Polygon;
+use crate::scene::{Obstacle, Robot, Scene};
+use crate::space::Config;
 use parry2d_f64::math::{Isometry, Point};
 use parry2d_f64::shape::{Compound, SharedShape, Triangle};
 

@@ -1,6 +1,9 @@
 //! The SE(3) checker: parry3d trimeshes.
 
-use super::*;
+use super::advance::{certify_by_advancement, in_box};
+use crate::scene::{Obstacle, Robot, Scene};
+use crate::short;
+use crate::space::Config;
 use parry3d_f64::math::{Isometry, Translation, Vector};
 use parry3d_f64::na::{Quaternion, Unit, UnitQuaternion};
 use parry3d_f64::query::PointQuery;

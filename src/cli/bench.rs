@@ -358,6 +358,20 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
     }
     let problems = mbm::find_problems(&a.dir, a.limit)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
+    let options = mbm_options(&a, time)?;
+    options.tree.validate().map_err(anyhow::Error::msg)?;
+    if a.workcell {
+        return mbm_workcells(&a, &robot, &problems, &options);
+    }
+    mbm_problems(&a, &robot, &problems, &options)
+}
+
+/// `bench mbm`'s options of each problem's planning, from the arguments.
+fn mbm_options(
+    a: &MbmArgs,
+    time: std::time::Duration,
+) -> anyhow::Result<viaroad::bench::mbm::MbmOptions> {
+    use viaroad::bench::mbm;
     let race = match a.race {
         Some(ms) if !(0.0..=1e9).contains(&ms) => {
             anyhow::bail!("--race takes milliseconds from 0 to 1e9, got {ms}")
@@ -370,7 +384,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             a.trees_first
         );
     }
-    let options = mbm::MbmOptions {
+    Ok(mbm::MbmOptions {
         time,
         direct_calls: a.direct_calls,
         trees_first: (a.trees_first > 0.0).then_some(a.trees_first),
@@ -390,75 +404,95 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
         },
         race,
         straight: !a.no_straight,
+    })
+}
+
+/// `bench mbm --workcell`: one roadmap per family answering all its requests; a table row per
+/// family, `workcell.md` and `workcell.json` in `--out`.
+fn mbm_workcells(
+    a: &MbmArgs,
+    robot: &viaroad::robot::Arm,
+    problems: &[viaroad::bench::mbm::Problem],
+    options: &viaroad::bench::mbm::MbmOptions,
+) -> anyhow::Result<()> {
+    use viaroad::bench::mbm;
+    let race = options.race;
+    let workcell = mbm::WorkcellOptions {
+        budget: viaroad::roadmap::Budget::nodes(a.nodes),
+        seed: a.seed,
+        query_time: super::limits::parse_seconds("--query-time", a.query_time)?,
+        trees: (a.planner == mbm::Planner::Tree).then(|| options.tree.clone()),
+        race,
+        keep_answers: a.keep_answers,
+        keep_trees: a.keep_trees,
+        trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
+        straight: !a.no_straight,
     };
-    options.tree.validate().map_err(anyhow::Error::msg)?;
-    if a.workcell {
-        let workcell = mbm::WorkcellOptions {
-            budget: viaroad::roadmap::Budget::nodes(a.nodes),
-            seed: a.seed,
-            query_time: super::limits::parse_seconds("--query-time", a.query_time)?,
-            trees: (a.planner == mbm::Planner::Tree).then(|| options.tree.clone()),
-            race,
-            keep_answers: a.keep_answers,
-            keep_trees: a.keep_trees,
-            trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
-            straight: !a.no_straight,
-        };
-        let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
-        families.dedup();
-        let mut md = String::from(
-            "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms | raw length p50 | length p50 |\n\
-             |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
+    families.dedup();
+    let mut md = String::from(
+        "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms | raw length p50 | length p50 |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut all = Vec::new();
+    for f in &families {
+        let ps: Vec<mbm::Problem> = problems
+            .iter()
+            .filter(|p| &p.family == f)
+            .cloned()
+            .collect();
+        let save = a.out.join(format!("{f}.roadmap"));
+        let r = mbm::run_workcell(robot, &ps, &workcell, &save)
+            .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
+        let line = format!(
+            "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
+            r.family,
+            r.nodes,
+            r.learn_s,
+            r.learn_calls,
+            r.load_ms,
+            r.requests,
+            r.valid,
+            r.solved,
+            r.by_trees,
+            r.certified,
+            r.kept,
+            r.nodes_after,
+            r.query_ms.p50,
+            r.query_ms.p95,
+            r.query_ms.max,
+            r.found_ms.p50,
+            r.found_ms.p95,
+            r.raw_length.p50,
+            r.length.p50
         );
-        let mut all = Vec::new();
-        for f in &families {
-            let ps: Vec<mbm::Problem> = problems
-                .iter()
-                .filter(|p| &p.family == f)
-                .cloned()
-                .collect();
-            let save = a.out.join(format!("{f}.roadmap"));
-            let r = mbm::run_workcell(&robot, &ps, &workcell, &save)
-                .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
-            let line = format!(
-                "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
-                r.family,
-                r.nodes,
-                r.learn_s,
-                r.learn_calls,
-                r.load_ms,
-                r.requests,
-                r.valid,
-                r.solved,
-                r.by_trees,
-                r.certified,
-                r.kept,
-                r.nodes_after,
-                r.query_ms.p50,
-                r.query_ms.p95,
-                r.query_ms.max,
-                r.found_ms.p50,
-                r.found_ms.p95,
-                r.raw_length.p50,
-                r.length.p50
-            );
-            eprint!("{line}");
-            md.push_str(&line);
-            all.push(r);
-        }
-        print!("{md}");
-        super::output::save(&a.out.join("workcell.md"), md.as_bytes())?;
-        super::output::save(
-            &a.out.join("workcell.json"),
-            serde_json::to_string_pretty(&all)?.as_bytes(),
-        )?;
-        return Ok(());
+        eprint!("{line}");
+        md.push_str(&line);
+        all.push(r);
     }
+    print!("{md}");
+    super::output::save(&a.out.join("workcell.md"), md.as_bytes())?;
+    super::output::save(
+        &a.out.join("workcell.json"),
+        serde_json::to_string_pretty(&all)?.as_bytes(),
+    )?;
+    Ok(())
+}
+
+/// `bench mbm`: each problem planned alone; a line per problem, `problems.csv` as it goes,
+/// `summary.md` and `report.json` in `--out`, the paths in `--paths-out`.
+fn mbm_problems(
+    a: &MbmArgs,
+    robot: &viaroad::robot::Arm,
+    problems: &[viaroad::bench::mbm::Problem],
+    options: &viaroad::bench::mbm::MbmOptions,
+) -> anyhow::Result<()> {
+    use viaroad::bench::mbm;
     if let Some(dir) = &a.paths_out {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     }
     let mut results = Vec::new();
-    for p in &problems {
+    for p in problems {
         let files = a.paths_out.as_ref().map(|dir| {
             let name = format!("{}_{}", p.family, p.id);
             (
@@ -470,7 +504,7 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
             remove_stale(short)?;
             remove_stale(raw)?;
         }
-        let r = mbm::run_problem(&robot, p, &options);
+        let r = mbm::run_problem(robot, p, options);
         if let (Some((short, raw)), true) = (&files, r.solved) {
             viaroad::scene::ompl_cfg::write_states(short, &r.path)?;
             viaroad::scene::ompl_cfg::write_states(raw, &r.raw_path)?;
@@ -670,7 +704,7 @@ fn discs(a: DiscsArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("cannot create {}", a.out.display()))?;
     super::output::check_targets(&a.out, &["tables.md", "tables.csv", "tables.json"])?;
-    let bar = super::progress_bar(problems * rows.len() as u64, "problems");
+    let bar = super::progress::progress_bar(problems * rows.len() as u64, "problems");
     let start = std::time::Instant::now();
     tables::run_rows(&mut rows, problems, a.seed, a.radius, &|| bar.inc(1))?;
     bar.finish_and_clear();
@@ -751,6 +785,43 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let date = machine::utc_now();
     let began = std::time::Instant::now();
+    let plan = local_plan(&a)?;
+    // outputs that could not be saved are refused before the scenes load and the runs run
+    super::output::check_targets(
+        &a.out,
+        &["summary.md", "runs.csv", "report.json", "results.db"],
+    )?;
+    let loaded = load_scenes(&plan)?;
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("cannot create {}", a.out.display()))?;
+    let jobs = plan.jobs();
+    let results = run_jobs(&a, &plan, &jobs, &loaded);
+    let (records, failures) = records_and_failures(&jobs, results);
+    let scenes = scene_reports(&plan, &loaded, &records);
+    let report = Report {
+        date,
+        host: machine::hostname(),
+        cpu: machine::cpu_info(),
+        command,
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        plan,
+        wall_seconds: began.elapsed().as_secs_f64(),
+        scenes,
+        failures,
+    };
+    write_local_report(&a, &report)?;
+    if !report.failures.is_empty() {
+        anyhow::bail!(
+            "{} run(s) failed (listed in summary.md)",
+            report.failures.len()
+        );
+    }
+    Ok(())
+}
+
+/// The benchmark's plan from the arguments: scenes, the methods crossed with the samplers
+/// and seedings, the query sets, the stages; validated.
+fn local_plan(a: &BenchLocalArgs) -> anyhow::Result<Plan> {
     let scenes: Vec<SceneSource> = a
         .scenes
         .iter()
@@ -799,13 +870,12 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     if a.jobs == 0 {
         anyhow::bail!("--jobs must be at least 1");
     }
-    // outputs that could not be saved are refused before the scenes load and the runs run
-    super::output::check_targets(
-        &a.out,
-        &["summary.md", "runs.csv", "report.json", "results.db"],
-    )?;
+    Ok(plan)
+}
 
-    // load every scene and its query set first: errors show before hours of running
+/// Every scene of the plan with its query set, loaded before any run so that errors show
+/// before hours of running.
+fn load_scenes(plan: &Plan) -> anyhow::Result<Vec<(viaroad::scene::Scene, QuerySet)>> {
     let mut loaded = Vec::new();
     for source in &plan.scenes {
         let scene = source.load().with_context(|| format!("scene {source}"))?;
@@ -823,10 +893,21 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         );
         loaded.push((scene, set));
     }
-    std::fs::create_dir_all(&a.out)
-        .with_context(|| format!("cannot create {}", a.out.display()))?;
-    let jobs = plan.jobs();
-    let bar = super::progress_bar(jobs.len() as u64, "runs");
+    Ok(loaded)
+}
+
+/// What each job ended with, in job order (`None`: not run).
+type JobResults = Vec<Mutex<Option<Result<RunRecord, String>>>>;
+
+/// Runs the jobs under a progress bar: in this process one after another (`--in-process`),
+/// else in child processes, `--jobs` at a time.
+fn run_jobs(
+    a: &BenchLocalArgs,
+    plan: &Plan,
+    jobs: &[RunJob],
+    loaded: &[(viaroad::scene::Scene, QuerySet)],
+) -> JobResults {
+    let bar = super::progress::progress_bar(jobs.len() as u64, "runs");
     bar.set_style(
         indicatif::ProgressStyle::with_template(
             "{prefix:>12} [{bar:40}] {pos}/{len} {elapsed_precise} eta {eta} {msg}",
@@ -835,8 +916,7 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         .progress_chars("=> "),
     );
     let label = |job: &RunJob| format!("{} / {} / run {}", job.scene, job.method.label(), job.run);
-    let results: Vec<Mutex<Option<Result<RunRecord, String>>>> =
-        jobs.iter().map(|_| Mutex::new(None)).collect();
+    let results: JobResults = jobs.iter().map(|_| Mutex::new(None)).collect();
     if a.in_process {
         for (k, job) in jobs.iter().enumerate() {
             bar.set_message(label(job));
@@ -867,6 +947,11 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
         });
     }
     bar.finish_and_clear();
+    results
+}
+
+/// The records of the runs that ended, and a line for each run that failed or did not run.
+fn records_and_failures(jobs: &[RunJob], results: JobResults) -> (Vec<RunRecord>, Vec<String>) {
     let mut failures = Vec::new();
     let mut records: Vec<RunRecord> = Vec::new();
     for (job, r) in jobs.iter().zip(results) {
@@ -886,11 +971,19 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
             )),
         }
     }
+    (records, failures)
+}
+
+/// One report per scene, of its runs by method.
+fn scene_reports(
+    plan: &Plan,
+    loaded: &[(viaroad::scene::Scene, QuerySet)],
+    records: &[RunRecord],
+) -> Vec<SceneReport> {
     let labels: Vec<String> = plan.methods.iter().map(Method::label).collect();
-    let scene_reports = plan
-        .scenes
+    plan.scenes
         .iter()
-        .zip(&loaded)
+        .zip(loaded)
         .map(|(source, (scene, set))| {
             let src = source.to_string();
             let runs: Vec<RunRecord> = records
@@ -905,18 +998,11 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
                 plan.target,
             )
         })
-        .collect();
-    let report = Report {
-        date,
-        host: machine::hostname(),
-        cpu: machine::cpu_info(),
-        command,
-        version: env!("CARGO_PKG_VERSION").to_string(),
-        plan,
-        wall_seconds: began.elapsed().as_secs_f64(),
-        scenes: scene_reports,
-        failures,
-    };
+        .collect()
+}
+
+/// The summary on stdout, and every output file in `--out`.
+fn write_local_report(a: &BenchLocalArgs, report: &Report) -> anyhow::Result<()> {
     let md = report.markdown();
     super::output::print_quietly(&md)?;
     let write = |name: &str, text: String| -> anyhow::Result<()> {
@@ -925,19 +1011,13 @@ fn local(a: BenchLocalArgs) -> anyhow::Result<()> {
     write("summary.md", md)?;
     write("runs.csv", report.csv())?;
     write("report.json", report.json()?)?;
-    sqlite::write_database(&a.out.join("results.db"), &report)?;
-    let svgs = plots::write_plots(&a.out, &report)?;
+    sqlite::write_database(&a.out.join("results.db"), report)?;
+    let svgs = plots::write_plots(&a.out, report)?;
     eprintln!(
         "wrote summary.md, runs.csv, report.json, results.db (OMPL benchmark schema) and {} plots to {}",
         svgs.len(),
         a.out.display()
     );
-    if !report.failures.is_empty() {
-        anyhow::bail!(
-            "{} run(s) failed (listed in summary.md)",
-            report.failures.len()
-        );
-    }
     Ok(())
 }
 
@@ -1009,7 +1089,7 @@ fn certify(a: BenchCertifyArgs) -> anyhow::Result<()> {
         )),
         None => None,
     };
-    let bar = super::progress_bar(entries.len() as u64, "certify");
+    let bar = super::progress::progress_bar(entries.len() as u64, "certify");
     let mut results = Vec::with_capacity(entries.len());
     for e in &entries {
         let r = bc::run_entry(&arm, &robot_name, &a.problems, e, &options);

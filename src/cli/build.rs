@@ -67,8 +67,10 @@ fn learn_part(
     let learner = Learner::for_scene(scene, oracle.as_ref(), method.as_ref())
         .with_attempt_cap(budget.time.map(Learner::attempt_cap_for));
     let bar = match budget.nodes {
-        Some(n) => super::progress_bar(shard.map_or(n, |s| s.nodes(n)) as u64, "nodes"),
-        None => super::progress_bar(budget.time.map_or(0, |t| t.as_secs().max(1)), "seconds"),
+        Some(n) => super::progress::progress_bar(shard.map_or(n, |s| s.nodes(n)) as u64, "nodes"),
+        None => {
+            super::progress::progress_bar(budget.time.map_or(0, |t| t.as_secs().max(1)), "seconds")
+        }
     };
     let by_nodes = budget.nodes.is_some();
     // the time budget holds inside every connection attempt; Ctrl-C stops learning the same way

@@ -106,7 +106,7 @@ pub fn run(a: MergeArgs) -> anyhow::Result<()> {
         .chain(&base)
         .map(Roadmap::node_count)
         .sum::<usize>();
-    let bar = super::progress_bar(total as u64, "candidates");
+    let bar = super::progress::progress_bar(total as u64, "candidates");
     let refs: Vec<&Roadmap> = parts.iter().collect();
     let files: Vec<&Path> = base_file
         .iter()

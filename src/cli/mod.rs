@@ -16,6 +16,7 @@ mod merge;
 mod output;
 mod path_out;
 mod probe;
+mod progress;
 mod query;
 mod render;
 mod serve;
@@ -87,18 +88,4 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::View(a) => view::run(a),
         Command::Certify(a) => certify::run(a),
     }
-}
-
-/// A progress bar on stderr (hidden when stderr is not a terminal).
-pub fn progress_bar(len: u64, what: &str) -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(len);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{prefix:>12} [{bar:40}] {pos}/{len} {elapsed_precise} eta {eta}",
-        )
-        .expect("valid template")
-        .progress_chars("=> "),
-    );
-    bar.set_prefix(what.to_string());
-    bar
 }

@@ -398,62 +398,11 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
     let t = Instant::now();
     let roadmap = Roadmap::load(&a.roadmap, scene.fingerprint())?;
     let load_ms = t.elapsed().as_secs_f64() * 1e3;
-    let queries: Vec<(Config, Config)> = match (&a.from, &a.to, &a.queries) {
-        (Some(f), Some(t), None) => vec![(parse_config("--from", f)?, parse_config("--to", t)?)],
-        (None, None, Some(file)) => ompl_cfg::read_query_pairs(file, &scene.space)?
-            .into_iter()
-            .map(|q| (q.start, q.goal))
-            .collect(),
-        // neither: the scene's own queries (an OMPL.app `.cfg` names one), as `solve` answers them
-        (None, None, None) => {
-            let own = scene.checked_queries()?;
-            if own.is_empty() {
-                anyhow::bail!(
-                    "{} names no query: give --from and --to, or --queries FILE",
-                    a.scene.display()
-                );
-            }
-            own.into_iter().map(|q| (q.start, q.goal)).collect()
-        }
-        _ => anyhow::bail!("give either --from and --to, or --queries FILE"),
-    };
-    if let (true, Some(file)) = (queries.is_empty(), &a.queries) {
-        anyhow::bail!("{}: no queries in the file", file.display());
-    }
+    let queries = query_pairs(&a, &scene)?;
     let time = Some(super::limits::parse_seconds("--time", a.time)?);
     let oracle = scene.oracle();
     let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).context("roadmap")?;
-    let mut defaults = planner.options().clone();
-    defaults.time = time;
-    defaults.grow = !a.no_grow;
-    defaults.trees = a.trees.params(&scene.space);
-    defaults.race = a.race.race(&scene.space);
-    defaults.straight_shortcuts = !a.no_straight;
-    defaults.return_trees = a.keep_trees;
-    if let Some(n) = a.direct_calls {
-        defaults.direct_calls = n;
-    }
-    if let Some(n) = a.attach_direct {
-        defaults.attach_direct_candidates = n;
-    }
-    match a.landmarks {
-        Some(n) => defaults.landmarks = n,
-        // landmarks cost a Dijkstra each, repaid over a batch, not by one query (nor by a
-        // roadmap that changes after every answer kept)
-        None if queries.len() == 1 || a.keep_answers.is_some() => defaults.landmarks = 0,
-        None => {}
-    }
-    let options = match a.shorten {
-        Shortening::Fast => defaults,
-        Shortening::Exact => QueryOptions {
-            exact_shortening_limit: usize::MAX,
-            ..defaults
-        },
-        Shortening::Off => QueryOptions {
-            shorten: false,
-            ..defaults
-        },
-    };
+    let options = query_options(&a, planner.options().clone(), time, &scene, queries.len());
     let planner = planner.with_options(options.clone());
     if let Some(out) = &a.keep_answers {
         // a target that cannot be saved to is refused before the queries (and before any
@@ -515,23 +464,106 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
             );
         }
     }
-    let mut st = printer
+    let st = printer
         .state
         .into_inner()
         .unwrap_or_else(|p| p.into_inner());
+    let one = queries.len() == 1;
+    summarise(&a, st, queries.len(), || {
+        if one {
+            loaded()
+        }
+    })
+}
+
+/// The start–goal pairs to answer: `--from`/`--to`, a `--queries` file, or else the scene's
+/// own queries (an OMPL.app `.cfg` names one), as `solve` answers them.
+fn query_pairs(a: &QueryArgs, scene: &Scene) -> anyhow::Result<Vec<(Config, Config)>> {
+    let queries: Vec<(Config, Config)> = match (&a.from, &a.to, &a.queries) {
+        (Some(f), Some(t), None) => vec![(parse_config("--from", f)?, parse_config("--to", t)?)],
+        (None, None, Some(file)) => ompl_cfg::read_query_pairs(file, &scene.space)?
+            .into_iter()
+            .map(|q| (q.start, q.goal))
+            .collect(),
+        // neither: the scene's own queries (an OMPL.app `.cfg` names one), as `solve` answers them
+        (None, None, None) => {
+            let own = scene.checked_queries()?;
+            if own.is_empty() {
+                anyhow::bail!(
+                    "{} names no query: give --from and --to, or --queries FILE",
+                    a.scene.display()
+                );
+            }
+            own.into_iter().map(|q| (q.start, q.goal)).collect()
+        }
+        _ => anyhow::bail!("give either --from and --to, or --queries FILE"),
+    };
+    if let (true, Some(file)) = (queries.is_empty(), &a.queries) {
+        anyhow::bail!("{}: no queries in the file", file.display());
+    }
+    Ok(queries)
+}
+
+/// The planner's options as the arguments set them, from the roadmap's `defaults`, for a
+/// batch of `count` queries of at most `time` each.
+fn query_options(
+    a: &QueryArgs,
+    mut defaults: QueryOptions,
+    time: Option<Duration>,
+    scene: &Scene,
+    count: usize,
+) -> QueryOptions {
+    defaults.time = time;
+    defaults.grow = !a.no_grow;
+    defaults.trees = a.trees.params(&scene.space);
+    defaults.race = a.race.race(&scene.space);
+    defaults.straight_shortcuts = !a.no_straight;
+    defaults.return_trees = a.keep_trees;
+    if let Some(n) = a.direct_calls {
+        defaults.direct_calls = n;
+    }
+    if let Some(n) = a.attach_direct {
+        defaults.attach_direct_candidates = n;
+    }
+    match a.landmarks {
+        Some(n) => defaults.landmarks = n,
+        // landmarks cost a Dijkstra each, repaid over a batch, not by one query (nor by a
+        // roadmap that changes after every answer kept)
+        None if count == 1 || a.keep_answers.is_some() => defaults.landmarks = 0,
+        None => {}
+    }
+    match a.shorten {
+        Shortening::Fast => defaults,
+        Shortening::Exact => QueryOptions {
+            exact_shortening_limit: usize::MAX,
+            ..defaults
+        },
+        Shortening::Off => QueryOptions {
+            shorten: false,
+            ..defaults
+        },
+    }
+}
+
+/// After the batch: the first failure to print or write, else the status line (after
+/// `loaded` for a single query), the path files closed, and an error if a solved path was
+/// not certified.
+fn summarise(
+    a: &QueryArgs,
+    mut st: Printed,
+    count: usize,
+    loaded: impl Fn(),
+) -> anyhow::Result<()> {
     if let Some(e) = st.failure.take() {
         return Err(e);
     }
-
     st.ms.sort_by(f64::total_cmp);
     if !a.json {
-        if queries.len() == 1 {
-            loaded();
-        }
+        loaded();
         println!(
             "{}/{} solved; latency p50 {:.3} ms, p95 {:.3} ms",
             st.solved,
-            queries.len(),
+            count,
             percentile(&st.ms, 0.5),
             percentile(&st.ms, 0.95)
         );

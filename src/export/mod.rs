@@ -8,21 +8,22 @@
 //! | [`arm`] | a robot arm's links animated by forward kinematics |
 //! | [`html`] | the viewer page: three.js (vendored, pinned) and the `.glb`, both inline |
 //!
-//! The glTF frame is Y-up. Z-up scenes (viaroad's TOML, planar problems, MoveIt, and those
-//! of OMPL.app's 3D problems that stand on z = 0, see `is_z_up`) sit under a root node turned
-//! by −90° about x; the others are written as they are. The robot's node is placed at the reference point
-//! with the state's quaternion, which glTF and OMPL both order `[x, y, z, w]`.
+//! The glTF frame is Y-up. Z-up scenes (viaroad's TOML, planar problems, MoveIt, and those of
+//! OMPL.app's 3D problems that stand on z = 0, see `scene::is_z_up`) sit under a root node turned
+//! by −90° about x; the others are written as they are. The robot's node is placed at the reference
+//! point with the state's quaternion, which glTF and OMPL both order `[x, y, z, w]`.
 
 pub mod animation;
 pub mod arm;
 pub mod gltf;
 pub mod html;
+mod scene;
+
+pub use scene::scene_gltf;
 
 use crate::geometry::TriMesh;
-use crate::roadmap::Roadmap;
-use crate::scene::{Obstacle, Robot, Scene};
-use crate::space::{Config, Group, Space, SpaceKind};
-use gltf::{Gltf, Mode, Track, Trs};
+use crate::space::Config;
+use gltf::{Gltf, Mode, Trs};
 use serde::Serialize;
 
 /// What cannot be exported.
@@ -298,16 +299,6 @@ impl Soup {
     }
 }
 
-/// A regular polygon of `sides` corners approximating the circle (`centre`, `r`).
-fn circle(centre: [f64; 2], r: f64, sides: usize) -> Vec<[f64; 2]> {
-    (0..sides)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / sides as f64;
-            [centre[0] + r * a.cos(), centre[1] + r * a.sin()]
-        })
-        .collect()
-}
-
 /// The root node and the rotation that makes a Z-up scene Y-up (OMPL.app's 3D problems are
 /// Y-up already).
 pub(crate) fn world_node(g: &mut Gltf, z_up: bool) -> usize {
@@ -321,227 +312,4 @@ pub(crate) fn world_node(g: &mut Gltf, z_up: bool) -> usize {
         Trs::IDENTITY
     };
     g.node(names::WORLD, None, trs, None)
-}
-
-/// Whether the scene's coordinates are Z-up. viaroad's own scenes and planar problems are;
-/// OMPL.app's 3D problems state no up axis (assimp turns SketchUp's Z-up into Y-up, yet Home
-/// and Apartment stand on z = 0): the one of y and z along which the volume is flatter is
-/// taken as up (z for Home, Apartment, cubicles; y for Easy, Twistycool).
-fn is_z_up(scene: &Scene) -> bool {
-    let from_cfg = scene
-        .source
-        .as_ref()
-        .and_then(|p| p.extension())
-        .is_some_and(|e| e == "cfg");
-    if !(from_cfg && scene.space.kind() == SpaceKind::Se3) {
-        return true;
-    }
-    let (lo, hi) = (scene.space.lower(), scene.space.upper());
-    hi[2] - lo[2] < hi[1] - lo[1]
-}
-
-/// The box `lower..upper` (z from `z` where the space is planar) as 12 line segments.
-pub(crate) fn bounds_lines(lo: [f64; 3], hi: [f64; 3]) -> Vec<[f32; 3]> {
-    let corner = |i: usize| {
-        [0, 1, 2].map(|k| {
-            if i >> k & 1 == 1 {
-                hi[k] as f32
-            } else {
-                lo[k] as f32
-            }
-        })
-    };
-    let mut out = Vec::new();
-    for i in 0..8usize {
-        for k in 0..3 {
-            if i >> k & 1 == 0 {
-                out.push(corner(i));
-                out.push(corner(i | 1 << k));
-            }
-        }
-    }
-    out
-}
-
-/// Checks that every state of the paths has the space's dimension and finite coordinates.
-fn check_plan(space: &Space, plan: &Plan) -> Result<(), ExportError> {
-    for (which, path) in [("raw", &plan.raw), ("shortened", &plan.shortened)] {
-        for (index, q) in path.iter().enumerate() {
-            space.check(q).map_err(|e| ExportError::Path {
-                which,
-                index,
-                message: e.to_string(),
-            })?;
-        }
-    }
-    Ok(())
-}
-
-/// The scene, its robot following the plan, the traces of both paths and optionally a
-/// roadmap, as a glTF document (see the module doc for frames and conventions).
-pub fn scene_gltf(
-    scene: &Scene,
-    groups: &[Group],
-    plan: &Plan,
-    roadmap: Option<&Roadmap>,
-    legend: &Legend,
-) -> Result<Gltf, ExportError> {
-    let space = &scene.space;
-    let kind = space.kind();
-    check_plan(space, plan)?;
-    match (&scene.robot, kind) {
-        (Robot::Arm(a), SpaceKind::Joints { continuous, .. }) => {
-            return arm::arm_gltf(&a.arm, &a.objects, plan, continuous, legend);
-        }
-        (_, SpaceKind::Euclidean(2..=3) | SpaceKind::Se2 | SpaceKind::Se3) => {}
-        _ => return Err(ExportError::Unsupported(kind.to_string())),
-    }
-    let planar = space.position_dim() == 2;
-    let (lo, hi) = (space.lower(), space.upper());
-    let span = (0..space.position_dim())
-        .map(|i| hi[i] - lo[i])
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    // planar scenes stand on z = 0: obstacles this high, the robot a little lower, the traces
-    // just above everything
-    let height = 0.04 * span;
-    let robot_height = 0.6 * height;
-    let trace_z = if planar { 1.05 * height } else { 0.0 };
-
-    let mut g = Gltf::new();
-    let world = world_node(&mut g, is_z_up(scene));
-    // in 3D the robot passes behind walls and into rooms: translucent obstacles keep it in
-    // sight; planar obstacles are low prisms seen from above, opaque
-    let opacity = if planar { 1.0 } else { 0.55 };
-    let m_obstacle = g.material("obstacle", colour::linear(colour::OBSTACLE, opacity), false);
-    let m_robot = g.material("robot", colour::linear(colour::ROBOT, 1.0), false);
-
-    let mut env = Soup::default();
-    for o in &scene.obstacles {
-        match o {
-            Obstacle::Disc { centre, radius } if planar => {
-                env.prism(&circle([centre[0], centre[1]], *radius, 48), 0.0, height)
-            }
-            Obstacle::Disc { centre, radius } => {
-                env.sphere([centre[0], centre[1], centre[2]], *radius)
-            }
-            Obstacle::Polygon(p) => {
-                let v: Vec<[f64; 2]> = p.vertices.iter().map(|v| [v.x, v.y]).collect();
-                env.prism(&v, 0.0, height);
-            }
-            Obstacle::Mesh(m) => env.mesh(m, |v| v),
-        }
-    }
-    env.add(&mut g, names::ENVIRONMENT, m_obstacle, world);
-
-    let (blo, bhi) = if planar {
-        ([lo[0], lo[1], 0.0], [hi[0], hi[1], height])
-    } else {
-        ([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]])
-    };
-    let m_bounds = g.material("bounds", colour::linear(colour::BOUNDS, 1.0), true);
-    let b = g.mesh(
-        names::BOUNDS,
-        &bounds_lines(blo, bhi),
-        None,
-        Mode::Lines,
-        m_bounds,
-    );
-    g.node(names::BOUNDS, b, Trs::IDENTITY, Some(world));
-
-    // the robot in its body frame, the reference point at the origin
-    let mut body = Soup::default();
-    match &scene.robot {
-        Robot::Point if planar => {
-            body.prism(&circle([0.0, 0.0], 0.012 * span, 24), 0.0, robot_height)
-        }
-        Robot::Point => body.sphere([0.0; 3], 0.012 * span),
-        Robot::Polygons(parts) => {
-            for p in parts {
-                let v: Vec<[f64; 2]> = p.vertices.iter().map(|v| [v.x, v.y]).collect();
-                body.prism(&v, 0.0, robot_height);
-            }
-        }
-        Robot::Mesh(m) => body.mesh(m, |v| v),
-        Robot::Arm(_) => unreachable!("arms are drawn by arm::arm_gltf"),
-        Robot::Bodies(_) | Robot::MeshBodies(_) => unreachable!("refused with their space above"),
-    }
-    let path = plan.animated();
-    let start = path.first().map_or(Trs::IDENTITY, |q| {
-        let (translation, rotation) = animation::pose(space, q);
-        Trs {
-            translation,
-            rotation,
-        }
-    });
-    let mesh = g.mesh(
-        names::ROBOT,
-        &body.positions,
-        Some(&body.indices),
-        Mode::Triangles,
-        m_robot,
-    );
-    let robot = g.node(names::ROBOT, mesh, start, Some(world));
-    let keys = animation::keyframes(space, groups, path);
-    let mut rotations: Vec<[f64; 4]> = keys
-        .iter()
-        .map(|k| animation::pose(space, &k.config).1)
-        .collect();
-    animation::continuous(&mut rotations);
-    let track = Track {
-        times: keys.iter().map(|k| k.time as f32).collect(),
-        translations: keys
-            .iter()
-            .map(|k| animation::pose(space, &k.config).0.map(|v| v as f32))
-            .collect(),
-        rotations: rotations.iter().map(|r| r.map(|v| v as f32)).collect(),
-    };
-    g.animate(robot, &track);
-
-    // traces of the reference point
-    let trace = |p: &[Config]| -> Vec<[f32; 3]> {
-        p.iter()
-            .map(|q| {
-                let (mut t, _) = animation::pose(space, q);
-                if planar {
-                    t[2] = trace_z;
-                }
-                t.map(|v| v as f32)
-            })
-            .collect()
-    };
-    for (name, path, hex) in [
-        (names::RAW_PATH, &plan.raw, legend.raw_colour(plan)),
-        (names::SHORT_PATH, &plan.shortened, colour::SHORT_PATH),
-    ] {
-        if path.len() >= 2 {
-            let m = g.material(name, colour::linear(hex, 1.0), true);
-            let mesh = g.mesh(name, &trace(path), None, Mode::LineStrip, m);
-            g.node(name, mesh, Trs::IDENTITY, Some(world));
-        }
-    }
-
-    if let Some(r) = roadmap {
-        let m = g.material(names::ROADMAP, colour::linear(colour::ROADMAP, 1.0), true);
-        let node = g.node(names::ROADMAP, None, Trs::IDENTITY, Some(world));
-        let nodes: Vec<Config> = r.nodes().map(<[f64]>::to_vec).collect();
-        let points = g.mesh("roadmap nodes", &trace(&nodes), None, Mode::Points, m);
-        g.node("roadmap nodes", points, Trs::IDENTITY, Some(node));
-        let mut segments = Vec::new();
-        for (e, edge) in r.edges().iter().enumerate() {
-            let corners = trace(&r.edge_path(e, edge.a));
-            for w in corners.windows(2) {
-                segments.extend_from_slice(w);
-            }
-        }
-        let lines = g.mesh("roadmap edges", &segments, None, Mode::Lines, m);
-        g.node("roadmap edges", lines, Trs::IDENTITY, Some(node));
-    }
-
-    g.set_extras(serde_json::json!({
-        "legend": legend,
-        "duration": animation::DURATION,
-        "up": if is_z_up(scene) { "z" } else { "y" },
-    }));
-    Ok(g)
 }

@@ -22,7 +22,8 @@
 //! `<polygons>` with holes (`<ph>`) are refused, as assimp does not read them either.
 //! Controllers (skinned meshes) are ignored.
 
-use super::{MeshError, Welder};
+use super::input::{read_input, MeshError};
+use super::weld::Welder;
 use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
 use dae_parser::{
@@ -52,7 +53,7 @@ pub struct ColladaMesh {
 
 /// Reads a Collada file (see the module documentation for the conventions).
 pub fn load_collada(path: &Path) -> Result<ColladaMesh, MeshError> {
-    let text = super::read_input(path)?;
+    let text = read_input(path)?;
     let fail = |message: String| MeshError::Parse {
         path: path.to_path_buf(),
         message,
@@ -533,71 +534,121 @@ fn read_primitive(
             data.len()
         ));
     }
-    // the position stream and the other attribute streams, in input order
-    let mut position = None;
-    let mut attributes: Vec<Stream> = Vec::new();
-    for input in inputs.iter() {
-        let offset = input.offset as usize;
-        match input.semantic {
-            Semantic::Vertex => {
-                let vertices = maps
-                    .vertices
-                    .get_raw(&input.source)
-                    .or(mesh_vertices)
-                    .ok_or_else(|| format!("VERTEX input refers to a missing {}", input.source))?;
-                for v in &vertices.inputs {
-                    let s = stream(v, offset, maps)?;
-                    if v.semantic == Semantic::Position {
-                        position = Some(s);
-                    } else {
-                        attributes.push(s);
+    let streams = Streams::of(inputs, mesh_vertices, maps)?;
+    let (local, mut attrs) = streams.vertices(&data, stride)?;
+    let generated = add_faces(&shape, &local, m, !streams.has_normals, out)?;
+    for (a, g) in attrs.iter_mut().zip(generated) {
+        a.extend(g);
+    }
+    join_identical(&local, &attrs, m, out)
+}
+
+/// One vertex per index tuple: positions in the geometry's frame, and each vertex's other
+/// attributes (up to 4 components each).
+type TupleVertices = (Vec<[f32; 3]>, Vec<Vec<[f32; 4]>>);
+
+/// A primitive's position stream and its other attribute streams, in input order.
+struct Streams<'a> {
+    position: Stream<'a>,
+    attributes: Vec<Stream<'a>>,
+    /// Whether the file gives normals (else flat ones are made, as assimp makes them).
+    has_normals: bool,
+}
+
+impl<'a> Streams<'a> {
+    fn of(
+        inputs: &'a InputList,
+        mesh_vertices: Option<&'a Vertices>,
+        maps: &Maps<'a>,
+    ) -> Result<Streams<'a>, String> {
+        let mut position = None;
+        let mut attributes: Vec<Stream> = Vec::new();
+        for input in inputs.iter() {
+            let offset = input.offset as usize;
+            match input.semantic {
+                Semantic::Vertex => {
+                    let vertices = maps
+                        .vertices
+                        .get_raw(&input.source)
+                        .or(mesh_vertices)
+                        .ok_or_else(|| {
+                            format!("VERTEX input refers to a missing {}", input.source)
+                        })?;
+                    for v in &vertices.inputs {
+                        let s = stream(v, offset, maps)?;
+                        if v.semantic == Semantic::Position {
+                            position = Some(s);
+                        } else {
+                            attributes.push(s);
+                        }
                     }
                 }
+                _ => attributes.push(stream(input, offset, maps)?),
             }
-            _ => attributes.push(stream(input, offset, maps)?),
         }
-    }
-    let position = position.ok_or("a primitive has no POSITION input")?;
-    let accessor = &position.source.accessor;
-    if accessor.stride < 3 || accessor.param.len() < 3 {
-        return Err(format!(
-            "POSITION source {} has fewer than 3 components",
-            position.source.id.as_deref().unwrap_or("?")
-        ));
-    }
-    let has_normals = inputs.iter().any(|i| i.semantic == Semantic::Normal)
-        || inputs.iter().any(|i| {
-            i.semantic == Semantic::Vertex
-                && maps
-                    .vertices
-                    .get_raw(&i.source)
-                    .or(mesh_vertices)
-                    .is_some_and(|v| v.inputs.iter().any(|x| x.semantic == Semantic::Normal))
-        });
-    // one vertex per index tuple, as assimp's Collada importer makes them
-    let n = data.len() / stride;
-    let mut local: Vec<[f32; 3]> = Vec::with_capacity(n);
-    let mut attrs: Vec<Vec<[f32; 4]>> = Vec::with_capacity(n);
-    for k in 0..n {
-        let tuple = &data[k * stride..(k + 1) * stride];
-        let p = position.get(tuple[position.offset])?;
-        if !p[..3].iter().all(|c| c.is_finite()) {
-            return Err("a vertex position is not a finite number".into());
+        let position = position.ok_or("a primitive has no POSITION input")?;
+        let accessor = &position.source.accessor;
+        if accessor.stride < 3 || accessor.param.len() < 3 {
+            return Err(format!(
+                "POSITION source {} has fewer than 3 components",
+                position.source.id.as_deref().unwrap_or("?")
+            ));
         }
-        local.push([p[0], p[1], p[2]]);
-        attrs.push(
-            attributes
-                .iter()
-                .map(|s| s.get(tuple[s.offset]))
-                .collect::<Result<_, _>>()?,
-        );
+        let has_normals = inputs.iter().any(|i| i.semantic == Semantic::Normal)
+            || inputs.iter().any(|i| {
+                i.semantic == Semantic::Vertex
+                    && maps
+                        .vertices
+                        .get_raw(&i.source)
+                        .or(mesh_vertices)
+                        .is_some_and(|v| v.inputs.iter().any(|x| x.semantic == Semantic::Normal))
+            });
+        Ok(Streams {
+            position,
+            attributes,
+            has_normals,
+        })
     }
-    // faces: triangulate into the mesh (f64, world frame); flat normals where the file has
-    // none, written per triangle to its vertices (a later triangle of a polygon overwrites)
+
+    /// One vertex per index tuple, as assimp's Collada importer makes them: its position in
+    /// the geometry's frame and its other attributes.
+    fn vertices(&self, data: &[u32], stride: usize) -> Result<TupleVertices, String> {
+        let n = data.len() / stride;
+        let mut local: Vec<[f32; 3]> = Vec::with_capacity(n);
+        let mut attrs: Vec<Vec<[f32; 4]>> = Vec::with_capacity(n);
+        for k in 0..n {
+            let tuple = &data[k * stride..(k + 1) * stride];
+            let p = self.position.get(tuple[self.position.offset])?;
+            if !p[..3].iter().all(|c| c.is_finite()) {
+                return Err("a vertex position is not a finite number".into());
+            }
+            local.push([p[0], p[1], p[2]]);
+            attrs.push(
+                self.attributes
+                    .iter()
+                    .map(|s| s.get(tuple[s.offset]))
+                    .collect::<Result<_, _>>()?,
+            );
+        }
+        Ok((local, attrs))
+    }
+}
+
+/// Triangulates the faces into the mesh (f64, world frame). Returns the flat normal of each
+/// vertex where `flat_normals` (the file has none): written per triangle to its vertices, a
+/// later triangle of a polygon overwrites.
+fn add_faces(
+    shape: &Shape,
+    local: &[[f32; 3]],
+    m: &Matrix4<f32>,
+    flat_normals: bool,
+    out: &mut Collector,
+) -> Result<Vec<Option<[f32; 4]>>, String> {
+    let n = local.len();
     let world = m.cast::<f64>();
     let place = |p: [f32; 3]| world.transform_point(&Point3::from(p).cast::<f64>());
     let mut generated: Vec<Option<[f32; 4]>> = vec![None; n];
-    if let Shape::Faces(counts) = &shape {
+    if let Shape::Faces(counts) = shape {
         let mut first = 0;
         for &count in counts {
             if count < 3 || first + count > n {
@@ -611,7 +662,7 @@ fn read_primitive(
                 let t = [a, b, c].map(|i| out.faces.vertex(corners[i].into()));
                 out.faces.triangles.push(t);
                 out.triangles_imported += 1;
-                if !has_normals {
+                if flat_normals {
                     let normal = flat_normal(local[first + a], local[first + b], local[first + c]);
                     for i in [a, b, c] {
                         generated[first + i] = Some(normal);
@@ -624,11 +675,17 @@ fn read_primitive(
             return Err("face vertex counts do not add up to the index list".into());
         }
     }
-    for (a, g) in attrs.iter_mut().zip(generated) {
-        a.extend(g);
-    }
-    // JoinIdenticalVertices: equal position, then every attribute within 1e-5 (assimp's
-    // squared epsilon 1e-10); the first match wins
+    Ok(generated)
+}
+
+/// assimp's JoinIdenticalVertices: equal position, then every attribute within 1e-5 (assimp's
+/// squared epsilon 1e-10); the first match wins. Each vertex left counts towards the centre.
+fn join_identical(
+    local: &[[f32; 3]],
+    attrs: &[Vec<[f32; 4]>],
+    m: &Matrix4<f32>,
+    out: &mut Collector,
+) -> Result<(), String> {
     let same = |a: &[[f32; 4]], b: &[[f32; 4]]| {
         a.len() == b.len()
             && a.iter()
@@ -636,7 +693,7 @@ fn read_primitive(
                 .all(|(x, y)| x.iter().zip(y).map(|(u, v)| (u - v) * (u - v)).sum::<f32>() <= 1e-10)
     };
     let mut unique: FastMap<[u32; 3], Vec<usize>> = FastMap::default();
-    for k in 0..n {
+    for k in 0..local.len() {
         let key = local[k].map(|c| (c + 0.0).to_bits());
         let candidates = unique.entry(key).or_default();
         let mut joined = false;

@@ -1,7 +1,7 @@
 //! Collada (`.dae`) meshes for scenes, read the way OMPL.app reads them through assimp
 //! ([`crate::mesh_io::collada`]), with their failures as [`SceneError`]s.
 
-use super::SceneError;
+use super::error::SceneError;
 pub use crate::mesh_io::collada::ColladaMesh;
 use std::path::Path;
 

@@ -1,7 +1,7 @@
 //! Mesh files for scenes: the loaders of [`crate::mesh_io`] with their failures as
 //! [`SceneError`]s.
 
-use super::SceneError;
+use super::error::SceneError;
 use crate::geometry::TriMesh;
 pub(crate) use crate::mesh_io::is_dae;
 pub use crate::mesh_io::vertex_mean;

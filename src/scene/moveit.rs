@@ -21,7 +21,7 @@
 //! Curved primitives become polytopes that contain them ([`crate::robot::shapes`]) when the
 //! exact oracle needs them; here they stay exact [`Primitive`]s.
 
-use super::SceneError;
+use super::error::{read_input_text_within, SceneError};
 use crate::geometry::TriMesh;
 use crate::limits::{MAX_MOVEIT_YAML_BYTES, MAX_SCENE_OBJECTS, MAX_SCENE_SHAPES, MAX_YAML_DEPTH};
 pub use crate::robot::objects::{placed_objects, CollisionObject, ObjectShape};
@@ -527,10 +527,7 @@ pub fn parse_planning_scene(text: &str, path: &Path) -> Result<PlanningScene, Sc
 /// Reads a PlanningScene YAML file of at most [`MAX_MOVEIT_YAML_BYTES`] (checked before it is
 /// read).
 pub fn load_planning_scene(path: &Path) -> Result<PlanningScene, SceneError> {
-    parse_planning_scene(
-        &super::read_input_text_within(path, MAX_MOVEIT_YAML_BYTES)?,
-        path,
-    )
+    parse_planning_scene(&read_input_text_within(path, MAX_MOVEIT_YAML_BYTES)?, path)
 }
 
 /// Parses a MotionPlanRequest YAML; `path` names the file in errors. The goal is the first
@@ -585,10 +582,7 @@ pub fn parse_motion_plan_request(text: &str, path: &Path) -> Result<MotionPlanRe
 /// Reads a MotionPlanRequest YAML file of at most [`MAX_MOVEIT_YAML_BYTES`] (checked before it
 /// is read).
 pub fn load_motion_plan_request(path: &Path) -> Result<MotionPlanRequest, SceneError> {
-    parse_motion_plan_request(
-        &super::read_input_text_within(path, MAX_MOVEIT_YAML_BYTES)?,
-        path,
-    )
+    parse_motion_plan_request(&read_input_text_within(path, MAX_MOVEIT_YAML_BYTES)?, path)
 }
 
 impl PlanningScene {

@@ -25,22 +25,23 @@
 //!
 //! [`ColladaMesh::assimp_centre`]: super::collada::ColladaMesh::assimp_centre
 
+use super::checks::{check_magnitudes, check_queries_on_load, default_name, quaternion_warnings};
 use super::collada;
+use super::error::{read_input_text, SceneError};
 use super::mesh_io::{is_dae, load_mesh, vertex_mean};
-use super::{check_queries_on_load, default_name};
-use super::{Obstacle, Query, Robot, Scene, SceneError};
-use crate::geometry::{GeometryError, Polygon};
+use super::types::{Obstacle, Query, Robot, Scene};
+use crate::geometry::{GeometryError, Polygon, TriMesh};
 use crate::oracle::polygons::footprint_polygons;
 use crate::safe_file::FileError;
 use crate::space::rotation::{ompl_axis_angle, wrap_angle};
-use crate::space::{Config, Space};
+use crate::space::{Config, Space, SpaceError};
 use nalgebra::Vector3;
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Loads an OMPL.app problem (see the module documentation).
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = super::read_input_text(path)?;
+    let text = read_input_text(path)?;
     let problem = Problem::parse(&text, path, "problem")?;
     let mut warnings = Vec::new();
     if let Some(control) = problem.text("control") {
@@ -55,98 +56,21 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
     let world_file = dir.join(problem.required_text("world")?);
     let planar = !problem.has("start.z") && !problem.has_prefix("start.axis.");
     let dim = if planar { 2 } else { 3 };
-
-    // the robot, shifted by OMPL.app's centre (z zeroed in 2D)
-    let (robot_mesh, centre) = if is_dae(&robot_file) {
-        let dae = collada::load_collada(&robot_file)?;
-        let c = dae.assimp_centre.map(f64::from);
-        (dae.mesh, Vector3::new(c[0], c[1], c[2]))
-    } else {
-        let m = load_mesh(&robot_file)?;
-        let c = vertex_mean(&m).coords;
-        (m, c)
-    };
-    let centre = if planar {
-        Vector3::new(centre.x, centre.y, 0.0)
-    } else {
-        centre
-    };
-    let robot_mesh = robot_mesh.translated(-centre);
+    let robot_mesh = centred_robot(&robot_file, planar)?;
     let world = load_mesh(&world_file)?;
-
-    // start, goal, bounds
-    let axes = ["x", "y", "z"];
-    let position = |which: &str| -> Result<Vec<f64>, SceneError> {
-        axes[..dim]
-            .iter()
-            .map(|a| problem.number(&format!("{which}.{a}")))
-            .collect()
-    };
-    let state = |which: &str| -> Result<Config, SceneError> {
-        let mut q = position(which)?;
-        let theta = problem
-            .optional_number(&format!("{which}.theta"))?
-            .unwrap_or(0.0);
-        if planar {
-            q.push(wrap_angle(theta));
-        } else {
-            let axis: Vec<Option<f64>> = axes
-                .iter()
-                .map(|a| problem.optional_number(&format!("{which}.axis.{a}")))
-                .collect::<Result<_, _>>()?;
-            let axis = match axis.as_slice() {
-                [Some(x), Some(y), Some(z)] => [*x, *y, *z],
-                [None, None, None] if theta == 0.0 => [1.0, 0.0, 0.0],
-                _ => {
-                    return Err(problem.invalid(format!(
-                        "{which}.theta needs all of {which}.axis.x, {which}.axis.y, {which}.axis.z"
-                    )))
-                }
-            };
-            q.extend_from_slice(&ompl_axis_angle(axis, theta));
-        }
-        Ok(q)
-    };
-    let start = state("start")?;
-    let goal = state("goal")?;
-    let volume: Vec<Option<f64>> = ["min", "max"]
-        .iter()
-        .flat_map(|m| axes[..dim].iter().map(move |a| format!("volume.{m}.{a}")))
-        .map(|k| problem.optional_number(&k))
-        .collect::<Result<_, _>>()?;
-    let (mut lower, mut upper): (Vec<f64>, Vec<f64>) = if volume.iter().all(Option::is_some) {
-        let v: Vec<f64> = volume.into_iter().flatten().collect();
-        (v[..dim].to_vec(), v[dim..].to_vec())
-    } else {
-        let (lo, hi) = world.aabb();
-        (
-            lo.coords.as_slice()[..dim].to_vec(),
-            hi.coords.as_slice()[..dim].to_vec(),
-        )
-    };
-    for q in [&start, &goal] {
-        for i in 0..dim {
-            lower[i] = lower[i].min(q[i]);
-            upper[i] = upper[i].max(q[i]);
-        }
-    }
+    let start = state(&problem, "start", planar)?;
+    let goal = state(&problem, "goal", planar)?;
+    let (lower, upper) = bounds(&problem, dim, &world, [&start, &goal])?;
 
     // geometry per kind
     let (robot, obstacles, space) = if planar {
-        let parts = footprint_polygons(&robot_mesh);
-        let env = footprint_polygons(&world);
-        for (parts, file) in [(&parts, &robot_file), (&env, &world_file)] {
-            if parts.is_empty() {
-                return Err(SceneError::Geometry {
-                    path: file.clone(),
-                    source: GeometryError::Empty,
-                });
-            }
-        }
-        let radius = parts.iter().map(Polygon::radius).fold(0.0, f64::max);
-        let space = Space::se2([lower[0], lower[1]], [upper[0], upper[1]], radius.max(1e-9));
-        let obstacles = env.into_iter().map(Obstacle::Polygon).collect();
-        (Robot::Polygons(parts), obstacles, space)
+        planar_geometry(
+            &robot_mesh,
+            &world,
+            [&robot_file, &world_file],
+            &lower,
+            &upper,
+        )?
     } else {
         // OMPL.app's meshes are double-sided SketchUp soups and OMPL.app decides validity by
         // surface contact alone (FCL, see scenes/ompl/CONVENTIONS.md): that is the convention of
@@ -172,10 +96,124 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         source: Some(path.to_path_buf()),
         warnings,
     };
-    super::check_magnitudes(&scene)?;
-    scene.warnings.extend(super::quaternion_warnings(&scene));
+    check_magnitudes(&scene)?;
+    scene.warnings.extend(quaternion_warnings(&scene));
     check_queries_on_load(&mut scene)?;
     Ok(scene)
+}
+
+/// The robot's mesh, shifted by OMPL.app's centre (z zeroed in 2D): assimp's for a Collada
+/// file, the vertices' mean otherwise.
+fn centred_robot(robot_file: &Path, planar: bool) -> Result<TriMesh, SceneError> {
+    let (robot_mesh, centre) = if is_dae(robot_file) {
+        let dae = collada::load_collada(robot_file)?;
+        let c = dae.assimp_centre.map(f64::from);
+        (dae.mesh, Vector3::new(c[0], c[1], c[2]))
+    } else {
+        let m = load_mesh(robot_file)?;
+        let c = vertex_mean(&m).coords;
+        (m, c)
+    };
+    let centre = if planar {
+        Vector3::new(centre.x, centre.y, 0.0)
+    } else {
+        centre
+    };
+    Ok(robot_mesh.translated(-centre))
+}
+
+/// The problem's `which` state (`start` or `goal`): the position, then the angle in the plane
+/// or OMPL's axis–angle turned into a quaternion.
+fn state(problem: &Problem, which: &str, planar: bool) -> Result<Config, SceneError> {
+    let axes = ["x", "y", "z"];
+    let dim = if planar { 2 } else { 3 };
+    let mut q: Vec<f64> = axes[..dim]
+        .iter()
+        .map(|a| problem.number(&format!("{which}.{a}")))
+        .collect::<Result<_, _>>()?;
+    let theta = problem
+        .optional_number(&format!("{which}.theta"))?
+        .unwrap_or(0.0);
+    if planar {
+        q.push(wrap_angle(theta));
+    } else {
+        let axis: Vec<Option<f64>> = axes
+            .iter()
+            .map(|a| problem.optional_number(&format!("{which}.axis.{a}")))
+            .collect::<Result<_, _>>()?;
+        let axis = match axis.as_slice() {
+            [Some(x), Some(y), Some(z)] => [*x, *y, *z],
+            [None, None, None] if theta == 0.0 => [1.0, 0.0, 0.0],
+            _ => {
+                return Err(problem.invalid(format!(
+                    "{which}.theta needs all of {which}.axis.x, {which}.axis.y, {which}.axis.z"
+                )))
+            }
+        };
+        q.extend_from_slice(&ompl_axis_angle(axis, theta));
+    }
+    Ok(q)
+}
+
+/// The position bounds: the problem's `volume` if it gives all of it, else the world's box;
+/// grown to hold the start and the goal.
+fn bounds(
+    problem: &Problem,
+    dim: usize,
+    world: &TriMesh,
+    ends: [&Config; 2],
+) -> Result<(Vec<f64>, Vec<f64>), SceneError> {
+    let axes = ["x", "y", "z"];
+    let volume: Vec<Option<f64>> = ["min", "max"]
+        .iter()
+        .flat_map(|m| axes[..dim].iter().map(move |a| format!("volume.{m}.{a}")))
+        .map(|k| problem.optional_number(&k))
+        .collect::<Result<_, _>>()?;
+    let (mut lower, mut upper): (Vec<f64>, Vec<f64>) = if volume.iter().all(Option::is_some) {
+        let v: Vec<f64> = volume.into_iter().flatten().collect();
+        (v[..dim].to_vec(), v[dim..].to_vec())
+    } else {
+        let (lo, hi) = world.aabb();
+        (
+            lo.coords.as_slice()[..dim].to_vec(),
+            hi.coords.as_slice()[..dim].to_vec(),
+        )
+    };
+    for q in ends {
+        for i in 0..dim {
+            lower[i] = lower[i].min(q[i]);
+            upper[i] = upper[i].max(q[i]);
+        }
+    }
+    Ok((lower, upper))
+}
+
+/// A problem's robot, obstacles and space (its bounds not yet checked).
+type Geometry = (Robot, Vec<Obstacle>, Result<Space, SpaceError>);
+
+/// A 2D problem's robot and obstacles: the footprints of their prisms (`files` name them in
+/// errors), and its SE(2) space.
+fn planar_geometry(
+    robot_mesh: &TriMesh,
+    world: &TriMesh,
+    files: [&PathBuf; 2],
+    lower: &[f64],
+    upper: &[f64],
+) -> Result<Geometry, SceneError> {
+    let parts = footprint_polygons(robot_mesh);
+    let env = footprint_polygons(world);
+    for (parts, file) in [(&parts, files[0]), (&env, files[1])] {
+        if parts.is_empty() {
+            return Err(SceneError::Geometry {
+                path: file.clone(),
+                source: GeometryError::Empty,
+            });
+        }
+    }
+    let radius = parts.iter().map(Polygon::radius).fold(0.0, f64::max);
+    let space = Space::se2([lower[0], lower[1]], [upper[0], upper[1]], radius.max(1e-9));
+    let obstacles = env.into_iter().map(Obstacle::Polygon).collect();
+    Ok((Robot::Polygons(parts), obstacles, space))
 }
 
 /// Reads an OMPL path file (or any list of states): one state per line, whitespace-separated,
@@ -226,7 +264,7 @@ pub fn read_query_pairs(path: &Path, space: &Space) -> Result<Vec<Query>, SceneE
 
 /// Rows of `per_line` states each.
 fn read_rows(path: &Path, space: &Space, per_line: usize) -> Result<Vec<Vec<Config>>, SceneError> {
-    let text = super::read_input_text(path)?;
+    let text = read_input_text(path)?;
     let parse = |line: usize, message: String| SceneError::Parse {
         path: path.to_path_buf(),
         message: format!("line {line}: {message}"),
@@ -275,7 +313,7 @@ fn read_rows(path: &Path, space: &Space, per_line: usize) -> Result<Vec<Vec<Conf
 /// file names a positive one: what `viaroad solve` plans a `.cfg` within unless told otherwise,
 /// so that it is judged on the terms the problem was published with.
 pub fn time_limit(path: &Path) -> Result<Option<f64>, SceneError> {
-    let text = super::read_input_text(path)?;
+    let text = read_input_text(path)?;
     let benchmark = match Problem::parse(&text, path, "benchmark") {
         Ok(b) => b,
         Err(SceneError::Parse { message, .. }) if message.starts_with("no [benchmark]") => {

@@ -58,97 +58,22 @@
 
 mod bodies;
 mod bodies3;
+mod spec;
 
+pub use super::checks::{checked_queries, validate_queries};
 use super::collada;
 use super::mesh_io::{self, is_dae, open_mesh_warning, vertex_mean};
-use super::shapes::{convex_hull_2d, convex_hull_3d, is_simple};
-use super::{check_queries_on_load, default_name, Obstacle, Query, Robot, Scene, SceneError};
+
+use super::checks::{check_magnitudes, check_queries_on_load, default_name, quaternion_warnings};
+use super::error::{read_input_text, SceneError};
+use super::types::{Obstacle, Query, Robot, Scene};
+use crate::geometry::hull::{convex_hull_2d, convex_hull_3d, is_simple};
 use crate::geometry::{GeometryError, Polygon, TriMesh};
 use crate::oracle::polygons::footprint_polygons;
 use crate::space::Space;
 use nalgebra::{Point2, Point3, Vector2, Vector3};
-use serde::Deserialize;
+use spec::{BoxSpec, ConvexSpec, DiscSpec, File, ObstacleSpec, PolygonSpec, RobotSpec, SpaceSpec};
 use std::path::{Path, PathBuf};
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct File {
-    name: Option<String>,
-    space: SpaceSpec,
-    robot: Option<RobotSpec>,
-    #[serde(default, rename = "body")]
-    bodies: Vec<bodies::BodySpec>,
-    #[serde(default, rename = "obstacle")]
-    obstacles: Vec<ObstacleSpec>,
-    #[serde(default, rename = "query")]
-    queries: Vec<QuerySpec>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SpaceSpec {
-    kind: String,
-    lower: Vec<f64>,
-    upper: Vec<f64>,
-    rotation_scale: Option<f64>,
-}
-
-#[derive(Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RobotSpec {
-    #[serde(rename = "box")]
-    cuboid: Option<BoxSpec>,
-    mesh: Option<String>,
-    polygon: Option<PolygonSpec>,
-    polygons: Option<Vec<PolygonSpec>>,
-    convex: Option<ConvexSpec>,
-    center: Option<toml::Value>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ObstacleSpec {
-    #[serde(rename = "box")]
-    cuboid: Option<BoxSpec>,
-    mesh: Option<String>,
-    offset: Option<Vec<f64>>,
-    polygon: Option<PolygonSpec>,
-    convex: Option<ConvexSpec>,
-    disc: Option<DiscSpec>,
-}
-
-#[derive(Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct BoxSpec {
-    center: Option<Vec<f64>>,
-    half_extents: Vec<f64>,
-}
-
-#[derive(Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct PolygonSpec {
-    vertices: Vec<Vec<f64>>,
-}
-
-#[derive(Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ConvexSpec {
-    points: Vec<Vec<f64>>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct DiscSpec {
-    center: Vec<f64>,
-    radius: f64,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct QuerySpec {
-    start: Vec<f64>,
-    goal: Vec<f64>,
-}
 
 /// The most vertices of one polygon, or points of one convex hull, a scene may give. The
 /// simplicity test and the triangulation of a polygon take time quadratic in its vertices and
@@ -158,7 +83,7 @@ pub const MAX_SHAPE_POINTS: usize = 2_000;
 
 /// Reads and validates a TOML scene file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = super::read_input_text(path)?;
+    let text = read_input_text(path)?;
     from_str(&text, path)
 }
 
@@ -176,50 +101,10 @@ pub fn from_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         warnings: Vec::new(),
     };
     let mut scene = reader.scene(file)?;
-    super::check_magnitudes(&scene)?;
-    scene.warnings.extend(super::quaternion_warnings(&scene));
+    check_magnitudes(&scene)?;
+    scene.warnings.extend(quaternion_warnings(&scene));
     check_queries_on_load(&mut scene)?;
     Ok(scene)
-}
-
-/// Checks every query of the scene: shape, bounds, collision.
-pub fn validate_queries(scene: &Scene) -> Result<(), SceneError> {
-    checked_queries(scene).map(|_| ())
-}
-
-/// The scene's queries after checking (shape, bounds, collision), normalised: quaternions of
-/// unit length, angles in `[-π, π)`.
-pub fn checked_queries(scene: &Scene) -> Result<Vec<Query>, SceneError> {
-    // shapes first, for every query: a malformed one is an error of the file, whatever the
-    // bounds and collisions of the queries before it
-    for (i, q) in scene.queries.iter().enumerate() {
-        for (what, c) in [("start", &q.start), ("goal", &q.goal)] {
-            scene.space.check(c).map_err(|source| SceneError::Config {
-                what: format!("{what} of query {}", i + 1),
-                source,
-            })?;
-        }
-    }
-    let oracle = scene.oracle();
-    scene
-        .queries
-        .iter()
-        .enumerate()
-        .map(|(i, q)| {
-            Ok(Query {
-                start: scene.check_config(
-                    oracle.as_ref(),
-                    &format!("start of query {}", i + 1),
-                    &q.start,
-                )?,
-                goal: scene.check_config(
-                    oracle.as_ref(),
-                    &format!("goal of query {}", i + 1),
-                    &q.goal,
-                )?,
-            })
-        })
-        .collect()
 }
 
 /// Reading state: the file for messages and relative paths, and the warnings so far.

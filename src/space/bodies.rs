@@ -15,7 +15,7 @@
 //! reference points travel plus their turning, so a motion's length is the same sum.
 
 use super::rotation::wrap_angle;
-use super::{Group, GroupKind, Space, SpaceError, SpaceKind};
+use super::types::{Group, GroupKind, Space, SpaceError, SpaceKind};
 use std::f64::consts::PI;
 
 /// The most bodies a space of several bodies holds: their angles are kept as a 64-bit set,

@@ -14,7 +14,7 @@
 //! real-vector joint spaces and the arm checker's sampling use, so that resolutions compare.
 
 use super::rotation::wrap_angle;
-use super::{Space, SpaceError, SpaceKind};
+use super::types::{Space, SpaceError, SpaceKind};
 use std::f64::consts::PI;
 
 /// The most joints a joint space has: continuous joints are kept as a 64-bit set.

@@ -1,6 +1,7 @@
 //! Generalized cones from pairs of obstacle edges, pruned where obstacles cut them (Brooks §2).
 
-use super::P;
+/// A point of the plane.
+pub type P = [f64; 2];
 
 /// An obstacle edge with the side it faces: free space is where `n · x > c`.
 #[derive(Clone, Copy, Debug, PartialEq)]

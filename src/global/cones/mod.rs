@@ -38,103 +38,23 @@
 //! design; README "Brooks's freeways" lists the shipped queries it fails.
 
 pub mod cone;
+mod freeways;
+mod outcome;
 pub mod radius;
 mod search;
 pub mod seeds;
 
-use crate::oracle::{CollisionOracle, OracleError};
+use crate::oracle::CollisionOracle;
 use crate::scene::{Obstacle, Robot, Scene};
-use crate::space::{Config, SpaceKind};
-pub use cone::{Cone, Edge};
+use crate::space::SpaceKind;
+pub use cone::{Cone, Edge, P};
+pub use freeways::{Crossing, Freeways};
+pub use outcome::{ConeError, ConeOutcome, ConePath};
 pub use radius::{AngleSet, Arc, RadiusFunction};
 use std::collections::HashSet;
 
-/// A point of the plane.
-pub type P = [f64; 2];
-
 /// Sides of the circumscribed polygon that stands in for a disc obstacle.
 pub const DISC_SIDES: usize = 16;
-
-/// What the freeway method cannot do.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ConeError {
-    /// The scene is not planar (SE(3), R³ …) or its robot is not a polygon or a point.
-    #[error("generalized cones need a planar scene (se2 or r2): {0}")]
-    Unsupported(String),
-    /// The oracle refused a motion while start or goal were joined or the path re-checked.
-    #[error("oracle: {0}")]
-    Oracle(#[from] OracleError),
-    /// A configuration of the wrong dimension.
-    #[error("configuration of {got} coordinates; the scene has {expected}")]
-    Dimension {
-        /// Coordinates given.
-        got: usize,
-        /// Coordinates expected.
-        expected: usize,
-    },
-}
-
-/// A spine intersection: cone `a` at parameter `sa` meets cone `b` at `sb`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Crossing {
-    /// First cone.
-    pub a: usize,
-    /// Its spine parameter.
-    pub sa: f64,
-    /// Second cone.
-    pub b: usize,
-    /// Its spine parameter.
-    pub sb: f64,
-}
-
-/// A scene's free space as generalized cones: what does not depend on the query (Brooks §4:
-/// "up to this stage the algorithm is independent of the object").
-#[derive(Clone, Debug)]
-pub struct Freeways {
-    edges: Vec<Edge>,
-    cones: Vec<Cone>,
-    crossings: Vec<Crossing>,
-    radius: RadiusFunction,
-    /// Length that counts as touching (a millionth of the scene's extent).
-    margin: f64,
-    /// Whether configurations carry an orientation (SE(2)) or not (R²).
-    oriented: bool,
-    /// Cone candidates examined before pruning.
-    candidates: usize,
-}
-
-/// A path found along the freeways.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ConePath {
-    /// Configurations; consecutive ones differ by a pure translation or a pure rotation of at
-    /// most a quarter turn.
-    pub path: Vec<Config>,
-    /// Length in the space's metric.
-    pub length: f64,
-    /// Cones the path follows (in order, repeats removed).
-    pub cones: Vec<usize>,
-    /// A* states expanded.
-    pub expanded: usize,
-}
-
-/// How a query ended.
-#[derive(Clone, Debug, PartialEq)]
-pub enum ConeOutcome {
-    /// A path along the freeways, re-checked by the oracle.
-    Solved(ConePath),
-    /// No path: why (start or goal cannot reach a freeway, or the graph does not join them).
-    NotFound(String),
-}
-
-impl ConeOutcome {
-    /// The path, if solved.
-    pub fn path(&self) -> Option<&ConePath> {
-        match self {
-            ConeOutcome::Solved(p) => Some(p),
-            ConeOutcome::NotFound(_) => None,
-        }
-    }
-}
 
 /// Cleaned vertices of a polygon, counter-clockwise (so that the right of every edge is
 /// outside).
@@ -451,56 +371,6 @@ impl Freeways {
             oriented,
             candidates,
         })
-    }
-
-    /// The cones (freeways).
-    pub fn cones(&self) -> &[Cone] {
-        &self.cones
-    }
-
-    /// The obstacle edges and walls the cones were built from.
-    pub fn edges(&self) -> &[Edge] {
-        &self.edges
-    }
-
-    /// The spine intersections (the graph's nodes before orientations).
-    pub fn crossings(&self) -> &[Crossing] {
-        &self.crossings
-    }
-
-    /// Edge pairs that passed Brooks's two tests (before pruning).
-    pub fn candidates(&self) -> usize {
-        self.candidates
-    }
-
-    /// The robot's radius function.
-    pub fn radius_function(&self) -> &RadiusFunction {
-        &self.radius
-    }
-
-    /// Orientations at which the robot, its reference point moving along the spine of `cone`
-    /// from parameter `a` to `b`, stays inside the cone (Brooks §3.2, per stretch: see the
-    /// module notes). For a point robot every orientation, wherever the spine is.
-    pub fn legal(&self, cone: &Cone, a: f64, b: f64) -> AngleSet {
-        let (smin, smax) = (a.min(b), a.max(b));
-        let d = self.radius.reach();
-        let ahead = cone.hi - smax - self.margin;
-        let behind = smin - cone.lo - self.margin;
-        let side = cone.min_radius((smin - d).max(cone.lo), (smax + d).min(cone.hi)) - self.margin;
-        if smin < cone.lo || smax > cone.hi || side < 0.0 {
-            return AngleSet::empty();
-        }
-        let psi = cone.dir[1].atan2(cone.dir[0]);
-        let h = std::f64::consts::FRAC_PI_2;
-        self.radius
-            .orientations_within(psi, ahead)
-            .intersection(
-                &self
-                    .radius
-                    .orientations_within(psi + std::f64::consts::PI, behind),
-            )
-            .intersection(&self.radius.orientations_within(psi + h, side))
-            .intersection(&self.radius.orientations_within(psi - h, side))
     }
 
     /// A path from `start` to `goal` along the freeways (Brooks §4), or why there is none.

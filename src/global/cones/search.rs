@@ -7,8 +7,10 @@
 //! intervals meet (a rotation into the common part). A* minimises the distance travelled by
 //! the reference point, with the straight distance to the goal as its estimate.
 
+use super::cone::P;
+use super::freeways::Freeways;
+use super::outcome::{ConeError, ConeOutcome, ConePath};
 use super::radius::{AngleSet, Arc};
-use super::{ConeError, ConeOutcome, ConePath, Freeways, P};
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};
 use crate::scene::Scene;
 use crate::space::Config;

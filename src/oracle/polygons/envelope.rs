@@ -11,7 +11,7 @@
 //! primitive's box), exactly for convex regions: separating axes for the box, distances for
 //! the annulus.
 
-use super::Aabb;
+use super::prepared::Aabb;
 use nalgebra::Vector2;
 
 /// A closed box in the frame of a translation: `u` along the motion, `n` across it (unit

@@ -35,90 +35,29 @@
 //! OMPL.app's 2D problems ship 3D prisms; [`footprint_polygons`] turns them into triangles.
 
 mod envelope;
+mod prepared;
 mod rotation;
 mod translation;
 
 /// Moved to [`crate::geometry`] (scene loading needs it without an oracle); kept here for
 /// the callers that import it with the oracle.
 pub use crate::geometry::footprint_polygons;
+pub use prepared::{Polygons, TOLERANCE};
+
+use prepared::{perp_dot, Aabb, Body, Bvh, World, P};
 
 use super::{CallCounts, CollisionOracle, OracleError, Workspace};
-use crate::geometry::kernel::bvh;
 use crate::geometry::kernel::hits::{merge_in_place, Hits};
 use crate::geometry::Polygon;
 use crate::interval::{Interval, IntervalList};
 use crate::space::{Change, Motion};
 use std::cell::RefCell;
-
-/// A box of the plane.
-type Aabb = crate::geometry::kernel::aabb::Aabb<2>;
-/// The obstacle trees.
-type Bvh = bvh::Bvh<2>;
 use std::collections::HashSet;
 use std::f64::consts::TAU;
 use std::ops::ControlFlow;
 
-/// Relative tolerance of the orientation tests: a point within `TOLERANCE × scale` of an edge
-/// counts as touching it, where `scale` is the largest obstacle coordinate or the robot's
-/// radius, whichever is larger, plus the largest coordinate of the robot's position. Far above
-/// the rounding error of the tests (about `1e-16 × scale`), far below anything a planner can
-/// resolve.
-pub const TOLERANCE: f64 = 1e-12;
-
 /// Longest rotation answered, in full turns; a longer one is [`OracleError::Unsupported`].
 pub const MAX_TURNS: f64 = 4096.0;
-
-/// A point or vector of the plane.
-type P = [f64; 2];
-
-#[inline]
-fn dot(a: P, b: P) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-/// `a × b`, the z component of the cross product.
-#[inline]
-fn perp_dot(a: P, b: P) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-
-/// The map `v ↦ Rot(theta)·v + centre`.
-fn placement(centre: P, theta: f64) -> impl Fn(P) -> P + Copy {
-    let (s, c) = theta.sin_cos();
-    move |v: P| {
-        [
-            centre[0] + c * v[0] - s * v[1],
-            centre[1] + s * v[0] + c * v[1],
-        ]
-    }
-}
-
-/// The robot, prepared in its body frame.
-#[derive(Clone, Debug, Default)]
-struct Body {
-    /// All vertices (for the swept box of the whole robot).
-    vertices: Vec<P>,
-    /// Edges of all parts, each segment once.
-    edges: Vec<[P; 2]>,
-    /// Length of each edge.
-    edge_len: Vec<f64>,
-    /// Distance range `[min, max]` of each edge from the reference point.
-    edge_radii: Vec<(f64, f64)>,
-    /// Smallest distance of an edge from the reference point.
-    edge_inner_radius: f64,
-    /// Triangles of all parts, counter-clockwise.
-    tris: Vec<[P; 3]>,
-    /// Edge lengths of each triangle.
-    tri_len: Vec<[f64; 3]>,
-    /// Distance range of each triangle from the reference point.
-    tri_radii: Vec<(f64, f64)>,
-    /// Smallest distance of a triangle from the reference point.
-    tri_inner_radius: f64,
-    /// One reference vertex per part (containment).
-    refs: Vec<P>,
-    /// Largest distance of a vertex from the reference point.
-    radius: f64,
-}
 
 /// A call's reusable space: the pieces, and the copies of one turn's pieces for a longer turn.
 /// One per thread, so that a call allocates nothing but its answer.
@@ -140,20 +79,6 @@ fn with_scratch<R>(f: impl FnOnce(&mut Scratch) -> R) -> R {
         Ok(mut s) => f(&mut s),
         Err(_) => f(&mut Scratch::default()),
     })
-}
-
-/// The obstacles, prepared in the world frame, with their search trees.
-#[derive(Clone, Debug, Default)]
-struct World {
-    edges: Vec<[P; 2]>,
-    edge_len: Vec<f64>,
-    edge_tree: Bvh,
-    tris: Vec<[P; 3]>,
-    tri_len: Vec<[f64; 3]>,
-    tri_tree: Bvh,
-    /// One reference vertex per obstacle (containment).
-    refs: Vec<P>,
-    ref_tree: Bvh,
 }
 
 /// Polygon parts prepared for the tests: edges (each segment once), triangles, one reference
@@ -241,41 +166,6 @@ fn prepare(polys: &[Polygon]) -> Parts {
         }
     }
     parts
-}
-
-/// Exact collision intervals of a polygonal robot among polygons (SE(2), translations and
-/// rotations about the reference point).
-///
-/// Supported motions: `Change::Linear(delta)` with three coordinates that is either a pure
-/// translation (`delta[2] == 0`, bounded or an unbounded line) or a pure rotation about the
-/// reference point (`delta[0] == delta[1] == 0`, a bounded range: a segment or a full turn).
-/// Anything else is [`OracleError::Unsupported`].
-///
-/// ```
-/// use viaroad::geometry::Polygon;
-/// use viaroad::oracle::polygons::Polygons;
-/// use viaroad::oracle::{CallCounts, CollisionOracle};
-/// use viaroad::space::{Change, Motion};
-///
-/// // a unit square sliding along x from 0 to 10 through the box [3, 5] × [−1, 1]:
-/// // it touches the box while its centre is in [2.5, 5.5], i.e. for t ∈ [0.25, 0.55]
-/// let robot = vec![Polygon::rectangle([0.0, 0.0], [0.5, 0.5]).unwrap()];
-/// let wall = vec![Polygon::rectangle([4.0, 0.0], [1.0, 1.0]).unwrap()];
-/// let oracle = Polygons::new(robot, wall);
-/// let motion = Motion::segment(vec![0.0, 0.0, 0.0], Change::Linear(vec![10.0, 0.0, 0.0]));
-/// let hits = oracle.intervals(&motion, &mut CallCounts::default()).unwrap();
-/// let iv = hits.as_slice()[0];
-/// assert!((iv.lo - 0.25).abs() < 1e-9 && (iv.hi - 0.55).abs() < 1e-9);
-/// ```
-#[derive(Clone, Debug)]
-pub struct Polygons {
-    robot: Vec<Polygon>,
-    obstacles: Vec<Polygon>,
-    enveloping: bool,
-    body: Body,
-    world: World,
-    /// Largest obstacle coordinate magnitude or robot radius.
-    scale: f64,
 }
 
 /// What a motion asks of this oracle.
@@ -398,11 +288,6 @@ impl Polygons {
     /// Number of distinct robot edges.
     pub fn robot_edge_count(&self) -> usize {
         self.body.edges.len()
-    }
-
-    /// The tolerance (a length) of tests with the robot at `centre`.
-    fn tolerance_at(&self, centre: P) -> f64 {
-        TOLERANCE * (self.scale + centre[0].abs().max(centre[1].abs()))
     }
 
     fn classify(motion: &Motion) -> Result<Kind, OracleError> {

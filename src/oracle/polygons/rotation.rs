@@ -30,7 +30,7 @@ use crate::geometry::kernel::trig::HalfAngle;
 
 /// The value of one pair's predicate: at most five pieces in a window of one turn.
 type SmallSet = Spans<6>;
-use super::{dot, perp_dot, Polygons, P};
+use super::prepared::{dot, perp_dot, placement, Polygons, P};
 use crate::interval::Interval;
 use std::ops::ControlFlow;
 
@@ -219,7 +219,7 @@ pub(super) fn sweep(
         tol,
         slack: 4.0 * tol,
         // robot points relative to the centre at φ = 0; obstacle points relative to the centre
-        turn: super::placement([0.0, 0.0], theta),
+        turn: placement([0.0, 0.0], theta),
         h: HalfAngle::new(window),
     };
     turning.edges(&mut bufs.cands, pairs, sink)?;

@@ -25,7 +25,7 @@
 //! nothing, so the same code answers [`CollisionOracle::collides`](super::CollisionOracle).
 
 use super::envelope::SweptBox;
-use super::{dot, perp_dot, Polygons, P};
+use super::prepared::{dot, perp_dot, placement, Polygons, P};
 use crate::interval::Interval;
 use std::ops::ControlFlow;
 
@@ -228,7 +228,7 @@ pub(super) fn sweep(
         points,
     } = bufs;
     let tol = oracle.tolerance_at(centre);
-    let place = super::placement(centre, theta);
+    let place = placement(centre, theta);
     let frame = Frame::of_motion(m, range, tol);
     vertices.clear();
     vertices.extend(oracle.body.vertices.iter().map(|&v| place(v)));

@@ -14,7 +14,7 @@
 //! number of times is kept once. A double-sided soup therefore has no parity faces at all, and
 //! containment is never reported for it — the surface-only behaviour of FCL on such meshes.
 
-use super::{Aabb, Bvh};
+use super::pose::{Aabb, Bvh};
 use crate::fast_hash::FastMap;
 use crate::geometry::TriMesh;
 use nalgebra::Vector3;

@@ -24,9 +24,10 @@
 
 use super::body::{Component, Face, Part};
 use super::envelope::AngleRange;
+use super::model::Polyhedra;
+use super::pose::{Aabb, Pose};
 use super::turning::{box_corner, lin, swept_box, turn};
-use super::Aabb;
-use super::{Hits, Polyhedra, Pose};
+use crate::geometry::kernel::hits::Hits;
 use crate::geometry::kernel::trig::Zeros;
 use crate::interval::Interval;
 use crate::oracle::CallCounts;

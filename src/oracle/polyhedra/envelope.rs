@@ -24,7 +24,7 @@
 //! return. Angles come from a polynomial arctangent ([`fast_atan2`]) whose error bound
 //! ([`ATAN_ERR`]) widens every angular bound, so bounds stay conservative.
 
-use super::Aabb;
+use super::pose::Aabb;
 use crate::interval::Interval;
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -392,7 +392,7 @@ pub(crate) fn sector_window(m: (f64, f64), f: (f64, f64), window: Interval) -> O
         return Some(window);
     }
     let start = wrap_pi(f.0 - m.0 - half);
-    let spans: super::Spans = crate::geometry::kernel::trig::arc_in_window(
+    let spans: super::pose::Spans = crate::geometry::kernel::trig::arc_in_window(
         crate::geometry::kernel::trig::Arc {
             start,
             length: 2.0 * half,

@@ -62,186 +62,39 @@
 //! the pivot becomes the reference point, the obstacles shared.
 
 mod body;
+mod caches;
 mod containment;
 mod envelope;
+mod model;
+mod pose;
 mod predicate;
 mod rotation;
 mod translation;
 mod turning;
 
+pub use model::Polyhedra;
+pub(crate) use pose::Aabb;
+
+use caches::Caches;
+use model::SMALL_ROBOT;
+use pose::{Pose, V3};
+
 use super::{CallCounts, CollisionOracle, OracleError, Workspace};
-use crate::geometry::kernel::memo::Memo;
-use crate::geometry::kernel::{aabb, bvh, hits::Hits, spans};
+use crate::geometry::kernel::hits::Hits;
 use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
-use crate::space::rotation::quat_from_slice;
 use crate::space::{Change, Motion};
 pub(crate) use body::Body;
 use body::Face;
 pub(crate) use envelope::AngleRange;
-use envelope::{CylBox, FrameBox};
-use nalgebra::{Matrix3, Vector3};
 use predicate::Tolerance;
 use std::cell::RefCell;
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
-/// A box in space (the kernel's).
-pub(crate) type Aabb = aabb::Aabb<3>;
-/// The face trees (the kernel's).
-pub(crate) type Bvh = bvh::Bvh<3>;
-/// The value of one edge–face predicate under rotation: more than the k + 1 = 7 pieces a
-/// conjunction of six arcs can have.
-pub(crate) type Spans = spans::Spans<8>;
-
-type V3 = Vector3<f64>;
-
-/// Robots with at most this many faces are tested at a pose and along a translation by querying
-/// the obstacle tree with their (swept) box and their own tree per obstacle face (a double descent
-/// of both trees costs more than it saves for a few leaves: OMPL.app's Home robot, 60 faces, took
-/// 1.9× as long by it at a pose, Twistycool's, 28 faces, 1.5× along translations).
-const SMALL_ROBOT: usize = 128;
-
 /// Most full turns a rotational motion may sweep (the collision set repeats every turn; this
 /// bounds the size of the answer).
 pub const MAX_TURNS: f64 = 1000.0;
-
-/// Exact collision intervals of a triangle-mesh robot among triangle-mesh obstacles.
-///
-/// ```
-/// use viaroad::geometry::TriMesh;
-/// use viaroad::oracle::polyhedra::Polyhedra;
-/// use viaroad::oracle::{CallCounts, CollisionOracle};
-/// use viaroad::space::{Change, Motion};
-///
-/// // a unit cube sliding along x from −5 to 5 through a box of half-size 1 at the origin
-/// let cube = TriMesh::cuboid([0.5; 3]).unwrap();
-/// let oracle = Polyhedra::new(cube, vec![TriMesh::cuboid([1.0; 3]).unwrap()]);
-/// let start = vec![-5.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0];
-/// let slide = Change::Linear(vec![10.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
-/// let hits = oracle.intervals(&Motion::segment(start, slide), &mut CallCounts::default());
-/// let iv = hits.unwrap().as_slice()[0];
-/// // in contact while |x| ≤ 1.5, i.e. t ∈ [0.35, 0.65]
-/// assert!((iv.lo - 0.35).abs() < 1e-9 && (iv.hi - 0.65).abs() < 1e-9);
-/// ```
-pub struct Polyhedra {
-    robot_mesh: Arc<TriMesh>,
-    obstacle_meshes: Arc<Vec<TriMesh>>,
-    robot: Body,
-    /// Shared with the pivoted views of [`Polyhedra::turn_about`].
-    obstacles: Arc<Body>,
-    tol: Tolerance,
-    enveloping: bool,
-}
-
-/// The placement of the robot at the start of a motion: `x_world = rot · x_body + pos`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Pose {
-    pos: V3,
-    rot: Matrix3<f64>,
-}
-
-impl Pose {
-    fn from_config(q: &[f64]) -> Result<Pose, OracleError> {
-        if q.len() != 7 {
-            return Err(OracleError::Unsupported(format!(
-                "polyhedra: an SE(3) configuration has 7 coordinates, got {}",
-                q.len()
-            )));
-        }
-        if !q.iter().all(|c| c.is_finite()) {
-            return Err(OracleError::Unsupported(
-                "polyhedra: configuration with a coordinate that is not finite".into(),
-            ));
-        }
-        let n2: f64 = q[3..7].iter().map(|c| c * c).sum();
-        if n2 < 1e-24 {
-            return Err(OracleError::Unsupported(
-                "polyhedra: quaternion of zero length".into(),
-            ));
-        }
-        let rot = *quat_from_slice(&q[3..7]).to_rotation_matrix().matrix();
-        Ok(Pose {
-            pos: V3::new(q[0], q[1], q[2]),
-            rot,
-        })
-    }
-
-    /// World point → body frame at this pose.
-    fn body_point(&self, w: &V3) -> V3 {
-        self.rot.tr_mul(&(w - self.pos))
-    }
-
-    /// Body point → world.
-    fn world_point(&self, v: &V3) -> V3 {
-        self.rot * v + self.pos
-    }
-
-    /// World direction → body frame.
-    fn body_dir(&self, d: &V3) -> V3 {
-        self.rot.tr_mul(d)
-    }
-
-    /// The world box around a body-frame box placed at this pose.
-    fn world_box(&self, b: &Aabb) -> Aabb {
-        if b.is_empty() {
-            return *b;
-        }
-        let c = self.world_point(&b.centre());
-        let h = self.rot.abs() * (0.5 * (b.hi - b.lo));
-        Aabb {
-            lo: c - h,
-            hi: c + h,
-        }
-    }
-
-    /// The body-frame box around a world box.
-    fn body_box(&self, b: &Aabb) -> Aabb {
-        if b.is_empty() {
-            return *b;
-        }
-        let c = self.body_point(&b.centre());
-        let h = self.rot.transpose().abs() * (0.5 * (b.hi - b.lo));
-        Aabb {
-            lo: c - h,
-            hi: c + h,
-        }
-    }
-}
-
-/// Per-call caches of the sweeps, by robot face or robot tree node (see [`Memo`]).
-#[derive(Default)]
-pub(crate) struct Caches {
-    /// A robot face's box in the frame of a translation.
-    frame_boxes: Memo<FrameBox>,
-    /// A robot face's cylindrical box about the axis of a turn.
-    cyl_boxes: Memo<CylBox>,
-    /// A robot node's box placed at the pose.
-    placed: Memo<Aabb>,
-    /// A robot node's bounds for a turn.
-    nodes: Memo<rotation::NodeBounds>,
-    /// A robot face's world box swept over a turn.
-    swept: Memo<Aabb>,
-    /// A robot vertex's arc box over a turn.
-    vertex_arcs: Memo<Aabb>,
-    /// A robot edge's cylindrical box about the axis of a turn.
-    robot_edges: Memo<CylBox>,
-    /// An obstacle edge's cylindrical box about the axis of a turn, in the robot's frame.
-    obst_edges: Memo<CylBox>,
-    /// An obstacle node's cylindrical bounds (and sector) about the axis of a turn: a node
-    /// meets many robot nodes in one descent.
-    obst_nodes: Memo<rotation::ObstNodeBounds>,
-    /// An obstacle face's world box (a turn).
-    obst_world: Memo<Aabb>,
-    /// An obstacle face in the robot's frame with its cylindrical box about the axis of a
-    /// turn: a large face (a shelf board) is returned with many robot leaves.
-    obst_faces: Memo<(Face, CylBox)>,
-    /// An obstacle face in the robot's frame at a static test's pose, with its box grown by
-    /// the distance tolerance: a large face (a wall) is returned with many robot leaves.
-    posed_faces: Memo<(Face, Aabb)>,
-    /// Containment along a path.
-    pieces: containment::Pieces,
-}
 
 /// Everything a call needs besides the oracle: the pieces, one turn's pieces, the caches.
 /// One per thread, reused, so that a call allocates nothing but its answer.
@@ -636,37 +489,6 @@ impl Polyhedra {
             }
         }
         hit || containment::at_pose(self, pose, counts)
-    }
-}
-
-/// The robot's tree against the obstacles' tree for a sweep into `sink`: in a first-collision
-/// sweep ([`Hits::is_prefix`]) the earlier window first, and node pairs that start after
-/// `cutoff` pruned — `leaves` keeps `cutoff` at the earliest piece ([`note_earliest`]).
-/// `start` reads the parameter window out of a node pair's `W`.
-#[allow(clippy::too_many_arguments)]
-fn descend_pairs<W: Copy>(
-    robot: &bvh::Bvh<3>,
-    obstacles: &bvh::Bvh<3>,
-    window: W,
-    prefix: bool,
-    cutoff: &std::cell::Cell<f64>,
-    start: impl Fn(&W) -> f64,
-    test: impl FnMut(u32, u32, &Aabb, &Aabb, W) -> Option<W>,
-    leaves: impl FnMut(&[u32], &[u32], W) -> bool,
-) {
-    if prefix {
-        robot.visit_pairs_earliest(obstacles, window, test, leaves, &start, |w| {
-            start(w) >= cutoff.get()
-        });
-    } else {
-        robot.visit_pairs(obstacles, window, test, leaves);
-    }
-}
-
-/// After a leaf pair of [`descend_pairs`]: the earliest piece so far is the new cutoff.
-fn note_earliest(sink: &Hits, cutoff: &std::cell::Cell<f64>) {
-    if let Some(p) = sink.as_slice().first() {
-        cutoff.set(p.lo);
     }
 }
 

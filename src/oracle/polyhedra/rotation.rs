@@ -19,11 +19,14 @@
 //! conjunctions are evaluated on small interval lists ([`Spans`]).
 
 use super::body::{Body, Face};
+use super::caches::{Caches, NodeBounds, ObstNodeBounds};
+use super::containment;
 use super::envelope::{sector_window, AngleRange, CylBounds, CylBox, CylFrame};
+use super::model::{descend_pairs, note_earliest, Polyhedra};
+use super::pose::{Aabb, Pose, Spans};
 use super::predicate::Tolerance;
 use super::turning::{lin, swept_box};
-use super::{containment, descend_pairs, note_earliest, Caches, Hits, Polyhedra, Pose};
-use super::{Aabb, Spans};
+use crate::geometry::kernel::hits::Hits;
 use crate::geometry::kernel::memo::Memo;
 use crate::geometry::kernel::trig::{arc_in_window, Arc, Trig};
 use crate::interval::Interval;
@@ -34,13 +37,6 @@ use std::f64::consts::PI;
 use std::ops::ControlFlow;
 
 type V3 = Vector3<f64>;
-
-/// A robot node's bounds for a turn: cylindrical bounds, their angular sector, and the world box
-/// its ball sweeps.
-pub(crate) type NodeBounds = (CylBounds, Option<(f64, f64)>, Aabb);
-
-/// An obstacle node's bounds for a turn: cylindrical bounds and their angular sector.
-pub(crate) type ObstNodeBounds = (CylBounds, Option<(f64, f64)>);
 
 /// A piece of a pair's answer shorter than this (radians) …
 const DEGENERATE_SPAN: f64 = 1e-7;

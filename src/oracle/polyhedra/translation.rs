@@ -13,10 +13,13 @@
 //! [`IntervalList::from_unsorted`]: crate::interval::IntervalList::from_unsorted
 
 use super::body::Face;
+use super::caches::Caches;
+use super::containment;
 use super::envelope::{sphere_sweep, FrameBox, MotionFrame};
+use super::model::{descend_pairs, note_earliest, Polyhedra, SMALL_ROBOT};
+use super::pose::{Aabb, Pose};
 use super::predicate::Tolerance;
-use super::Aabb;
-use super::{containment, descend_pairs, note_earliest, Caches, Hits, Polyhedra, Pose};
+use crate::geometry::kernel::hits::Hits;
 use crate::geometry::kernel::memo::Memo;
 use crate::interval::Interval;
 use crate::oracle::CallCounts;
@@ -140,7 +143,7 @@ pub(crate) fn sweep(
         frame: MotionFrame::new(&dir),
         robot_boxes: frame_boxes,
     };
-    if ph.enveloping && ph.robot.faces.len() <= super::SMALL_ROBOT {
+    if ph.enveloping && ph.robot.faces.len() <= SMALL_ROBOT {
         descend_obstacles(&mut pairs, pose, dir_w, window, sink, counts);
     } else if ph.enveloping {
         descend_both(&mut pairs, placed, pose, dir_w, window, sink, counts);

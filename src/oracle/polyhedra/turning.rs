@@ -3,7 +3,7 @@
 //! ([`super::containment`]).
 
 use super::envelope::AngleRange;
-use super::{Aabb, Pose};
+use super::pose::{Aabb, Pose};
 use crate::geometry::kernel::trig::Trig;
 use nalgebra::Vector3;
 

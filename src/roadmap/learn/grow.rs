@@ -3,18 +3,13 @@
 use super::super::graph::Roadmap;
 use super::super::params::{Budget, LearnParams};
 use super::super::persist::Header;
+use super::outcome::{LearnError, LearnReport, Learnt, Phase, Progress, StopReason};
+use super::seeds::Seeds;
 use super::work::Work;
-use super::{LearnError, LearnReport, Learner, Learnt, Phase, Progress, StopReason};
+use super::Learner;
 use crate::deadline::Deadline;
 use std::ops::ControlFlow;
 use std::time::{Duration, Instant};
-
-/// What a roadmap grows from: a learnt roadmap and/or a pair of configurations to join.
-#[derive(Clone, Copy, Default)]
-pub(super) struct Seeds<'r> {
-    pub(super) base: Option<&'r Roadmap>,
-    pub(super) pair: Option<(&'r [f64], &'r [f64])>,
-}
 
 /// Learning time: wall-clock time since learning began, less the time spent outside learning
 /// (snapshots, the caller's stage handler).

@@ -61,6 +61,7 @@ mod grow;
 mod keep;
 mod merge;
 mod outcome;
+mod seeds;
 mod streams;
 mod work;
 
@@ -76,7 +77,7 @@ use crate::local::LocalMethod;
 use crate::oracle::CollisionOracle;
 use crate::scene::Scene;
 use crate::space::Space;
-use grow::Seeds;
+use seeds::Seeds;
 use std::ops::ControlFlow;
 use std::time::Duration;
 

@@ -22,40 +22,13 @@
 //!
 //! The rotation scale defaults to the largest body's radius about its reference point.
 
-use super::{BoxSpec, ConvexSpec};
-use super::{File, Kind, PolygonSpec, Reader, RobotSpec};
+use super::spec::File;
+use super::{Kind, Reader};
 use crate::geometry::Polygon;
-use crate::scene::{Body, Robot, Scene, SceneError};
+use crate::scene::error::SceneError;
+use crate::scene::types::{Body, Robot, Scene};
 use crate::space::bodies::MAX_BODIES;
 use crate::space::Space;
-use serde::Deserialize;
-
-/// A `[[body]]` table: a name and the shape of a se2 `[robot]`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct BodySpec {
-    pub(super) name: Option<String>,
-    #[serde(rename = "box")]
-    cuboid: Option<BoxSpec>,
-    mesh: Option<String>,
-    polygon: Option<PolygonSpec>,
-    polygons: Option<Vec<PolygonSpec>>,
-    convex: Option<ConvexSpec>,
-    center: Option<toml::Value>,
-}
-
-impl BodySpec {
-    pub(super) fn shape(&self) -> RobotSpec {
-        RobotSpec {
-            cuboid: self.cuboid.clone(),
-            mesh: self.mesh.clone(),
-            polygon: self.polygon.clone(),
-            polygons: self.polygons.clone(),
-            convex: self.convex.clone(),
-            center: self.center.clone(),
-        }
-    }
-}
 
 impl Reader<'_> {
     /// A scene of the bodies of `file` (which has at least one `[[body]]`).

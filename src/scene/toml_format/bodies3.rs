@@ -23,8 +23,10 @@
 //!
 //! The rotation scale defaults to the largest body's radius about its reference point.
 
-use super::{File, Kind, Reader};
-use crate::scene::{MeshBody, Robot, Scene, SceneError};
+use super::spec::File;
+use super::{Kind, Reader};
+use crate::scene::error::SceneError;
+use crate::scene::types::{MeshBody, Robot, Scene};
 use crate::space::bodies3::MAX_SOLID_BODIES;
 use crate::space::Space;
 
