@@ -17,8 +17,9 @@
 //! the sum over the bodies of their SE(3) distances, `‖Δp‖ + s·angle`: the total length the
 //! reference points travel plus their turning, so a motion's length is the same sum.
 
+use super::motion::Change;
 use super::rotation;
-use super::{Change, Group, GroupKind, Space, SpaceError, SpaceKind};
+use super::types::{Group, GroupKind, Space, SpaceError, SpaceKind};
 use rand::Rng;
 use std::f64::consts::TAU;
 

@@ -16,22 +16,12 @@ pub mod rotation;
 mod types;
 
 pub use motion::{Change, Motion, Sweep};
-pub use types::{Config, Group, GroupKind, Space, SpaceError, SpaceKind};
+pub use types::{extend_small, Config, Group, GroupKind, Space, SpaceError, SpaceKind};
 
 use crate::interval::Interval;
 use crate::short;
 use rand::Rng;
 use std::f64::consts::{PI, TAU};
-
-/// Appends a configuration's few numbers one by one: for vectors this short a call of the
-/// library's `memmove` cost more than the copy itself (perf of `bench discs`).
-#[inline]
-pub fn extend_small(dst: &mut Vec<f64>, src: &[f64]) {
-    dst.reserve(src.len());
-    for &x in src {
-        dst.push(x);
-    }
-}
 
 impl Space {
     /// R^n with the box `[lower, upper]`.

@@ -6,7 +6,7 @@
 //! rotational borderline of CHS §2.3.1).
 
 use super::rotation;
-use super::{extend_small, Config};
+use super::types::{extend_small, Config};
 use crate::interval::Interval;
 use serde::{Deserialize, Serialize};
 
