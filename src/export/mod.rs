@@ -6,6 +6,7 @@
 //! | [`gltf`] | the small `.glb` writer: buffer, accessors, TRS nodes, linear animations |
 //! | [`animation`] | a path as keyframes that move one DOF group at a time, as the planner does |
 //! | [`arm`] | a robot arm's links animated by forward kinematics |
+//! | [`bodies`] | several bodies, each in its own colour, animated together |
 //! | [`html`] | the viewer page: three.js (vendored, pinned) and the `.glb`, both inline |
 //!
 //! The glTF frame is Y-up. Z-up scenes (viaroad's TOML, planar problems, MoveIt, and those
@@ -15,6 +16,7 @@
 
 pub mod animation;
 pub mod arm;
+pub mod bodies;
 pub mod gltf;
 pub mod html;
 
@@ -28,8 +30,11 @@ use serde::Serialize;
 /// What cannot be exported.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
-    /// Only spaces with a picture in three dimensions: R², R³, SE(2), SE(3), arms.
-    #[error("cannot draw a {0} scene in 3D: only R², R³, SE(2), SE(3) and arms")]
+    /// Only spaces with a picture in three dimensions: R², R³, SE(2), SE(3), arms, several
+    /// bodies in the plane.
+    #[error(
+        "cannot draw a {0} scene in 3D: only R², R³, SE(2), SE(3), arms and several bodies in the plane"
+    )]
     Unsupported(String),
     /// A path state that does not fit the scene.
     #[error("state {index} of the {which} path: {message}")]
@@ -60,6 +65,18 @@ pub struct Legend {
     pub calls: Option<u64>,
     /// One row per path trace drawn, in the trace's colour ([`Legend::set_paths`]).
     pub paths: Vec<PathRow>,
+    /// The moving bodies of a scene of several bodies, each in its colour
+    /// ([`Legend::set_bodies`]); empty for one robot.
+    pub bodies: Vec<BodyRow>,
+}
+
+/// A moving body as the legend names it.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct BodyRow {
+    /// The body's name in the scene.
+    pub name: String,
+    /// Its colour (CSS, `#rrggbb`).
+    pub colour: String,
 }
 
 /// A path trace as the legend names it.
@@ -118,6 +135,22 @@ impl Legend {
         };
         self.raw_length = Some(raw_length + 0.0);
         self.length = Some(length + 0.0);
+    }
+
+    /// Names the bodies of a scene of several bodies in the colours [`bodies::bodies_gltf`]
+    /// draws them in (nothing for a scene of one robot).
+    pub fn set_bodies(&mut self, scene: &Scene) {
+        self.bodies = match &scene.robot {
+            Robot::Bodies(b) => b
+                .iter()
+                .enumerate()
+                .map(|(i, b)| BodyRow {
+                    name: b.name.clone(),
+                    colour: colour::css(bodies::body_colour(i)),
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
     }
 
     /// The colour of the trace of `plan`'s raw path (sRGB hex): red beside a shortened path;
@@ -393,6 +426,7 @@ pub fn scene_gltf(
         (Robot::Arm(a), SpaceKind::Joints { continuous, .. }) => {
             return arm::arm_gltf(&a.arm, &a.objects, plan, continuous, legend);
         }
+        (Robot::Bodies(_), _) => return bodies::bodies_gltf(scene, groups, plan, roadmap, legend),
         (_, SpaceKind::Euclidean(2..=3) | SpaceKind::Se2 | SpaceKind::Se3) => {}
         _ => return Err(ExportError::Unsupported(kind.to_string())),
     }
@@ -464,7 +498,7 @@ pub fn scene_gltf(
         }
         Robot::Mesh(m) => body.mesh(m, |v| v),
         Robot::Arm(_) => unreachable!("arms are drawn by arm::arm_gltf"),
-        Robot::Bodies(_) => unreachable!("refused with their space above"),
+        Robot::Bodies(_) => unreachable!("drawn by bodies::bodies_gltf"),
     }
     let path = plan.animated();
     let start = path.first().map_or(Trs::IDENTITY, |q| {
