@@ -26,6 +26,7 @@ mod arm_workcell;
 mod bench_cones;
 mod bench_local;
 mod bodies;
+mod bodies_commands;
 mod budgets;
 mod certify;
 mod cli;
