@@ -230,8 +230,20 @@ fn the_bodies_sampler_places_crowded_bodies_one_at_a_time() {
     let dir = temp_dir("bodies", "sampler");
     let map = dir.join("swap4.bin").to_string_lossy().into_owned();
     let file = "scenes/bodies/swap-corridor-4.toml";
-    let o = viaroad(&["build", file, "-o", &map, "--nodes", "50", "--sampler", "bodies"]);
+    let o = viaroad(&[
+        "build",
+        file,
+        "-o",
+        &map,
+        "--nodes",
+        "50",
+        "--sampler",
+        "bodies",
+    ]);
     assert!(o.status.success(), "{}", common::cli::stderr(&o));
     let out = stdout(&o);
-    assert!(out.starts_with("learnt ") && !out.starts_with("learnt 0 "), "{out}");
+    assert!(
+        out.starts_with("learnt ") && !out.starts_with("learnt 0 "),
+        "{out}"
+    );
 }

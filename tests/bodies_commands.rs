@@ -75,8 +75,8 @@ fn certify_gives_each_segment_a_verdict_and_repairs_the_blocked_ones() {
     let o = viaroad(&["certify", SWAP2, &file, "--repair", "-o", &fixed]);
     assert!(o.status.success(), "{}", stderr(&o));
     let space = load(SWAP2).space;
-    let repaired = viaroad::scene::ompl_cfg::read_states(std::path::Path::new(&fixed), &space)
-        .unwrap();
+    let repaired =
+        viaroad::scene::ompl_cfg::read_states(std::path::Path::new(&fixed), &space).unwrap();
     assert!(repaired.len() > path.len());
     assert_eq!(repaired[0], path[0].to_vec());
     checker.certify_path(&repaired).unwrap();
@@ -105,7 +105,11 @@ fn serve_answers_a_query_of_several_bodies() {
     stdin.write_all(b"\n").unwrap();
     drop(stdin);
     let out = child.wait_with_output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let reply = json(String::from_utf8_lossy(&out.stdout).lines().next().unwrap());
     assert_eq!(reply["id"], 7, "{reply}");
     assert_eq!(reply["solved"], true, "{reply}");
@@ -147,7 +151,9 @@ goal  = [3.4, 1.5, 1.0, 0.6, 1.5, 0.0]
 fn solve_tree_check_certifies_several_bodies() {
     let dir = temp_dir("bodies_commands", "tree");
     let file = write(&dir, "open.toml", OPEN);
-    let o = viaroad(&["solve", &file, "--tree", "--nodes", "5000", "--check", "--json"]);
+    let o = viaroad(&[
+        "solve", &file, "--tree", "--nodes", "5000", "--check", "--json",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let v = json(&stdout(&o));
     assert_eq!(v["solved"], true, "{v}");

@@ -29,7 +29,9 @@ pub(super) struct BodiesChecks {
 impl BodiesChecks {
     pub(super) fn new(scene: &Scene) -> Result<BodiesChecks, CertifyError> {
         let Robot::Bodies(bodies) = &scene.robot else {
-            return Err(CertifyError::Unsupported("not a scene of several bodies".into()));
+            return Err(CertifyError::Unsupported(
+                "not a scene of several bodies".into(),
+            ));
         };
         let radii = bodies
             .iter()
