@@ -16,7 +16,7 @@
 //!   (`locate`), witnesses confirmed by the independent [`crate::robot::ArmChecker`];
 //! - several bodies moving otherwise than by the seed's motions (translating and turning at
 //!   once, or turning together): conservative advancement on the independent checker's
-//!   distances, every body against the obstacles and every pair of bodies ([`bodies`]);
+//!   distances, every body against the obstacles and every pair of bodies (`bodies`);
 //! - a rigid body translating and turning at once (OMPL's SE(2)/SE(3) interpolation):
 //!   conservative advancement on parry's distances between the robot's and the obstacles'
 //!   shapes, halving likewise;

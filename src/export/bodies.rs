@@ -1,10 +1,10 @@
 //! Several bodies moving at once, as a glTF document: the obstacles, every body in its own
 //! colour animated along the plan, the traces of every body's reference point.
 //!
-//! The drawing is built from a list of [`DrawnBody`]: a shape in the body's own frame and the
+//! The drawing is built from a list of `DrawnBody`: a shape in the body's own frame and the
 //! coordinates of a configuration that hold its pose (`x y θ` in the plane, `x y z qx qy qz qw`
 //! in space, [`body_pose`]). A kind of scene with several bodies needs only to say how its
-//! bodies look ([`drawn_bodies`]); placing, animating and tracing them is shared. Planar bodies
+//! bodies look (`drawn_bodies`); placing, animating and tracing them is shared. Planar bodies
 //! are prisms standing on z = 0, like the single planar robot of [`super::scene_gltf`].
 //!
 //! Every body hangs under one node named [`names::ROBOT`], so the viewer (and its browser
