@@ -203,3 +203,47 @@ fn bad_scenes_of_several_bodies_are_refused() {
         fails_with(&["solve", &path], needle);
     }
 }
+
+#[test]
+fn the_bodies_sampler_places_crowded_bodies_one_at_a_time() {
+    // four squares in a corridor barely wider than they are: a uniform draw of all four at
+    // once is almost never free, a body-by-body placement often is
+    let scene = shipped(4);
+    let oracle = scene.oracle();
+    let checker = BodiesChecker::new(&scene);
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let mut counts = CallCounts::default();
+    let mut free = 0;
+    for _ in 0..40 {
+        let q = viaroad::roadmap::Sampler::Bodies
+            .sample(&scene.space, &*oracle, 1, &mut rng, &mut counts)
+            .unwrap();
+        if let Some(q) = q {
+            assert!(scene.space.in_bounds(&q));
+            assert!(checker.clearance(&q) > 0.0, "{q:?}");
+            free += 1;
+        }
+    }
+    assert!(free >= 3, "{free} of 40 attempts placed all four squares");
+    assert!(counts.state_checks >= 40 && counts.intersect_calls() == 0);
+    // with the command line's sampler flag, a roadmap of four squares gets nodes
+    let dir = temp_dir("bodies", "sampler");
+    let map = dir.join("swap4.bin").to_string_lossy().into_owned();
+    let file = "scenes/bodies/swap-corridor-4.toml";
+    let o = viaroad(&[
+        "build",
+        file,
+        "-o",
+        &map,
+        "--nodes",
+        "50",
+        "--sampler",
+        "bodies",
+    ]);
+    assert!(o.status.success(), "{}", common::cli::stderr(&o));
+    let out = stdout(&o);
+    assert!(
+        out.starts_with("learnt ") && !out.starts_with("learnt 0 "),
+        "{out}"
+    );
+}

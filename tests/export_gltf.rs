@@ -291,6 +291,60 @@ fn se2_robot_is_an_extruded_footprint_following_free_motions() {
     assert!(top > 0.0 && pos.iter().all(|p| p[2] == 0.0 || p[2] == top));
 }
 
+/// Two squares swap places in the shipped corridor: the second rises into the niche, the
+/// first passes beneath, the second comes down, and both move left together.
+fn swap_by_hand() -> Vec<Vec<f64>> {
+    vec![
+        vec![0.5, 0.5, 0.0, 1.5, 0.5, 0.0],
+        vec![0.5, 0.5, 0.0, 1.5, 1.5, 0.0],
+        vec![2.5, 0.5, 0.0, 1.5, 1.5, 0.0],
+        vec![2.5, 0.5, 0.0, 1.5, 0.5, 0.0],
+        vec![1.5, 0.5, 0.0, 0.5, 0.5, 0.0],
+    ]
+}
+
+#[test]
+fn several_bodies_each_follow_their_own_poses_in_their_own_colours() {
+    let scene = Scene::load(&root().join("scenes/bodies/swap-corridor-2.toml")).unwrap();
+    let checker = common::bodies::BodiesChecker::new(&scene);
+    let path = swap_by_hand();
+    checker.certify_path(&path).unwrap();
+    let plan = Plan {
+        raw: path.clone(),
+        shortened: Vec::new(),
+    };
+    let (_, glb) = exported(&scene, &plan);
+    // both bodies under the robot node, each with its own material
+    let robot = glb.node("robot");
+    let children = glb.doc["nodes"][robot]["children"].as_array().unwrap();
+    assert_eq!(children.len(), 2);
+    let material = |n: usize| {
+        let mesh = glb.doc["nodes"][n]["mesh"].as_u64().unwrap() as usize;
+        glb.doc["meshes"][mesh]["primitives"][0]["material"].clone()
+    };
+    assert_ne!(material(glb.node("s1")), material(glb.node("s2")));
+    // the keys of both bodies, put together, are configurations of the path's motions
+    let (k1, k2) = (glb.keys(glb.node("s1")), glb.keys(glb.node("s2")));
+    assert_eq!(k1.len(), k2.len());
+    let keyed: Vec<Vec<f64>> = k1
+        .iter()
+        .zip(&k2)
+        .map(|((t1, p1, r1), (t2, p2, r2))| {
+            assert_eq!(t1, t2);
+            assert!(p1[2] == 0.0 && p2[2] == 0.0, "planar");
+            let angle = |r: &[f64; 4]| 2.0 * r[2].atan2(r[3]);
+            vec![p1[0], p1[1], angle(r1), p2[0], p2[1], angle(r2)]
+        })
+        .collect();
+    corners_are_keys(&scene, &path, &keyed, 1e-5);
+    checker.certify_path(&keyed).unwrap();
+    // one trace per body
+    let traces = glb.doc["nodes"][glb.node("raw path")]["children"]
+        .as_array()
+        .map_or(0, Vec::len);
+    assert_eq!(traces, 2);
+}
+
 #[test]
 fn point_robot_among_discs_stays_clear_of_them() {
     let scene = Scene::load(&root().join("scenes/discs-cluttered.toml")).unwrap();
@@ -407,6 +461,15 @@ fn khronos_validator_finds_no_errors() {
         std::fs::write(&f, bytes).unwrap();
         files.push(f);
     }
+    let bodies = Scene::load(&root().join("scenes/bodies/swap-corridor-2.toml")).unwrap();
+    let plan = Plan {
+        raw: swap_by_hand(),
+        shortened: Vec::new(),
+    };
+    let (bytes, _) = exported(&bodies, &plan);
+    let f = dir.join("swap-corridor-2.glb");
+    std::fs::write(&f, bytes).unwrap();
+    files.push(f);
     let (arm, scene, path) = panda_table_pick();
     let plan = Plan {
         raw: path,

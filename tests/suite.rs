@@ -27,6 +27,7 @@ mod bench_cones;
 mod bench_local;
 mod bodies;
 mod bodies3;
+mod bodies_commands;
 mod budgets;
 mod certify;
 mod cli;

@@ -10,7 +10,8 @@
 //! `VIAROAD_REQUIRE_JS` is set (`common::js`); `.ci/run` installs them. One rigid body (OMPL.app's Easy, a
 //! handful of nodes) and one arm (the Panda in
 //! MotionBenchMaker's table_pick problem 1, `scenes/arms/panda-table_pick-1.toml`), so
-//! that the suite stays quick.
+//! that the suite stays quick; and two squares of a several-body scene along a path given by
+//! hand (`--path`, checked by the oracle before it is drawn).
 
 use crate::common;
 
@@ -129,4 +130,27 @@ fn arm_moves_in_the_browser() {
     };
     assert_robot_drawn_and_moved("Panda", &r);
     assert!(r["legend"].as_str().unwrap().contains("panda-table_pick-1"));
+}
+
+#[test]
+fn several_bodies_move_in_the_browser() {
+    // the second square rises into the niche, the first passes beneath it
+    let dir = temp_dir("view_browser", "bodies-path");
+    let path = dir.join("swap.path");
+    std::fs::write(
+        &path,
+        "0.5 0.5 0 1.5 0.5 0\n0.5 0.5 0 1.5 1.5 0\n2.5 0.5 0 1.5 1.5 0\n",
+    )
+    .unwrap();
+    let args = [
+        "scenes/bodies/swap-corridor-2.toml",
+        "--path",
+        path.to_str().unwrap(),
+    ];
+    let Some(r) = check_page("bodies", &args) else {
+        return;
+    };
+    assert_robot_drawn_and_moved("swap-corridor-2", &r);
+    let legend = r["legend"].as_str().unwrap();
+    assert!(legend.contains("s1") && legend.contains("s2"), "{legend}");
 }

@@ -14,6 +14,9 @@
 //! - an arm's straight motion of several joints: conservative advancement
 //!   ([`crate::robot::ArmOracle::straight_free`]), halving where it does not finish
 //!   (`locate`), witnesses confirmed by the independent [`crate::robot::ArmChecker`];
+//! - several bodies moving otherwise than by the seed's motions (translating and turning at
+//!   once, or turning together): conservative advancement on the independent checker's
+//!   distances, every body against the obstacles and every pair of bodies (`bodies`);
 //! - a rigid body translating and turning at once (OMPL's SE(2)/SE(3) interpolation):
 //!   conservative advancement on parry's distances between the robot's and the obstacles'
 //!   shapes, halving likewise;
@@ -23,6 +26,7 @@
 //! [`repair()`] replaces each run of blocked segments by a certified detour.
 
 mod arm;
+mod bodies;
 mod locate;
 pub mod repair;
 mod rigid;
@@ -154,6 +158,7 @@ impl Certificate {
 enum Checks {
     Arm(Box<arm::ArmChecks>),
     Rigid(Box<rigid::RigidChecks>),
+    Bodies(Box<bodies::BodiesChecks>),
 }
 
 /// A scene prepared for certifying paths: its oracle and its independent checks, built once.
@@ -169,6 +174,7 @@ impl<'a> Certifier<'a> {
     pub fn new(scene: &'a Scene, model: MotionModel) -> Result<Certifier<'a>, CertifyError> {
         let checks = match &scene.robot {
             Robot::Arm(a) => Checks::Arm(Box::new(arm::ArmChecks::new(a)?)),
+            Robot::Bodies(_) => Checks::Bodies(Box::new(bodies::BodiesChecks::new(scene)?)),
             _ => Checks::Rigid(Box::new(rigid::RigidChecks::new(scene)?)),
         };
         Ok(Certifier {
@@ -308,6 +314,9 @@ impl<'a> Certifier<'a> {
                 Checks::Rigid(c) => {
                     c.interpolated(self.scene, self.oracle.as_ref(), a, b, deadline, counts)
                 }
+                Checks::Bodies(c) => {
+                    c.interpolated(self.scene, self.oracle.as_ref(), (a, b), deadline, counts)
+                }
             },
         }
     }
@@ -317,6 +326,7 @@ impl<'a> Certifier<'a> {
         match &self.checks {
             Checks::Arm(c) => c.witness(q),
             Checks::Rigid(c) => c.witness(q),
+            Checks::Bodies(c) => c.witness(q),
         }
     }
 

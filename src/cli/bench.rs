@@ -74,7 +74,7 @@ pub struct BenchLocalArgs {
     #[arg(long, num_args = 1.., default_values = ["straight", "sampled:res=0.01", "viapoint:max=3,calls=1000+both", "viapoint"])]
     pub methods: Vec<String>,
     /// Samplers of construction, each crossed with every method: `uniform`, `obstacle`,
-    /// `gaussian:sigma=0.1`, `bridge:sigma=0.1`, `gap:sigma=0.1`,
+    /// `gaussian:sigma=0.1`, `bridge:sigma=0.1`, `gap:sigma=0.1`, `bodies`,
     /// `mix:uniform=1,bridge=1,gaussian=1` (default:
     /// the learner's default sampler only).
     #[arg(long, num_args = 1.., value_name = "SPEC")]

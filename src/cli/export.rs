@@ -242,6 +242,7 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
         space: scene.space.kind().to_string(),
         ..Legend::default()
     };
+    legend.set_bodies(&scene);
     let mut roadmap = None;
     let mut collision = None;
     let plan = if let Some(file) = &a.path {

@@ -28,7 +28,8 @@ pub struct LearnArgs {
     #[arg(long, value_name = "N", help_heading = "Tuning")]
     pub deep_neighbours: Option<usize>,
     /// Where construction draws new nodes: `uniform`, `obstacle`, `gaussian:sigma=0.1`,
-    /// `bridge:sigma=0.1`, `gap:sigma=0.1` (the bridge test with exact intervals), or a mix
+    /// `bridge:sigma=0.1`, `gap:sigma=0.1` (the bridge test with exact intervals), `bodies`
+    /// (several bodies placed one at a time), or a mix
     /// such as `mix:uniform=1,bridge=1,gaussian=1` (sigma and margin are shares of the space's
     /// extent). Default: the learner's.
     #[arg(long, value_name = "SPEC", help_heading = "Tuning")]

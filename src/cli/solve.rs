@@ -259,6 +259,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
     } = SingleQuery::prepare(&a, &scene, "trees that large do not fit in memory")?;
     let oracle = scene.oracle();
     let groups = scene.space.groups(false);
+    let checker = super::query::independent_checker(&scene, a.check)?;
     for (i, q) in queries.iter().enumerate() {
         let began = Instant::now();
         let deadline = super::interrupt::on_ctrl_c(Deadline::none()).within(time);
@@ -296,6 +297,10 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
         if let (Some(out), Some(p)) = (&mut path_out, &shortened) {
             out.write(i, p)?;
         }
+        let verdict = match (&checker, &found.path, &shortened) {
+            (Some(c), Some(raw), Some(p)) => Some(check_both(c, raw, p)),
+            _ => None,
+        };
         let length = shortened
             .as_ref()
             .map(|p| path_length(&scene.space, &groups, p));
@@ -317,6 +322,8 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
                     "seconds": secs,
                     "grow_seconds": grow_secs,
                     "stop": format!("{:?}", found.stop),
+                    "certified": verdict.as_ref().map(|v| v.is_ok()),
+                    "check_error": verdict.as_ref().and_then(|v| v.as_ref().err()),
                 })
             );
         } else if let (Some(raw), Some(p)) = (&found.path, &shortened) {
@@ -325,7 +332,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
                 n => format!(" (attempt {n})"),
             };
             println!(
-                "query {}: solved by trees of {} + {} nodes{attempt} in {secs:.3} s ({grow_secs:.3} s growing), {} intersect calls, {} corners (raw {}), length {:.4}",
+                "query {}: solved by trees of {} + {} nodes{attempt} in {secs:.3} s ({grow_secs:.3} s growing), {} intersect calls, {} corners (raw {}), length {:.4}{}",
                 i + 1,
                 found.nodes[0],
                 found.nodes[1],
@@ -333,6 +340,7 @@ fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
                 p.len(),
                 raw.len(),
                 length.unwrap_or(0.0),
+                verdict_text(verdict.as_ref()),
             );
         } else {
             println!(

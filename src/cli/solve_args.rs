@@ -24,7 +24,7 @@ pub struct SolveArgs {
     pub path_out: Option<PathBuf>,
     /// Re-check every solved path, raw and shortened, with the scene's independent checker
     /// (as `query --check`), outside the query's time: each solved query says `certified` or
-    /// why not (JSON: `"certified"`, `"check_error"`); not with `--tree`.
+    /// why not (JSON: `"certified"`, `"check_error"`).
     #[arg(long)]
     pub check: bool,
     /// Seconds each query may take (checked before every oracle call). Default: the `.cfg`

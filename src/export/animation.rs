@@ -46,6 +46,12 @@ pub fn keyframes(space: &Space, groups: &[Group], path: &[Config]) -> Vec<Key> {
             let turn = match (&motion.change, space.kind()) {
                 (crate::space::Change::Rotation { angle, .. }, _) => angle.abs(),
                 (crate::space::Change::Linear(d), SpaceKind::Se2) => d[2].abs(),
+                // one body turns at a time; a straight motion may turn several
+                (crate::space::Change::Linear(d), SpaceKind::Se2Bodies(_)) => d
+                    .iter()
+                    .skip(2)
+                    .step_by(3)
+                    .fold(0.0_f64, |m, a| m.max(a.abs())),
                 _ => 0.0,
             };
             // (less a hair, so that 20° at 5° a key takes 4 steps, not 5 from rounding)

@@ -88,10 +88,25 @@ fn legend_rows(l: &Legend) -> String {
     let calls = l
         .calls
         .map_or(String::new(), |c| format!(" · oracle calls {c}"));
-    rows.push(format!(
-        r#"<div><span class="swatch" style="background:{}"></span>robot{calls}</div>"#,
-        super::colour::css(super::colour::ROBOT)
-    ));
+    if l.bodies.is_empty() {
+        rows.push(format!(
+            r#"<div><span class="swatch" style="background:{}"></span>robot{calls}</div>"#,
+            super::colour::css(super::colour::ROBOT)
+        ));
+    } else {
+        let bodies: Vec<String> = l
+            .bodies
+            .iter()
+            .map(|b| {
+                format!(
+                    r#"<span class="swatch" style="background:{}"></span>{}"#,
+                    escape(&b.colour),
+                    escape(&b.name)
+                )
+            })
+            .collect();
+        rows.push(format!("<div>{}{calls}</div>", bodies.join(" ")));
+    }
     rows.join("\n")
 }
 

@@ -6,6 +6,7 @@
 //! | [`gltf`] | the small `.glb` writer: buffer, accessors, TRS nodes, linear animations |
 //! | [`animation`] | a path as keyframes that move one DOF group at a time, as the planner does |
 //! | [`arm`] | a robot arm's links animated by forward kinematics |
+//! | [`bodies`] | several bodies, each in its own colour, animated together |
 //! | [`html`] | the viewer page: three.js (vendored, pinned) and the `.glb`, both inline |
 //!
 //! The glTF frame is Y-up. Z-up scenes (viaroad's TOML, planar problems, MoveIt, and those of
@@ -15,6 +16,7 @@
 
 pub mod animation;
 pub mod arm;
+pub mod bodies;
 pub mod gltf;
 pub mod html;
 mod scene;
@@ -29,8 +31,11 @@ use serde::Serialize;
 /// What cannot be exported.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
-    /// Only spaces with a picture in three dimensions: R², R³, SE(2), SE(3), arms.
-    #[error("cannot draw a {0} scene in 3D: only R², R³, SE(2), SE(3) and arms")]
+    /// Only spaces with a picture in three dimensions: R², R³, SE(2), SE(3), arms, several
+    /// bodies in the plane.
+    #[error(
+        "cannot draw a {0} scene in 3D: only R², R³, SE(2), SE(3), arms and several bodies in the plane"
+    )]
     Unsupported(String),
     /// A path state that does not fit the scene.
     #[error("state {index} of the {which} path: {message}")]
@@ -61,6 +66,18 @@ pub struct Legend {
     pub calls: Option<u64>,
     /// One row per path trace drawn, in the trace's colour ([`Legend::set_paths`]).
     pub paths: Vec<PathRow>,
+    /// The moving bodies of a scene of several bodies, each in its colour
+    /// ([`Legend::set_bodies`]); empty for one robot.
+    pub bodies: Vec<BodyRow>,
+}
+
+/// A moving body as the legend names it.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct BodyRow {
+    /// The body's name in the scene.
+    pub name: String,
+    /// Its colour (CSS, `#rrggbb`).
+    pub colour: String,
 }
 
 /// A path trace as the legend names it.
@@ -312,4 +329,27 @@ pub(crate) fn world_node(g: &mut Gltf, z_up: bool) -> usize {
         Trs::IDENTITY
     };
     g.node(names::WORLD, None, trs, None)
+}
+
+/// The box `lower..upper` (z from `z` where the space is planar) as 12 line segments.
+pub(crate) fn bounds_lines(lo: [f64; 3], hi: [f64; 3]) -> Vec<[f32; 3]> {
+    let corner = |i: usize| {
+        [0, 1, 2].map(|k| {
+            if i >> k & 1 == 1 {
+                hi[k] as f32
+            } else {
+                lo[k] as f32
+            }
+        })
+    };
+    let mut out = Vec::new();
+    for i in 0..8usize {
+        for k in 0..3 {
+            if i >> k & 1 == 0 {
+                out.push(corner(i));
+                out.push(corner(i | 1 << k));
+            }
+        }
+    }
+    out
 }

@@ -4,8 +4,9 @@
 
 use super::animation;
 use super::arm;
+use super::bodies;
 use super::gltf::{Gltf, Mode, Track, Trs};
-use super::{colour, names, world_node, ExportError, Legend, Plan, Soup};
+use super::{bounds_lines, colour, names, world_node, ExportError, Legend, Plan, Soup};
 use crate::roadmap::Roadmap;
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::space::{Config, Group, Space, SpaceKind};
@@ -35,29 +36,6 @@ fn is_z_up(scene: &Scene) -> bool {
     }
     let (lo, hi) = (scene.space.lower(), scene.space.upper());
     hi[2] - lo[2] < hi[1] - lo[1]
-}
-
-/// The box `lower..upper` (z from `z` where the space is planar) as 12 line segments.
-fn bounds_lines(lo: [f64; 3], hi: [f64; 3]) -> Vec<[f32; 3]> {
-    let corner = |i: usize| {
-        [0, 1, 2].map(|k| {
-            if i >> k & 1 == 1 {
-                hi[k] as f32
-            } else {
-                lo[k] as f32
-            }
-        })
-    };
-    let mut out = Vec::new();
-    for i in 0..8usize {
-        for k in 0..3 {
-            if i >> k & 1 == 0 {
-                out.push(corner(i));
-                out.push(corner(i | 1 << k));
-            }
-        }
-    }
-    out
 }
 
 /// Checks that every state of the paths has the space's dimension and finite coordinates.
@@ -90,6 +68,7 @@ pub fn scene_gltf(
         (Robot::Arm(a), SpaceKind::Joints { continuous, .. }) => {
             return arm::arm_gltf(&a.arm, &a.objects, plan, continuous, legend);
         }
+        (Robot::Bodies(_), _) => return bodies::bodies_gltf(scene, groups, plan, roadmap, legend),
         (_, SpaceKind::Euclidean(2..=3) | SpaceKind::Se2 | SpaceKind::Se3) => {}
         _ => return Err(ExportError::Unsupported(kind.to_string())),
     }
@@ -233,7 +212,8 @@ fn animated_robot(
         }
         Robot::Mesh(m) => body.mesh(m, |v| v),
         Robot::Arm(_) => unreachable!("arms are drawn by arm::arm_gltf"),
-        Robot::Bodies(_) | Robot::MeshBodies(_) => unreachable!("refused with their space above"),
+        Robot::Bodies(_) => unreachable!("drawn by bodies::bodies_gltf"),
+        Robot::MeshBodies(_) => unreachable!("refused with their space above"),
     }
     let path = plan.animated();
     let start = path.first().map_or(Trs::IDENTITY, |q| {

@@ -289,6 +289,23 @@ impl CollisionOracle for PlanarBodies {
         self.static_collision(q, None, counts)
     }
 
+    fn body_collides(&self, q: &[f64], body: usize, counts: &mut CallCounts) -> Option<bool> {
+        let k = self.world.len();
+        if body >= k || q.len() != 3 * k || !q[..3 * body + 3].iter().all(|v| v.is_finite()) {
+            return Some(true);
+        }
+        if self.world[body].collides(&q[3 * body..3 * body + 3], counts) {
+            return Some(true);
+        }
+        Some((0..body).any(|j| {
+            let d0 = [q[3 * body] - q[3 * j], q[3 * body + 1] - q[3 * j + 1]];
+            self.may_meet(body, j, d0, [0.0, 0.0], Interval::UNIT) && {
+                let (rel, _) = Self::relative(q, body, j, [0.0, 0.0]);
+                self.pairs[self.pair_index(body, j)].collides(&rel, counts)
+            }
+        }))
+    }
+
     fn motion_is_free(
         &self,
         motion: &Motion,

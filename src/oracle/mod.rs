@@ -192,6 +192,17 @@ pub trait CollisionOracle: Send + Sync {
             .map(|iv| iv.lo))
     }
 
+    /// For an oracle of several bodies: whether body `body` of configuration `q` collides with
+    /// the obstacles or with one of the bodies before it in `q` (the bodies after it are not
+    /// looked at, so `q` may hold anything there). A sampler places bodies one at a time with
+    /// it: uniform draws of all bodies at once are almost never free when the bodies crowd a
+    /// narrow space, while each body alone often is. `None` for an oracle of one robot (the
+    /// default). Not a counted call: the caller counts a state check.
+    fn body_collides(&self, q: &[f64], body: usize, counts: &mut CallCounts) -> Option<bool> {
+        let _ = (q, body, counts);
+        None
+    }
+
     /// Whether asking about an unbounded range costs no more than asking about a bounded one
     /// (analytic oracles). [`Bounded`] then asks about the motion as it is instead of a copy
     /// clipped to the bounds. Default `false`: enveloping needs bounded sweeps.
@@ -298,6 +309,9 @@ macro_rules! forward_oracle {
             }
             fn surely_collides(&self, q: &[f64]) -> Option<bool> {
                 (**self).surely_collides(q)
+            }
+            fn body_collides(&self, q: &[f64], body: usize, counts: &mut CallCounts) -> Option<bool> {
+                (**self).body_collides(q, body, counts)
             }
             fn motion_is_free(&self, motion: &Motion, counts: &mut CallCounts) -> Result<bool, OracleError> {
                 (**self).motion_is_free(motion, counts)
@@ -421,6 +435,11 @@ impl<O: CollisionOracle> CollisionOracle for Bounded<O> {
     fn surely_collides(&self, q: &[f64]) -> Option<bool> {
         let inner = self.inner.surely_collides(q)?;
         Some(inner || !self.space.in_bounds(q))
+    }
+
+    fn body_collides(&self, q: &[f64], body: usize, counts: &mut CallCounts) -> Option<bool> {
+        let inner = self.inner.body_collides(q, body, counts)?;
+        Some(inner || !self.space.body_in_bounds(q, body))
     }
 
     fn first_collision(

@@ -166,6 +166,10 @@ impl<O: CollisionOracle> CollisionOracle for Sampled<O> {
         self.inner.collides(q, counts)
     }
 
+    fn body_collides(&self, q: &[f64], body: usize, counts: &mut CallCounts) -> Option<bool> {
+        self.inner.body_collides(q, body, counts)
+    }
+
     fn motion_is_free(
         &self,
         motion: &Motion,

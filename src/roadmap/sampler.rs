@@ -4,6 +4,7 @@
 //! | spec | rule (OMPL's class) |
 //! |---|---|
 //! | `uniform` | uniform draws until one is free (`UniformValidStateSampler`) |
+//! | `bodies` | several bodies placed one at a time, each drawn until it is free of the obstacles and the bodies placed before it (below; `uniform` for one robot) |
 //! | `obstacle:margin=M` | a colliding draw, a free draw, walk from the free one towards the colliding one and keep the last free configuration (`ObstacleBasedValidStateSampler`) |
 //! | `gaussian:sigma=S` | a uniform draw and a Gaussian neighbour; if exactly one is free, keep it (`GaussianValidStateSampler`) |
 //! | `bridge:sigma=S` | a colliding draw and a colliding Gaussian neighbour; keep their midpoint if free (`BridgeTestValidStateSampler`) |
@@ -31,6 +32,19 @@
 //! colliding ends) every free gap between them is known; the sampler keeps the centre of the
 //! gap nearest the bridge's midpoint — the point of that straight line farthest from both
 //! obstacles.
+//!
+//! **Several bodies are placed one at a time.** Four squares in a corridor barely wider than
+//! they are leave almost no free configuration to a uniform draw of all of them at once
+//! (hundreds of thousands of draws find none), while each square alone lands in the corridor
+//! often. So for an oracle of several bodies ([`CollisionOracle::body_collides`]) the `bodies`
+//! sampler draws body 1's pose until it is free of the obstacles, then body 2's until it is
+//! free of the obstacles and body 1, and so on, at most [`BODY_DRAWS`] draws per body; a body
+//! that finds no place ends the attempt. Every draw is one counted state check. The samples are
+//! free but not uniform over the free space: a first body that leaves little room for the
+//! others is as likely as one that leaves much. Nor do they help a roadmap by themselves: the
+//! bodies fall in any order along a corridor, and a straight motion keeps their order, so
+//! most samples lie in parts of the free space that the start and the goal cannot reach
+//! directly (see `benches/results/`).
 //!
 //! **Gaussian neighbours.** Position coordinates get independent normal offsets of standard
 //! deviation `σ = sigma · extent` (OMPL's `sampleGaussian`). Departure: a neighbour outside the
@@ -60,6 +74,10 @@ pub const DEFAULT_SIGMA: f64 = 0.1;
 /// stops.
 pub const DEFAULT_MARGIN: f64 = 0.01;
 
+/// Draws per body before one attempt of placing several bodies one at a time is given up
+/// (OMPL's `nr_attempts`, per body).
+pub const BODY_DRAWS: usize = 100;
+
 /// How construction draws a free configuration. The spec string (see the [module](self)) is
 /// what the command line takes and what the roadmap file records.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -67,6 +85,9 @@ pub enum Sampler {
     /// Uniform draws until one is free.
     #[default]
     Uniform,
+    /// Several bodies placed one at a time, each drawn until it is free of the obstacles and
+    /// the bodies placed before it; uniform draws for one robot.
+    Bodies,
     /// Obstacle-based (Amato et al.'s OBPRM rule as in OMPL): the last free configuration on
     /// the way from a free draw to a colliding one, found exactly by interval queries.
     Obstacle {
@@ -167,6 +188,54 @@ pub fn gaussian_near<R: Rng + ?Sized>(
     q
 }
 
+/// What placing several bodies one at a time gave.
+enum Placed {
+    /// Every body found a free place.
+    Free(Config),
+    /// A body found none in [`BODY_DRAWS`] draws.
+    Stuck,
+    /// The space holds one robot, or the oracle cannot test one body at a time.
+    OneRobot,
+}
+
+/// One attempt of placing several bodies one at a time (see the [module](self)): body `i`'s
+/// pose is drawn until it is free of the obstacles and of bodies `0..i`.
+fn place_bodies<R: Rng + ?Sized>(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    rng: &mut R,
+    counts: &mut CallCounts,
+) -> Placed {
+    let k = space.body_count();
+    if k < 2 {
+        return Placed::OneRobot;
+    }
+    let mut q = uniform(space, rng);
+    for body in 0..k {
+        let coords = space.body_coords(body);
+        let mut placed = false;
+        for draw in 0..BODY_DRAWS {
+            if draw > 0 {
+                let d = uniform(space, rng);
+                q[coords.clone()].copy_from_slice(&d[coords.clone()]);
+            }
+            match oracle.body_collides(&q, body, counts) {
+                None => return Placed::OneRobot,
+                Some(true) => counts.state_checks += 1,
+                Some(false) => {
+                    counts.state_checks += 1;
+                    placed = true;
+                    break;
+                }
+            }
+        }
+        if !placed {
+            return Placed::Stuck;
+        }
+    }
+    Placed::Free(q)
+}
+
 /// Free: inside the bounds (walls, whatever the oracle does about them) and free under the
 /// oracle (one counted state check).
 fn free(space: &Space, oracle: &dyn CollisionOracle, q: &[f64], counts: &mut CallCounts) -> bool {
@@ -191,6 +260,21 @@ impl Sampler {
                     let q = uniform(space, rng);
                     if oracle.is_free(&q, counts) {
                         return Ok(Some(q));
+                    }
+                }
+                Ok(None)
+            }
+            Sampler::Bodies => {
+                for _ in 0..attempts {
+                    match place_bodies(space, oracle, rng, counts) {
+                        Placed::Free(q) => return Ok(Some(q)),
+                        Placed::Stuck => {}
+                        Placed::OneRobot => {
+                            let q = uniform(space, rng);
+                            if oracle.is_free(&q, counts) {
+                                return Ok(Some(q));
+                            }
+                        }
                     }
                 }
                 Ok(None)
@@ -267,7 +351,7 @@ impl Sampler {
     /// Checks the numbers (also of a spec read from a file); returns what is wrong.
     pub fn validate(&self) -> Result<(), String> {
         match self {
-            Sampler::Uniform => Ok(()),
+            Sampler::Uniform | Sampler::Bodies => Ok(()),
             Sampler::Obstacle { margin } => {
                 if margin.is_finite() && *margin > 0.0 && *margin <= 1.0 {
                     Ok(())
@@ -304,6 +388,7 @@ impl Sampler {
     fn parts(&self) -> (&'static str, Vec<String>) {
         match self {
             Sampler::Uniform => ("uniform", vec![]),
+            Sampler::Bodies => ("bodies", vec![]),
             Sampler::Obstacle { margin } => ("obstacle", vec![format!("margin={margin}")]),
             Sampler::Gaussian { sigma } => ("gaussian", vec![format!("sigma={sigma}")]),
             Sampler::Bridge { sigma } => ("bridge", vec![format!("sigma={sigma}")]),
@@ -353,6 +438,12 @@ impl Sampler {
                 }
                 Ok(Sampler::Uniform)
             }
+            "bodies" => {
+                if let Some(kv) = items.first() {
+                    return Err(format!("bodies takes no parameters, got `{kv}`"));
+                }
+                Ok(Sampler::Bodies)
+            }
             "obstacle" => Ok(Sampler::Obstacle {
                 margin: value("margin", DEFAULT_MARGIN)?,
             }),
@@ -367,7 +458,7 @@ impl Sampler {
             }),
             "mix" => Err("a mix cannot contain a mix".into()),
             other => Err(format!(
-                "unknown sampler `{other}`; expected uniform, obstacle, gaussian, bridge, gap or mix"
+                "unknown sampler `{other}`; expected uniform, bodies, obstacle, gaussian, bridge, gap or mix"
             )),
         }
     }
@@ -627,6 +718,7 @@ mod tests {
         let s: Sampler = "obstacle".parse().unwrap();
         assert_eq!(s, Sampler::Obstacle { margin: 0.01 });
         assert_eq!(s.to_string(), "obstacle:margin=0.01");
+        assert_eq!("bodies".parse::<Sampler>().unwrap().to_string(), "bodies");
         let m: Sampler = "mix:uniform=1,bridge=2,gaussian(sigma=0.05)"
             .parse()
             .unwrap();

@@ -58,6 +58,25 @@ impl Space {
             _ => 1,
         }
     }
+
+    /// The coordinates of body `body` in a configuration: the poses are concatenated in body
+    /// order, each of `dim / body_count` numbers.
+    pub fn body_coords(&self, body: usize) -> std::ops::Range<usize> {
+        let per = self.dim() / self.body_count().max(1);
+        per * body..per * (body + 1)
+    }
+
+    /// Whether body `body`'s pose in `q` lies inside the bounds (its wrapping angles always do).
+    pub fn body_in_bounds(&self, q: &[f64], body: usize) -> bool {
+        let wraps = self.wrapping();
+        self.body_coords(body).all(|i| {
+            let (v, l, u) = (q.get(i), self.lower.get(i), self.upper.get(i));
+            match (v, l, u) {
+                (Some(v), Some(l), Some(u)) => (l <= v && v <= u) || super::joints::bit(wraps, i),
+                _ => false,
+            }
+        })
+    }
 }
 
 /// The groups of `k` bodies: the translation of all (or, with `split_axes`, one group per
