@@ -6,7 +6,7 @@
 use crate::common;
 
 use common::bodies3::SolidBodiesChecker;
-use common::cli::{fails_with, stdout, temp_dir, viaroad, write};
+use common::cli::{fails_with, stderr, stdout, temp_dir, viaroad, write};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use viaroad::oracle::{CallCounts, CountedOracle};
@@ -178,6 +178,52 @@ fn two_cubes_into_two_boxes_are_solved_by_solve_and_a_saved_roadmap() {
         &path_of(out.trim(), "path"),
         "query",
     );
+}
+
+#[test]
+fn certify_gives_each_segment_of_several_bodies_in_space_a_verdict() {
+    let dir = temp_dir("bodies3", "certify");
+    let file = "scenes/bodies/cubes-into-boxes-2.toml";
+    let pose = |x: f64, z: f64, turn: f64| {
+        let h = turn / 2.0;
+        vec![x, 0.0, z, 0.0, 0.0, h.sin(), h.cos()]
+    };
+    let both = |red: Vec<f64>, blue: Vec<f64>| [red, blue].concat();
+    // both cubes go down into their boxes and up again (one exact call each), then cross
+    // above the boxes and meet halfway (exact), then red rises while it turns (neither of the
+    // seed's motions: proved by advancement)
+    let path = [
+        both(pose(-1.25, 2.5, 0.0), pose(1.25, 2.5, 0.0)),
+        both(pose(-1.25, 0.55, 0.0), pose(1.25, 0.55, 0.0)),
+        both(pose(-1.25, 2.5, 0.0), pose(1.25, 2.5, 0.0)),
+        both(pose(1.25, 2.5, 0.0), pose(-1.25, 2.5, 0.0)),
+        both(pose(1.25, 2.8, 0.3), pose(-1.25, 2.5, 0.0)),
+    ];
+    let lines: String = path
+        .iter()
+        .map(|q| q.iter().map(f64::to_string).collect::<Vec<_>>().join(" ") + "\n")
+        .collect();
+    let states = write(&dir, "cubes.path", &lines);
+    let o = viaroad(&["certify", file, &states, "--json"]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    let segments = v["certificate"]["segments"].as_array().unwrap();
+    let verdicts: Vec<&str> = segments
+        .iter()
+        .map(|s| s["verdict"].as_str().unwrap())
+        .collect();
+    assert_eq!(verdicts, ["free", "free", "collides", "free"], "{v}");
+    assert_eq!(segments[2]["pairs"], serde_json::json!([["red", "blue"]]));
+    let scene = shipped();
+    let checker = SolidBodiesChecker::new(&scene);
+    let witness: Config = serde_json::from_value(segments[2]["witness"].clone()).unwrap();
+    assert!(
+        checker.clearance(&witness) <= 1e-9 || checker.contained(&witness),
+        "{witness:?}"
+    );
+    for i in [0, 1, 3] {
+        checker.certify_motion(&path[i], &path[i + 1]).unwrap();
+    }
 }
 
 #[test]

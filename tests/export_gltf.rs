@@ -345,6 +345,57 @@ fn several_bodies_each_follow_their_own_poses_in_their_own_colours() {
     assert_eq!(traces, 2);
 }
 
+/// Two cubes above their boxes: the red one turns a quarter radian about z and back, then
+/// both go down into their boxes together.
+fn cubes_by_hand() -> Vec<Vec<f64>> {
+    let (s, c) = (0.25f64.sin(), 0.25f64.cos());
+    let at = |z: f64, red: [f64; 4]| {
+        let mut q = vec![-1.25, 0.0, z];
+        q.extend(red);
+        q.extend([1.25, 0.0, z, 0.0, 0.0, 0.0, 1.0]);
+        q
+    };
+    let still = [0.0, 0.0, 0.0, 1.0];
+    vec![
+        at(2.5, still),
+        at(2.5, [0.0, 0.0, s, c]),
+        at(2.5, still),
+        at(0.55, still),
+    ]
+}
+
+#[test]
+fn several_bodies_in_space_each_follow_their_own_poses() {
+    let scene = Scene::load(&root().join("scenes/bodies/cubes-into-boxes-2.toml")).unwrap();
+    let checker = common::bodies3::SolidBodiesChecker::new(&scene);
+    let path = cubes_by_hand();
+    checker.certify_path(&path).unwrap();
+    let plan = Plan {
+        raw: path.clone(),
+        shortened: Vec::new(),
+    };
+    let (_, glb) = exported(&scene, &plan);
+    let robot = glb.node("robot");
+    let children = glb.doc["nodes"][robot]["children"].as_array().unwrap();
+    assert_eq!(children.len(), 2);
+    let (k1, k2) = (glb.keys(glb.node("red")), glb.keys(glb.node("blue")));
+    assert_eq!(k1.len(), k2.len());
+    let keyed: Vec<Vec<f64>> = k1
+        .iter()
+        .zip(&k2)
+        .map(|((t1, p1, r1), (t2, p2, r2))| {
+            assert_eq!(t1, t2);
+            let mut q: Vec<f64> = p1.iter().chain(&normalised(*r1)).copied().collect();
+            q.extend(p2.iter().chain(&normalised(*r2)));
+            q
+        })
+        .collect();
+    corners_are_keys(&scene, &path, &keyed, 1e-5);
+    checker.certify_path(&keyed).unwrap();
+    // the turn is keyed in steps, not one jump
+    assert!(keyed.len() > path.len() + 2, "{}", keyed.len());
+}
+
 #[test]
 fn point_robot_among_discs_stays_clear_of_them() {
     let scene = Scene::load(&root().join("scenes/discs-cluttered.toml")).unwrap();

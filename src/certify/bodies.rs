@@ -1,68 +1,109 @@
-//! Segments of several bodies moving at once (SE(2)^k) under the space's interpolation. A
-//! segment of one of the seed's motions — all bodies translating, each by its own vector, or
-//! one body turning — is one call of the exact [`crate::oracle::bodies::PlanarBodies`] oracle.
+//! Segments of several bodies moving at once (SE(2)^k, SE(3)^k) under the space's
+//! interpolation. A segment of one of the seed's motions — all bodies translating, each by its
+//! own vector, or one body turning — is one call of the exact oracle
+//! ([`crate::oracle::bodies::PlanarBodies`], [`crate::oracle::bodies3::SolidBodies`]).
 //! Any other (bodies that translate and turn at once, or two that turn together, as a planner
 //! interpolating every coordinate moves them) is proved by conservative advancement on the
 //! independent checker's distances ([`BodiesChecker::clearance`], every body against the
 //! obstacles and every pair of bodies): no point of body `i` moves faster than
-//! `vᵢ = |Δpᵢ| + rᵢ·|Δθᵢ|`, so two bodies close in at most `2 · maxᵢ vᵢ`. Witnesses are
-//! configurations where the checker finds two shapes touching, with the pair's names.
+//! `vᵢ = |Δpᵢ| + rᵢ·|Δθᵢ|` (`Δθᵢ` the angle it turns through), so two bodies close in at most
+//! `2 · maxᵢ vᵢ`. Witnesses are configurations where the checker finds two shapes touching (in
+//! space, also one inside another, which distances alone do not show), with the pair's names.
 
 use super::locate::{locate, Prover};
-use super::verdict::{exact_collision, CertifyError, Verdict};
+use super::verdict::{exact_collision, CertifyError, Collision, Verdict};
 use crate::checker::bodies::BodiesChecker;
+use crate::checker::bodies3::SolidBodiesChecker;
 use crate::deadline::Deadline;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};
 use crate::scene::{Robot, Scene};
-use crate::space::rotation::wrap_angle;
+use crate::space::rotation::{rotation_angle, wrap_angle};
 
 /// The finest piece (share of a segment) located when no collision is confirmed.
 const FINE: f64 = 1.0 / (1u64 << 30) as f64;
 
+/// The independent checker of the scene's kind.
+enum Checker {
+    Planar(BodiesChecker),
+    Solid(SolidBodiesChecker),
+}
+
 /// The independent shapes of a scene of several bodies.
 pub(super) struct BodiesChecks {
-    checker: BodiesChecker,
+    checker: Checker,
     /// Each body's radius about its reference point (a hair larger).
     radii: Vec<f64>,
 }
 
 impl BodiesChecks {
     pub(super) fn new(scene: &Scene) -> Result<BodiesChecks, CertifyError> {
-        let Robot::Bodies(bodies) = &scene.robot else {
-            return Err(CertifyError::Unsupported(
-                "not a scene of several bodies".into(),
-            ));
-        };
-        let radii = bodies
-            .iter()
-            .map(|b| {
-                let r = b
-                    .parts
+        let unsupported = CertifyError::Unsupported;
+        let (checker, radii): (Checker, Vec<f64>) = match &scene.robot {
+            Robot::Bodies(bodies) => (
+                Checker::Planar(BodiesChecker::new(scene).map_err(unsupported)?),
+                bodies
                     .iter()
-                    .flat_map(|p| &p.vertices)
-                    .map(|v| v.coords.norm())
-                    .fold(0.0, f64::max);
-                r * (1.0 + 1e-9)
-            })
-            .collect();
+                    .map(|b| {
+                        b.parts
+                            .iter()
+                            .flat_map(|p| &p.vertices)
+                            .map(|v| v.coords.norm())
+                            .fold(0.0, f64::max)
+                    })
+                    .collect(),
+            ),
+            Robot::MeshBodies(bodies) => (
+                Checker::Solid(SolidBodiesChecker::new(scene).map_err(unsupported)?),
+                bodies.iter().map(|b| b.mesh.radius()).collect(),
+            ),
+            _ => {
+                return Err(CertifyError::Unsupported(
+                    "not a scene of several bodies".into(),
+                ))
+            }
+        };
         Ok(BodiesChecks {
-            checker: BodiesChecker::new(scene).map_err(CertifyError::Unsupported)?,
-            radii,
+            checker,
+            radii: radii.into_iter().map(|r| r * (1.0 + 1e-9)).collect(),
         })
+    }
+
+    /// How far a point of body `i` moves at most along the interpolated motion from `a` to `b`.
+    fn travel(&self, a: &[f64], b: &[f64]) -> f64 {
+        let per = a.len() / self.radii.len().max(1);
+        a.chunks_exact(per)
+            .zip(b.chunks_exact(per))
+            .zip(&self.radii)
+            .map(|((p, q), r)| match per {
+                3 => (q[0] - p[0]).hypot(q[1] - p[1]) + r * wrap_angle(q[2] - p[2]).abs(),
+                _ => {
+                    let shift = (0..3).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>().sqrt();
+                    shift + r * rotation_angle(&p[3..7], &q[3..7])
+                }
+            })
+            .fold(0.0, f64::max)
     }
 
     /// The least distance between two shapes at `q` (≤ 0: touching) and their names.
     fn clearance(&self, q: &[f64]) -> (f64, String) {
         // parry refusing a query: treat as touching, the side of collision
-        self.checker
-            .clearance(q)
-            .unwrap_or_else(|e| (0.0, format!("parry: {e}")))
+        let found = match &self.checker {
+            Checker::Planar(c) => c.clearance(q),
+            Checker::Solid(c) => c.clearance(q),
+        };
+        found.unwrap_or_else(|e| (0.0, format!("parry: {e}")))
     }
 
     /// The pair touching at `q` (the nearest), `None` if every shape is apart.
     pub(super) fn witness(&self, q: &[f64]) -> Option<Vec<[String; 2]>> {
         let (d, pair) = self.clearance(q);
-        (d <= 0.0).then(|| vec![split_pair(&pair)])
+        if d <= 0.0 {
+            return Some(vec![split_pair(&pair)]);
+        }
+        match &self.checker {
+            Checker::Solid(c) => c.containment(q).map(|pair| vec![split_pair(&pair)]),
+            Checker::Planar(_) => None,
+        }
     }
 
     /// The verdict on the interpolated motion from `a` to `b`.
@@ -97,14 +138,21 @@ impl BodiesChecks {
                 }
             }
             _ => {
-                let fastest = a
-                    .chunks_exact(3)
-                    .zip(b.chunks_exact(3))
-                    .zip(&self.radii)
-                    .map(|((p, q), r)| {
-                        (q[0] - p[0]).hypot(q[1] - p[1]) + r * wrap_angle(q[2] - p[2]).abs()
-                    })
-                    .fold(0.0, f64::max);
+                // one inside another at the start stays so without a surface meeting: the
+                // distances below would not see it
+                if let Some(pairs) = self.witness(a) {
+                    return Verdict::Collides(Collision {
+                        intervals: vec![[0.0, 1.0]],
+                        exact: false,
+                        resolution: 1.0,
+                        witness: a.to_vec(),
+                        witness_t: 0.0,
+                        pairs,
+                        free_before: 0.0,
+                        free_after: 1.0,
+                    });
+                }
+                let fastest = self.travel(a, b);
                 let mut prover = Advancing {
                     checks: self,
                     scene,

@@ -174,7 +174,9 @@ impl<'a> Certifier<'a> {
     pub fn new(scene: &'a Scene, model: MotionModel) -> Result<Certifier<'a>, CertifyError> {
         let checks = match &scene.robot {
             Robot::Arm(a) => Checks::Arm(Box::new(arm::ArmChecks::new(a)?)),
-            Robot::Bodies(_) => Checks::Bodies(Box::new(bodies::BodiesChecks::new(scene)?)),
+            Robot::Bodies(_) | Robot::MeshBodies(_) => {
+                Checks::Bodies(Box::new(bodies::BodiesChecks::new(scene)?))
+            }
             _ => Checks::Rigid(Box::new(rigid::RigidChecks::new(scene)?)),
         };
         Ok(Certifier {

@@ -44,7 +44,8 @@ pub fn keyframes(space: &Space, groups: &[Group], path: &[Config]) -> Vec<Key> {
         for (motion, _end) in path_pieces(space, groups, &w[0], &w[1]) {
             let len = space.motion_length(&motion, 0.0, 1.0);
             let turn = match (&motion.change, space.kind()) {
-                (crate::space::Change::Rotation { angle, .. }, _) => angle.abs(),
+                (crate::space::Change::Rotation { angle, .. }, _)
+                | (crate::space::Change::BodyRotation { angle, .. }, _) => angle.abs(),
                 (crate::space::Change::Linear(d), SpaceKind::Se2) => d[2].abs(),
                 // one body turns at a time; a straight motion may turn several
                 (crate::space::Change::Linear(d), SpaceKind::Se2Bodies(_)) => d
@@ -118,7 +119,7 @@ pub fn pose(space: &Space, q: &[f64]) -> ([f64; 3], [f64; 4]) {
         }
         // an arm's joints place no single body: its links are placed by forward kinematics
         SpaceKind::Joints { .. } => ([0.0; 3], [0.0, 0.0, 0.0, 1.0]),
-        // the first body's pose (exporting several bodies in space is refused before)
+        // the first body's pose; each body's own is `pose(se3, q[7i..7i + 7])`
         SpaceKind::Se3 | SpaceKind::Se3Bodies(_) => {
             let r =
                 UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[6], q[3], q[4], q[5]));

@@ -5,7 +5,8 @@
 //! coordinates of a configuration that hold its pose (`x y θ` in the plane, `x y z qx qy qz qw`
 //! in space, [`body_pose`]). A kind of scene with several bodies needs only to say how its
 //! bodies look (`drawn_bodies`); placing, animating and tracing them is shared. Planar bodies
-//! are prisms standing on z = 0, like the single planar robot of [`super::scene_gltf`].
+//! are prisms standing on z = 0, like the single planar robot of [`super::scene_gltf`]; bodies
+//! in space are their meshes among translucent obstacles, as a single rigid body's scene is.
 //!
 //! Every body hangs under one node named [`names::ROBOT`], so the viewer (and its browser
 //! test) sees all of them as "the robot"; each body's node is named after the body. The
@@ -43,8 +44,10 @@ pub(crate) struct DrawnBody {
     pub coords: Range<usize>,
 }
 
-/// Sizes of the drawing of a planar scene, from the bounds of the reference points.
+/// Sizes of the drawing, from the bounds of the reference points.
 struct Layout {
+    /// Whether the bodies move in the plane (prisms on z = 0) or in space.
+    planar: bool,
     /// The box of the reference points, `[x, y, z]` (z = 0 … obstacle height in the plane).
     lower: [f64; 3],
     upper: [f64; 3],
@@ -59,7 +62,17 @@ impl Layout {
         let (lo, hi) = (space.lower(), space.upper());
         let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
         let height = 0.04 * span;
+        if matches!(space.kind(), SpaceKind::Se3Bodies(_)) {
+            return Layout {
+                planar: false,
+                lower: [lo[0], lo[1], lo[2]],
+                upper: [hi[0], hi[1], hi[2]],
+                height,
+                trace_z: 0.0,
+            };
+        }
         Layout {
+            planar: true,
             lower: [lo[0], lo[1], 0.0],
             upper: [hi[0], hi[1], height],
             height,
@@ -68,30 +81,43 @@ impl Layout {
     }
 }
 
-/// The bodies of a scene of several bodies, or `None` for any other scene.
+/// The bodies of a scene of several bodies, or `None` for any other scene; planar bodies as
+/// prisms `height` high.
 pub(crate) fn drawn_bodies(scene: &Scene, height: f64) -> Option<Vec<DrawnBody>> {
-    let Robot::Bodies(bodies) = &scene.robot else {
-        return None;
-    };
     let space = &scene.space;
-    Some(
-        bodies
-            .iter()
-            .enumerate()
-            .map(|(i, b)| {
-                let mut shape = Soup::default();
-                for p in &b.parts {
-                    let v: Vec<[f64; 2]> = p.vertices.iter().map(|v| [v.x, v.y]).collect();
-                    shape.prism(&v, 0.0, height);
-                }
-                DrawnBody {
-                    name: b.name.clone(),
-                    shape,
-                    coords: space.body_coords(i),
-                }
-            })
-            .collect(),
-    )
+    let drawn = |i: usize, name: &str, shape: Soup| DrawnBody {
+        name: name.to_owned(),
+        shape,
+        coords: space.body_coords(i),
+    };
+    match &scene.robot {
+        Robot::Bodies(bodies) => Some(
+            bodies
+                .iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let mut shape = Soup::default();
+                    for p in &b.parts {
+                        let v: Vec<[f64; 2]> = p.vertices.iter().map(|v| [v.x, v.y]).collect();
+                        shape.prism(&v, 0.0, height);
+                    }
+                    drawn(i, &b.name, shape)
+                })
+                .collect(),
+        ),
+        Robot::MeshBodies(bodies) => Some(
+            bodies
+                .iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let mut shape = Soup::default();
+                    shape.mesh(&b.mesh, |v| v);
+                    drawn(i, &b.name, shape)
+                })
+                .collect(),
+        ),
+        _ => None,
+    }
 }
 
 /// The pose of one body from its own coordinates: `x y θ` (in the plane, z = 0) or
@@ -120,7 +146,10 @@ pub fn bodies_gltf(
     legend: &Legend,
 ) -> Result<Gltf, ExportError> {
     let space = &scene.space;
-    if !matches!(space.kind(), SpaceKind::Se2Bodies(_)) {
+    if !matches!(
+        space.kind(),
+        SpaceKind::Se2Bodies(_) | SpaceKind::Se3Bodies(_)
+    ) {
         return Err(ExportError::Unsupported(space.kind().to_string()));
     }
     let layout = Layout::of(space);
@@ -156,13 +185,21 @@ pub fn bodies_gltf(
     Ok(g)
 }
 
-/// The obstacles as prisms and the bounds of the reference points as lines.
+/// The obstacles (prisms in the plane, translucent meshes in space, where bodies pass behind
+/// walls and into boxes) and the bounds of the reference points as lines.
 fn environment(g: &mut Gltf, scene: &Scene, layout: &Layout, world: usize) {
-    let m_obstacle = g.material("obstacle", colour::linear(colour::OBSTACLE, 1.0), false);
+    let opacity = if layout.planar { 1.0 } else { 0.55 };
+    let m_obstacle = g.material("obstacle", colour::linear(colour::OBSTACLE, opacity), false);
     let mut env = Soup::default();
-    for p in scene.polygon_obstacles() {
-        let v: Vec<[f64; 2]> = p.vertices.iter().map(|v| [v.x, v.y]).collect();
-        env.prism(&v, 0.0, layout.height);
+    if layout.planar {
+        for p in scene.polygon_obstacles() {
+            let v: Vec<[f64; 2]> = p.vertices.iter().map(|v| [v.x, v.y]).collect();
+            env.prism(&v, 0.0, layout.height);
+        }
+    } else {
+        for m in scene.mesh_obstacles() {
+            env.mesh(&m, |v| v);
+        }
     }
     env.add(g, names::ENVIRONMENT, m_obstacle, world);
     let m_bounds = g.material("bounds", colour::linear(colour::BOUNDS, 1.0), true);
@@ -254,16 +291,18 @@ impl Legend {
     /// Names the bodies of a scene of several bodies in the colours [`bodies_gltf`]
     /// draws them in (nothing for a scene of one robot).
     pub fn set_bodies(&mut self, scene: &Scene) {
-        self.bodies = match &scene.robot {
-            Robot::Bodies(b) => b
-                .iter()
-                .enumerate()
-                .map(|(i, b)| BodyRow {
-                    name: b.name.clone(),
-                    colour: colour::css(body_colour(i)),
-                })
-                .collect(),
+        let names: Vec<&str> = match &scene.robot {
+            Robot::Bodies(b) => b.iter().map(|b| b.name.as_str()).collect(),
+            Robot::MeshBodies(b) => b.iter().map(|b| b.name.as_str()).collect(),
             _ => Vec::new(),
         };
+        self.bodies = names
+            .iter()
+            .enumerate()
+            .map(|(i, name)| BodyRow {
+                name: (*name).to_owned(),
+                colour: colour::css(body_colour(i)),
+            })
+            .collect();
     }
 }

@@ -32,10 +32,8 @@ use serde::Serialize;
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
     /// Only spaces with a picture in three dimensions: R², R³, SE(2), SE(3), arms, several
-    /// bodies in the plane.
-    #[error(
-        "cannot draw a {0} scene in 3D: only R², R³, SE(2), SE(3), arms and several bodies in the plane"
-    )]
+    /// bodies.
+    #[error("cannot draw a {0} scene in 3D: only R², R³, SE(2), SE(3), arms and several bodies")]
     Unsupported(String),
     /// A path state that does not fit the scene.
     #[error("state {index} of the {which} path: {message}")]

@@ -68,7 +68,9 @@ pub fn scene_gltf(
         (Robot::Arm(a), SpaceKind::Joints { continuous, .. }) => {
             return arm::arm_gltf(&a.arm, &a.objects, plan, continuous, legend);
         }
-        (Robot::Bodies(_), _) => return bodies::bodies_gltf(scene, groups, plan, roadmap, legend),
+        (Robot::Bodies(_) | Robot::MeshBodies(_), _) => {
+            return bodies::bodies_gltf(scene, groups, plan, roadmap, legend)
+        }
         (_, SpaceKind::Euclidean(2..=3) | SpaceKind::Se2 | SpaceKind::Se3) => {}
         _ => return Err(ExportError::Unsupported(kind.to_string())),
     }
@@ -212,8 +214,7 @@ fn animated_robot(
         }
         Robot::Mesh(m) => body.mesh(m, |v| v),
         Robot::Arm(_) => unreachable!("arms are drawn by arm::arm_gltf"),
-        Robot::Bodies(_) => unreachable!("drawn by bodies::bodies_gltf"),
-        Robot::MeshBodies(_) => unreachable!("refused with their space above"),
+        Robot::Bodies(_) | Robot::MeshBodies(_) => unreachable!("drawn by bodies::bodies_gltf"),
     }
     let path = plan.animated();
     let start = path.first().map_or(Trs::IDENTITY, |q| {
