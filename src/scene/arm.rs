@@ -40,6 +40,10 @@
 //! motions of several joints at once are not straight in any sense the oracle knows, so it
 //! refuses them ([`OracleError::Unsupported`]): the via-point planner moves one joint per
 //! segment (CHS §1.5).
+//!
+//! [`ArmOracle::joint_move`]: crate::robot::ArmOracle::joint_move
+//! [`ArmOracle::collides`]: crate::robot::ArmOracle::collides
+//! [`OracleError::Unsupported`]: crate::oracle::OracleError::Unsupported
 
 pub use super::arm_robot::{ArmCollision, ArmRobot};
 

@@ -88,7 +88,7 @@ pub(super) struct World {
 /// Supported motions: `Change::Linear(delta)` with three coordinates that is either a pure
 /// translation (`delta[2] == 0`, bounded or an unbounded line) or a pure rotation about the
 /// reference point (`delta[0] == delta[1] == 0`, a bounded range: a segment or a full turn).
-/// Anything else is [`OracleError::Unsupported`].
+/// Anything else is [`crate::oracle::OracleError::Unsupported`].
 ///
 /// ```
 /// use viaroad::geometry::Polygon;
