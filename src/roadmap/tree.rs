@@ -56,15 +56,6 @@ pub const CENTRE_TURN: f64 = 0.05;
 /// ([`shortcut_passes`]; as `solve --tree`).
 pub const SHORTCUT_WINDOW: usize = 32;
 
-/// Straight extends of a tree in a row not proved after which, with
-/// [`TreeParams::staircase`] off, the tree walks its unproved extends as staircases until a
-/// straight one is proved again: a goal deep in a UR5's shelf is left by no provable straight
-/// motion (3 of the first 10 bookshelf_small and bookshelf_thin problems unsolved with 3 nodes
-/// in 5 s), where the exact single-joint stairs creep out. 64 or 256 cost the Panda's cage
-/// (a run of failures there is common: the first 15 problems per family, mean 3.7 → 10 and
-/// 25 ms); 1024 did not (4.1 ms) and solved one of the three.
-const STUCK: usize = 1024;
-
 /// Longest piece of a straight tree edge ([`TreeParams::straight`]) between the corners the
 /// trees' shortening adds along it, as a share of the extent: a shortcut can only start and end
 /// at corners, and an extend's one straight edge of up to [`TreeParams::range`] left the paths
@@ -211,9 +202,7 @@ pub struct TreeParams {
     /// staircase ([`Self::stairs`]; on by default). Off, that extend is trapped and the next
     /// sample is drawn, as VAMP's RRT-Connect keeps a motion whole or not at all: every call is
     /// one straight proof, and a blocked extend costs a single call instead of its stairs'
-    /// single-joint sweeps — until a tree is stuck (many unproved extends in a row), which then
-    /// walks staircases until a straight extend is proved again. The arm portfolio's trees run
-    /// so ([`crate::portfolio::Portfolio`]).
+    /// single-joint sweeps. The arm portfolio's trees run so ([`crate::portfolio::Portfolio`]).
     pub staircase: bool,
 }
 
@@ -434,8 +423,6 @@ impl Rooted {
 struct Tree {
     base: Rooted,
     nn: NearestNeighbours,
-    /// Straight extends in a row that were not proved ([`TreeParams::staircase`] off).
-    unproved: usize,
 }
 
 impl Tree {
@@ -446,11 +433,7 @@ impl Tree {
         }
         let mut base = root.clone();
         base.given = root.node_count();
-        Tree {
-            base,
-            nn,
-            unproved: 0,
-        }
+        Tree { base, nn }
     }
 
     /// Nodes grown (the end counts as one, given nodes do not).
@@ -610,16 +593,10 @@ impl Grower<'_> {
             return Ok(Extend::Reached(step.near));
         }
         if let Some(end) = self.straight(tree, &step)? {
-            tree.unproved = 0;
             return Ok(end);
         }
         if self.params.straight && !self.params.staircase {
-            if tree.unproved < STUCK {
-                tree.unproved += 1;
-                return Ok(Extend::Trapped);
-            }
-            // stuck: an end in a pocket (a goal deep in a shelf) that no straight motion
-            // leaves provably; the exact single-joint stairs creep along its walls
+            return Ok(Extend::Trapped);
         }
         if self.params.stairs == Stairs::Whole {
             return self.extend_whole(tree, &step);
