@@ -183,6 +183,51 @@ fn tree_extends_go_straight_where_proved_and_the_tree_path_is_certified() {
 }
 
 #[test]
+fn without_staircases_every_tree_edge_is_one_proved_straight_motion() {
+    // the box's query by the two trees alone, an extend whose straight motion is not proved
+    // given up (`TreeParams::staircase` off, as the arm portfolio's trees): the raw path passes
+    // the independent checker, and each of its edges is one straight motion the oracle proves
+    // free (no staircase corners between the extends' ends)
+    let scene = box_scene();
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm scene")
+    };
+    let arm_oracle = a.arm_oracle();
+    let oracle = scene.oracle();
+    let groups = scene.space.groups(false);
+    let q = &scene.checked_queries().unwrap()[0];
+    let params = TreeParams {
+        max_nodes: Some(20_000),
+        staircase: false,
+        ..TreeParams::for_space(&scene.space)
+    };
+    let found = viaroad::roadmap::tree::rrt_connect(
+        &scene.space,
+        oracle.as_ref(),
+        &groups,
+        &q.start,
+        &q.goal,
+        &params,
+        1,
+        &viaroad::deadline::Deadline::none(),
+    )
+    .unwrap();
+    let path = found.path.expect("the trees connect");
+    certify(&scene, &path);
+    let mut counts = CallCounts::default();
+    let mut several = 0;
+    for w in path.windows(2) {
+        let moved = w[0].iter().zip(&w[1]).filter(|(x, y)| x != y).count();
+        several += usize::from(moved > 1);
+        assert!(
+            moved <= 1 || arm_oracle.straight_free(&w[0], &w[1], &mut counts).unwrap(),
+            "an edge of several joints is not a proved straight motion: {w:?}"
+        );
+    }
+    assert!(several > 0, "no straight edge on the path");
+}
+
+#[test]
 fn a_straight_proof_stops_at_a_watched_deadline() {
     // a query's deadline reaches into a proof in progress (as into an exact sweep): an
     // interrupted proof is an error, not a "not proved" to be kept as the motion's answer

@@ -252,6 +252,11 @@ pub struct MbmArgs {
     /// staircase only when that is blocked (as `solve --tree-coarse`).
     #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set, help_heading = "Tuning")]
     pub tree_coarse: bool,
+    /// `--planner tree`: where an extend's straight motion is not proved, walk it as a
+    /// staircase (`true`, as `solve --tree`) instead of giving the extend up (`false`, the
+    /// default, as the portfolio that `solve` plans arm scenes with: one proof per extend).
+    #[arg(long, value_name = "BOOL", default_value_t = false, action = clap::ArgAction::Set, help_heading = "Tuning")]
+    pub tree_staircase: bool,
     /// `--planner tree`: restart both trees when an attempt has grown this many nodes, each
     /// later attempt with a new random stream and twice the nodes (as `solve --tree-restart`).
     /// Default: no restarts.
@@ -400,6 +405,7 @@ fn mbm_options(
             coarse: a.tree_coarse,
             restart: a.tree_restart,
             streams: a.tree_streams,
+            staircase: a.tree_staircase,
             ..viaroad::roadmap::tree::TreeParams::default()
         },
         race,

@@ -242,6 +242,7 @@ fn tree_params(a: &SolveArgs) -> viaroad::roadmap::tree::TreeParams {
         streams: a.tree_streams,
         stairs,
         straight: !a.no_straight,
+        staircase: true,
     }
 }
 

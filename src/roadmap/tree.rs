@@ -198,6 +198,12 @@ pub struct TreeParams {
     /// first 15 Panda problems of each family, the portfolio's p50 20.5 → 9–10 ms.
     /// On by default; `--no-straight` turns it off with the straight shortcuts.
     pub straight: bool,
+    /// With [`Self::straight`]: where an extend's straight motion is not proved, walk it as a
+    /// staircase ([`Self::stairs`]; on by default). Off, that extend is trapped and the next
+    /// sample is drawn, as VAMP's RRT-Connect keeps a motion whole or not at all: every call is
+    /// one straight proof, and a blocked extend costs a single call instead of its stairs'
+    /// single-joint sweeps. The arm portfolio's trees run so ([`crate::portfolio::Portfolio`]).
+    pub staircase: bool,
 }
 
 impl Default for TreeParams {
@@ -215,6 +221,7 @@ impl Default for TreeParams {
             stairs: Stairs::Whole,
             streams: 1,
             straight: true,
+            staircase: true,
         }
     }
 }
@@ -587,6 +594,9 @@ impl Grower<'_> {
         }
         if let Some(end) = self.straight(tree, &step)? {
             return Ok(end);
+        }
+        if self.params.straight && !self.params.staircase {
+            return Ok(Extend::Trapped);
         }
         if self.params.stairs == Stairs::Whole {
             return self.extend_whole(tree, &step);
