@@ -178,11 +178,6 @@ fn house_tool(script: &str, args: &[&str]) -> (bool, String) {
     )
 }
 
-/// Circles of imports, file by file, still to break, each as its files (sorted): their owner
-/// splits them; once one is gone, its line goes too (the test fails until it does, so the list
-/// only shrinks).
-const CIRCLES_TO_BREAK: &[&[&str]] = &[&["robot/oracle.rs", "robot/oracle/straight.rs"]];
-
 /// An import graph of `src/`, file by file (`tools/import_graph.py --strict`: a `mod.rs` and
 /// the children it calls count too), has no circles: what a module and its children share
 /// lives in a file below both.
@@ -190,35 +185,11 @@ const CIRCLES_TO_BREAK: &[&[&str]] = &[&["robot/oracle.rs", "robot/oracle/straig
 fn no_circles_of_imports_file_by_file() {
     let (ok, out) = house_tool("import_graph.py", &[]);
     assert!(ok, "circles of imports between modules:\n{out}");
-    let (_, out) = house_tool("import_graph.py", &["--strict"]);
-    let mut circles: Vec<Vec<String>> = Vec::new();
-    for line in out.lines() {
-        if line.starts_with("circle ") {
-            circles.push(Vec::new());
-        } else if let (Some(c), Some(file)) = (circles.last_mut(), line.strip_prefix("  ")) {
-            if !file.starts_with(' ') {
-                c.push(file.trim().to_string());
-            }
-        }
-    }
-    for c in &mut circles {
-        c.sort();
-    }
-    let known: Vec<Vec<String>> = CIRCLES_TO_BREAK
-        .iter()
-        .map(|c| c.iter().map(|f| f.to_string()).collect())
-        .collect();
-    let new: Vec<&Vec<String>> = circles.iter().filter(|c| !known.contains(c)).collect();
+    let (ok, out) = house_tool("import_graph.py", &["--strict"]);
     assert!(
-        new.is_empty(),
+        ok,
         "circles of imports (move what the files share into a file below them):\n{out}"
     );
-    for k in &known {
-        assert!(
-            circles.contains(k),
-            "{k:?} is no circle any more: remove it from CIRCLES_TO_BREAK"
-        );
-    }
 }
 
 /// No function outside tests is longer than 120 lines (`tools/long_functions.py`): a long

@@ -73,6 +73,7 @@ use nalgebra::{Isometry3, Point3, Vector3};
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
+mod reach;
 mod straight;
 
 /// A ball that holds a polytope.
@@ -288,7 +289,7 @@ pub struct ArmOracle {
     id: u64,
     /// Per link, how fast its points may move per unit of each joint's rate
     /// ([`ArmOracle::straight_free`]).
-    reach: straight::Reach,
+    reach: reach::Reach,
 }
 
 /// The sure test's inner balls in the world, each link's placed when first asked for (most
@@ -550,7 +551,10 @@ impl ArmOracle {
             .map(|(m, _)| Cloud::of(&m.vertices))
             .collect();
         let inner = inner_balls(arm);
-        let reach = straight::reach_of(&arm.model, &link_meshes);
+        let reach = reach::reach_of(
+            &arm.model,
+            link_meshes.iter().map(|m| m.as_ref().map(|(mesh, _)| mesh)),
+        );
         Ok(ArmOracle {
             arm: arm.clone(),
             reach,

@@ -65,59 +65,6 @@ fn interrupted() -> Result<(), RobotError> {
     }
 }
 
-/// Per link, the movable joints between the root and it with the factor that turns the
-/// joint's rate into a bound on the speed of the link's points (`R_kl`; 1 for a prismatic
-/// joint). Empty for a link without geometry.
-pub(super) type Reach = Vec<Vec<(usize, f64)>>;
-
-/// [`Reach`] of every link of `oracle`'s arm (`link_meshes` in the link frames).
-pub(super) fn reach_of(
-    model: &crate::robot::kinematics::Model,
-    link_meshes: &[Option<(crate::geometry::TriMesh, Ball)>],
-) -> Reach {
-    let travel = |k: usize| match model.urdf.joints[k].kind {
-        JointKind::Prismatic { lower, upper } => lower.abs().max(upper.abs()),
-        _ => 0.0,
-    };
-    link_meshes
-        .iter()
-        .enumerate()
-        .map(|(l, m)| {
-            let Some((mesh, _)) = m else {
-                return Vec::new();
-            };
-            let rho = mesh
-                .vertices
-                .iter()
-                .map(|v| v.coords.norm())
-                .fold(0.0, f64::max);
-            let chain = model.chain_to(l);
-            chain
-                .iter()
-                .enumerate()
-                .filter(|(_, &k)| model.urdf.joints[k].kind.is_movable())
-                .map(|(i, &k)| {
-                    let factor = match model.urdf.joints[k].kind {
-                        JointKind::Prismatic { .. } => 1.0,
-                        _ => {
-                            chain[i + 1..]
-                                .iter()
-                                .map(|&m| {
-                                    model.urdf.joints[m].origin.translation.vector.norm()
-                                        + travel(m)
-                                })
-                                .sum::<f64>()
-                                + rho
-                        }
-                    };
-                    // a relative margin for the rounding of the sums and of the poses
-                    (k, factor * (1.0 + 1e-9))
-                })
-                .collect()
-        })
-        .collect()
-}
-
 /// One straight motion of the arm: how far and how fast each joint moves, for bounds on how
 /// fast the links' points move.
 struct Straight<'a> {
@@ -458,7 +405,7 @@ impl ArmOracle {
     /// `except`'s (the links' deepest common link carries both alike: the velocities are
     /// relative to it, in world axes), and a bound on its points' acceleration (relative to
     /// that link) over the whole motion: `|∂²p/∂q_j∂q_k|` is at most `p`'s distance from the
-    /// later joint's axis, at most `R_kl` ([`Reach`]), so `Σ_k |Δ_k| R_kl (|Δ_k| + 2 Σ_{j<k}
+    /// later joint's axis, at most `R_kl` ([`Reach`](super::reach::Reach)), so `Σ_k |Δ_k| R_kl (|Δ_k| + 2 Σ_{j<k}
     /// |Δ_j|)` bounds it. `None` for a link without geometry or one a prismatic joint moves.
     fn moving(
         &self,
