@@ -151,8 +151,10 @@ fn the_trees_error_is_reported_when_the_roadmap_gives_no_answer() {
     let planner = QueryPlanner::new(&roadmap, &refusing)
         .unwrap()
         .with_options(QueryOptions {
+            // staircases, whose stairs ask for first hits, where a straight extend is not proved
             trees: Some(TreeParams {
                 stairs: Stairs::Prefix,
+                staircase: true,
                 ..TreeParams::for_space(&scene.space)
             }),
             race: Some(Duration::ZERO),

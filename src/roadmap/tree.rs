@@ -228,7 +228,9 @@ impl Default for TreeParams {
 
 impl TreeParams {
     /// The defaults for `space`: one first-collision call per stair for arms (the sweep of a
-    /// joint stops at the first hit, `joint_move_first_hit`), one interval call otherwise.
+    /// joint stops at the first hit, `joint_move_first_hit`), one interval call otherwise; an
+    /// arm's extends are proved straight motions or given up ([`Self::staircase`] off), as
+    /// the arm portfolio's trees, so that queries on a roadmap grow the same trees.
     pub fn for_space(space: &Space) -> TreeParams {
         let joints = matches!(space.kind(), crate::space::SpaceKind::Joints { .. });
         TreeParams {
@@ -237,6 +239,7 @@ impl TreeParams {
             } else {
                 Prefix::Intervals
             },
+            staircase: !joints,
             ..TreeParams::default()
         }
     }
