@@ -57,5 +57,5 @@ for robot in $ROBOTS; do
   fi
 done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)" >> "$OUT/machine.txt"
-"$VAMP_PY" "$HERE/summarize.py" "$OUT" $ROBOTS > "$OUT/summary.md"
+"$VAMP_PY" "$HERE/../2026-12-06-arm-speed/summarize.py" "$OUT" $ROBOTS > "$OUT/summary.md"
 cat "$OUT/summary.md"
