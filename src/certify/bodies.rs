@@ -11,11 +11,11 @@
 //! space, also one inside another, which distances alone do not show), with the pair's names.
 
 use super::locate::{locate, Prover};
-use super::verdict::{exact_collision, CertifyError, Collision, Verdict};
+use super::verdict::{one_group_verdict, CertifyError, Collision, Verdict};
 use crate::checker::bodies::BodiesChecker;
 use crate::checker::bodies3::SolidBodiesChecker;
 use crate::deadline::Deadline;
-use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};
+use crate::oracle::{CallCounts, CollisionOracle};
 use crate::scene::{Robot, Scene};
 use crate::space::rotation::{rotation_angle, wrap_angle};
 
@@ -115,54 +115,32 @@ impl BodiesChecks {
         deadline: &Deadline,
         counts: &mut CallCounts,
     ) -> Verdict {
-        let space = &scene.space;
-        let groups = space.groups(false);
-        let changed: Vec<_> = groups
-            .iter()
-            .filter(|g| !space.same_in_group(a, b, g))
-            .collect();
-        match changed[..] {
-            [] => Verdict::Free,
-            [g] => {
-                let motion = space.group_motion(a, b, g);
-                match oracle.intersect(&motion, counts) {
-                    Ok(list) if list.is_empty() => Verdict::Free,
-                    Ok(list) => exact_collision(
-                        list.iter().map(|iv| [iv.lo, iv.hi]).collect(),
-                        |t| motion.at(t),
-                        |q| self.witness(q),
-                    ),
-                    Err(e) => Verdict::Undecided {
-                        reason: e.to_string(),
-                    },
-                }
-            }
-            _ => {
-                // one inside another at the start stays so without a surface meeting: the
-                // distances below would not see it
-                if let Some(pairs) = self.witness(a) {
-                    return Verdict::Collides(Collision {
-                        intervals: vec![[0.0, 1.0]],
-                        exact: false,
-                        resolution: 1.0,
-                        witness: a.to_vec(),
-                        witness_t: 0.0,
-                        pairs,
-                        free_before: 0.0,
-                        free_after: 1.0,
-                    });
-                }
-                let fastest = self.travel(a, b);
-                let mut prover = Advancing {
-                    checks: self,
-                    scene,
-                    a,
-                    b,
-                    rate: 2.0 * fastest * (1.0 + 1e-9),
-                };
-                locate(&mut prover, FINE, 1 << 20, deadline)
-            }
+        if let Some(v) = one_group_verdict(scene, oracle, (a, b), counts, |q| self.witness(q)) {
+            return v;
         }
+        // one inside another at the start stays so without a surface meeting: the
+        // distances below would not see it
+        if let Some(pairs) = self.witness(a) {
+            return Verdict::Collides(Collision {
+                intervals: vec![[0.0, 1.0]],
+                exact: false,
+                resolution: 1.0,
+                witness: a.to_vec(),
+                witness_t: 0.0,
+                pairs,
+                free_before: 0.0,
+                free_after: 1.0,
+            });
+        }
+        let fastest = self.travel(a, b);
+        let mut prover = Advancing {
+            checks: self,
+            scene,
+            a,
+            b,
+            rate: 2.0 * fastest * (1.0 + 1e-9),
+        };
+        locate(&mut prover, FINE, 1 << 20, deadline)
     }
 }
 

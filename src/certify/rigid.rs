@@ -9,10 +9,10 @@
 //! disc's distance for a point).
 
 use super::locate::{locate, Prover};
-use super::verdict::{exact_collision, CertifyError, Verdict};
+use super::verdict::{one_group_verdict, CertifyError, Verdict};
 use crate::checker::{planar::PlanarChecker, rigid::RigidChecker};
 use crate::deadline::Deadline;
-use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};
+use crate::oracle::{CallCounts, CollisionOracle};
 use crate::scene::{Obstacle, Robot, Scene};
 use crate::space::{rotation, SpaceKind};
 
@@ -111,49 +111,26 @@ impl RigidChecks {
         deadline: &Deadline,
         counts: &mut CallCounts,
     ) -> Verdict {
-        let space = &scene.space;
-        let groups = space.groups(false);
-        let changed: Vec<_> = groups
-            .iter()
-            .filter(|g| !space.same_in_group(a, b, g))
-            .collect();
-        match changed[..] {
-            [] => Verdict::Free,
-            [g] => {
-                let motion = space.group_motion(a, b, g);
-                match oracle.intersect(&motion, counts) {
-                    Ok(list) if list.is_empty() => Verdict::Free,
-                    Ok(list) => exact_collision(
-                        list.iter().map(|iv| [iv.lo, iv.hi]).collect(),
-                        |t| motion.at(t),
-                        |q| self.witness(q),
-                    ),
-                    Err(e) => Verdict::Undecided {
-                        reason: e.to_string(),
-                    },
-                }
-            }
-            _ => {
-                let rate = match self {
-                    RigidChecks::Planar(_, r) => {
-                        distance(&a[..2], &b[..2]) + r * rotation::wrap_angle(b[2] - a[2]).abs()
-                    }
-                    RigidChecks::Rigid(_, r) => {
-                        distance(&a[..3], &b[..3])
-                            + r * rotation::rotation_angle(&a[3..7], &b[3..7])
-                    }
-                    RigidChecks::Discs(_) => distance(a, b),
-                };
-                let mut prover = Advancing {
-                    checks: self,
-                    scene,
-                    a,
-                    b,
-                    rate: rate * (1.0 + 1e-9),
-                };
-                locate(&mut prover, FINE, 1 << 20, deadline)
-            }
+        if let Some(v) = one_group_verdict(scene, oracle, (a, b), counts, |q| self.witness(q)) {
+            return v;
         }
+        let rate = match self {
+            RigidChecks::Planar(_, r) => {
+                distance(&a[..2], &b[..2]) + r * rotation::wrap_angle(b[2] - a[2]).abs()
+            }
+            RigidChecks::Rigid(_, r) => {
+                distance(&a[..3], &b[..3]) + r * rotation::rotation_angle(&a[3..7], &b[3..7])
+            }
+            RigidChecks::Discs(_) => distance(a, b),
+        };
+        let mut prover = Advancing {
+            checks: self,
+            scene,
+            a,
+            b,
+            rate: rate * (1.0 + 1e-9),
+        };
+        locate(&mut prover, FINE, 1 << 20, deadline)
     }
 }
 

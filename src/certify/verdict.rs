@@ -2,6 +2,8 @@
 //! the types that the certifier and each of its provers (arms, rigid bodies, located
 //! segments) return.
 
+use crate::oracle::{CallCounts, CollisionOracle, CountedOracle};
+use crate::scene::Scene;
 use crate::space::Config;
 use serde::Serialize;
 
@@ -123,4 +125,38 @@ pub(crate) fn fmt_intervals(intervals: &[[f64; 2]]) -> String {
         .map(|[a, b]| format!("[{a:.6}, {b:.6}]"))
         .collect::<Vec<_>>()
         .join(" ∪ ")
+}
+
+/// The verdict on the interpolated motion from `a` to `b` where it changes at most one DOF
+/// group: then it is one of the seed's motions, answered by one exact call of the scene's
+/// oracle (a collision confirmed by `witness`, the independent check). `None` where several
+/// groups change at once, which the caller proves otherwise.
+pub(crate) fn one_group_verdict(
+    scene: &Scene,
+    oracle: &dyn CollisionOracle,
+    (a, b): (&[f64], &[f64]),
+    counts: &mut CallCounts,
+    witness: impl Fn(&[f64]) -> Option<Vec<[String; 2]>>,
+) -> Option<Verdict> {
+    let space = &scene.space;
+    let groups = space.groups(false);
+    let mut changed = groups.iter().filter(|g| !space.same_in_group(a, b, g));
+    let Some(g) = changed.next() else {
+        return Some(Verdict::Free);
+    };
+    if changed.next().is_some() {
+        return None;
+    }
+    let motion = space.group_motion(a, b, g);
+    Some(match oracle.intersect(&motion, counts) {
+        Ok(list) if list.is_empty() => Verdict::Free,
+        Ok(list) => exact_collision(
+            list.iter().map(|iv| [iv.lo, iv.hi]).collect(),
+            |t| motion.at(t),
+            witness,
+        ),
+        Err(e) => Verdict::Undecided {
+            reason: e.to_string(),
+        },
+    })
 }
