@@ -204,9 +204,12 @@ impl Solver {
         };
         // the roadmap is the side a one-thread race gives a short first turn; the trees,
         // which answer most problems, then run to the deadline
+        // several bodies: the roadmap's walks (slides, one body at a time) answer, trees rarely
+        // do; the roadmap runs alone for half the time, so a busy pool cannot starve it
+        let head = (scene.space.body_count() > 1).then(|| deadline.remaining().map(|t| t / 2));
         let raced = race(
             deadline,
-            Duration::ZERO,
+            head.flatten().unwrap_or(Duration::ZERO),
             |search, whole| self.grown_roadmap(scene, oracle, (start, goal), search, whole),
             |r| r.as_ref().is_ok_and(Solution::is_solved),
             |d| tree_stage(&planning, (start, goal), &tree, self.seed, d, d),

@@ -13,10 +13,11 @@
 //! than along a random direction in the whole configuration space, so that every step is a
 //! direct path of the local method and can become a roadmap edge.
 
+use super::bodies_walk::{bodies_bounce, BodyGroups};
 use crate::deadline::Deadline;
 use crate::interval::Interval;
 use crate::oracle::{CallCounts, CollisionOracle, CountedOracle, OracleError};
-use crate::space::{Config, Group, GroupKind, Space};
+use crate::space::{Config, Group, GroupKind, Motion, Space};
 use rand::Rng;
 
 /// Share of a free section kept clear at each end when choosing where a step ends: its ends
@@ -50,6 +51,9 @@ pub fn random_direction<R: Rng + ?Sized>(n: usize, rng: &mut R) -> Vec<f64> {
 /// configurations of `[start, result…]` are joined by certified free motions in one of
 /// `groups`. Stops early when the current configuration has no free section around it (it
 /// touches an obstacle), or when `deadline` has passed.
+///
+/// In a space of several bodies the steps are body-aware ([`super::bodies_walk`]): one body
+/// translating or turning, or a slide of every body in turn.
 #[allow(clippy::too_many_arguments)]
 pub fn random_bounce<R: Rng + ?Sized>(
     space: &Space,
@@ -61,10 +65,12 @@ pub fn random_bounce<R: Rng + ?Sized>(
     counts: &mut CallCounts,
     deadline: &Deadline,
 ) -> Result<Vec<Config>, OracleError> {
+    if let Some(bodies) = BodyGroups::of(space, groups) {
+        return bodies_bounce(space, oracle, &bodies, start, steps, rng, counts, deadline);
+    }
     let mut corners: Vec<Config> = Vec::with_capacity(steps.min(64));
     let mut current = start.to_vec();
     let mut group = rng.random_range(0..groups.len().max(1));
-    let reach = space.extent();
     for step in 0..steps {
         if deadline.expired() {
             // the walk so far is free: it ends here
@@ -74,62 +80,104 @@ pub fn random_bounce<R: Rng + ?Sized>(
             // bounce into another group
             group = (group + rng.random_range(1..groups.len())) % groups.len();
         }
-        let g = &groups[group];
-        let (motion, clip) = match g.kind {
-            GroupKind::Linear => {
-                let dir = random_direction(g.len(), rng);
-                let line = space.line_through(&current, g, &dir);
-                (
-                    line,
-                    Interval {
-                        lo: -reach,
-                        hi: reach,
-                    },
-                )
+        match group_step(space, oracle, &groups[group], &current, rng, counts)? {
+            Step::Moved(next) => {
+                corners.push(next.clone());
+                current = next;
             }
-            GroupKind::Angle | GroupKind::Quaternion => {
-                let a = random_direction(3, rng);
-                let turn = space.turn_through(&current, g, [a[0], a[1], a[2]]);
-                (
-                    turn,
-                    Interval {
-                        lo: -MAX_TURN,
-                        hi: MAX_TURN,
-                    },
-                )
-            }
-        };
-        let hits = oracle.intersect(&motion, counts)?;
-        let Some(section) = hits
-            .complement_within(motion.range)
-            .iter()
-            .find(|s| s.contains(0.0))
-            .and_then(|s| s.meet(&clip))
-        else {
-            break;
-        };
-        let margin = SECTION_MARGIN * section.length();
-        let (lo, hi) = (section.lo + margin, section.hi - margin);
-        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
-            break;
+            Step::Stayed => {}
+            Step::Stuck => break,
         }
-        let t = rng.random_range(lo..hi);
-        if t == 0.0 {
-            continue;
-        }
-        let mut next = motion.at(t);
-        if g.kind != GroupKind::Linear {
-            // wrap the angle / renormalise the quaternion; a translation leaves the orientation
-            // bit for bit as it was, so that the step stays within one group
-            space.normalize(&mut next);
-        }
-        if next == current {
-            continue;
-        }
-        corners.push(next.clone());
-        current = next;
     }
     Ok(corners)
+}
+
+/// What one step of a walk did.
+#[derive(Debug)]
+pub(super) enum Step {
+    /// It moved to this configuration.
+    Moved(Config),
+    /// It drew a point where it stood.
+    Stayed,
+    /// The configuration has no free section around it in the step's group (it touches an
+    /// obstacle that way).
+    Stuck,
+}
+
+/// The free section of `motion` that contains its parameter 0, clipped to `clip`: `None` when
+/// the motion collides at 0.
+pub(super) fn free_section(
+    oracle: &dyn CollisionOracle,
+    motion: &Motion,
+    clip: Interval,
+    counts: &mut CallCounts,
+) -> Result<Option<Interval>, OracleError> {
+    let hits = oracle.intersect(motion, counts)?;
+    Ok(hits
+        .complement_within(motion.range)
+        .iter()
+        .find(|s| s.contains(0.0))
+        .and_then(|s| s.meet(&clip)))
+}
+
+/// One plain step of a random-bounce walk in group `g` from `current`: along a random direction
+/// of a position group (every coordinate of the group at once) or a turn about a random axis,
+/// to a random point of the free section (one *intersectLine* call).
+pub(super) fn group_step<R: Rng + ?Sized>(
+    space: &Space,
+    oracle: &dyn CollisionOracle,
+    g: &Group,
+    current: &[f64],
+    rng: &mut R,
+    counts: &mut CallCounts,
+) -> Result<Step, OracleError> {
+    let (motion, clip) = match g.kind {
+        GroupKind::Linear => {
+            let reach = space.extent();
+            let dir = random_direction(g.len(), rng);
+            let line = space.line_through(current, g, &dir);
+            (
+                line,
+                Interval {
+                    lo: -reach,
+                    hi: reach,
+                },
+            )
+        }
+        GroupKind::Angle | GroupKind::Quaternion => {
+            let a = random_direction(3, rng);
+            let turn = space.turn_through(current, g, [a[0], a[1], a[2]]);
+            (
+                turn,
+                Interval {
+                    lo: -MAX_TURN,
+                    hi: MAX_TURN,
+                },
+            )
+        }
+    };
+    let Some(section) = free_section(oracle, &motion, clip, counts)? else {
+        return Ok(Step::Stuck);
+    };
+    let margin = SECTION_MARGIN * section.length();
+    let (lo, hi) = (section.lo + margin, section.hi - margin);
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+        return Ok(Step::Stuck);
+    }
+    let t = rng.random_range(lo..hi);
+    if t == 0.0 {
+        return Ok(Step::Stayed);
+    }
+    let mut next = motion.at(t);
+    if g.kind != GroupKind::Linear {
+        // wrap the angle / renormalise the quaternion; a translation leaves the orientation
+        // bit for bit as it was, so that the step stays within one group
+        space.normalize(&mut next);
+    }
+    if next.as_slice() == current {
+        return Ok(Step::Stayed);
+    }
+    Ok(Step::Moved(next))
 }
 
 /// Walks from the free configuration `start` towards `target` one DOF group at a time, each step

@@ -9,6 +9,7 @@
 //! | [`graph`] | nodes, edges, components: the [`Roadmap`] |
 //! | [`header`] | how a roadmap was learnt and for which scene: the [`Header`] |
 //! | [`bounce`] | random-bounce walks driven by exact free sections |
+//! | [`bodies_walk`] | walks of several bodies: one body at a time, slides of all in turn |
 //! | [`learn`] | construction and expansion in reproducible parallel rounds; answers kept ([`Roadmap::with_path`]); merges ([`Learner::merge`]) |
 //! | [`shard`] | one of N roadmaps learnt apart, from its own random streams |
 //! | [`persist`] | the file: magic, version, header, checksum, atomic save |
@@ -42,6 +43,7 @@
 //! # }
 //! ```
 
+pub mod bodies_walk;
 pub mod bounce;
 pub mod centre;
 pub mod graph;
