@@ -28,6 +28,7 @@ mod bench_local;
 mod bodies;
 mod bodies3;
 mod bodies_commands;
+mod bodies_walks;
 mod budgets;
 mod certify;
 mod cli;
