@@ -30,7 +30,7 @@
 //! pocket while the others stand in order beside it is a handful of slides from the start, and
 //! almost never a uniform sample.
 
-use super::bounce::{free_section, group_step, random_direction, Step, SECTION_MARGIN};
+use super::step::{free_section, group_step, random_direction, Step, SECTION_MARGIN};
 use crate::deadline::Deadline;
 use crate::interval::Interval;
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};

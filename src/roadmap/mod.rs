@@ -58,6 +58,7 @@ pub mod query;
 pub mod rooted;
 pub mod sampler;
 pub mod shard;
+mod step;
 pub mod tree;
 
 pub use graph::{Edge, Roadmap};
