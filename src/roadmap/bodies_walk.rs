@@ -132,7 +132,7 @@ impl Stepper<'_> {
 
     /// Body `body` moved along `d` to just short of its contact ahead; `None` when it cannot
     /// move forward.
-    fn to_contact(
+    fn contact_step(
         &mut self,
         g: &Group,
         current: &[f64],
@@ -143,14 +143,14 @@ impl Stepper<'_> {
             return Ok(None);
         };
         let t = section.hi - SECTION_MARGIN * section.length();
-        if !(t > 0.0) {
+        if t.is_nan() || t <= 0.0 {
             return Ok(None);
         }
         Ok(Some(motion.at(t)).filter(|q| q.as_slice() != current))
     }
 
     /// Body `body` moved along `d` to a random point of its free section (either way).
-    fn to_random_point<R: Rng + ?Sized>(
+    fn random_point_step<R: Rng + ?Sized>(
         &mut self,
         g: &Group,
         current: &[f64],
@@ -163,7 +163,7 @@ impl Stepper<'_> {
         };
         let margin = SECTION_MARGIN * section.length();
         let (lo, hi) = (section.lo + margin, section.hi - margin);
-        if !(hi > lo) {
+        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
             return Ok(None);
         }
         let t = rng.random_range(lo..hi);
@@ -181,9 +181,9 @@ impl Stepper<'_> {
         let body = rng.random_range(0..bodies);
         let d = body_direction(g.coords.len(), rng);
         if rng.random::<f64>() < CONTACT_SHARE {
-            self.to_contact(g, current, body, &d)
+            self.contact_step(g, current, body, &d)
         } else {
-            self.to_random_point(g, current, body, &d, rng)
+            self.random_point_step(g, current, body, &d, rng)
         }
     }
 
@@ -212,7 +212,7 @@ impl Stepper<'_> {
             if deadline.expired() {
                 break;
             }
-            if let Some(next) = self.to_contact(g, &q, body, &d)? {
+            if let Some(next) = self.contact_step(g, &q, body, &d)? {
                 corners.push(next.clone());
                 q = next;
             }
