@@ -26,11 +26,8 @@ fn every_panda_polytope_lies_in_its_cover() {
     for s in &arm.shapes {
         assert!(!s.cover.is_empty(), "link {} has no cover", s.link);
         assert!(s.cover.len() <= viaroad::robot::cover::MOST_BALLS);
-        let inside = |p: &nalgebra::Point3<f64>| {
-            s.cover
-                .iter()
-                .any(|b| (p - b.centre).norm() <= b.radius)
-        };
+        let inside =
+            |p: &nalgebra::Point3<f64>| s.cover.iter().any(|b| (p - b.centre).norm() <= b.radius);
         let m = &s.polytope;
         for v in &m.vertices {
             assert!(inside(v), "link {}: vertex {v:?} outside its cover", s.link);
@@ -50,7 +47,11 @@ fn every_panda_polytope_lies_in_its_cover() {
         let (lo, hi) = m.aabb();
         let one = (hi - lo).norm() / 2.0;
         let most = s.cover.iter().map(|b| b.radius).fold(0.0, f64::max);
-        assert!(most <= one * (1.0 + 1e-6), "link {}: {most} > {one}", s.link);
+        assert!(
+            most <= one * (1.0 + 1e-6),
+            "link {}: {most} > {one}",
+            s.link
+        );
         shapes += 1;
     }
     assert!(shapes >= 8, "only {shapes} shapes");
@@ -93,9 +94,15 @@ fn covers_keep_the_static_verdicts_and_every_motion_they_prove_is_free() {
         if with.straight_free(q0, &q1, &mut counts).unwrap() {
             let path = [q0.clone(), q1];
             let report = checker.check_path(&path, step).unwrap();
-            assert!(report.valid, "proved free, the checker refuses it: {path:?} {report:?}");
+            assert!(
+                report.valid,
+                "proved free, the checker refuses it: {path:?} {report:?}"
+            );
             proved += 1;
         }
     }
-    assert!(proved >= asked / 4, "only {proved} of {asked} motions proved free");
+    assert!(
+        proved >= asked / 4,
+        "only {proved} of {asked} motions proved free"
+    );
 }

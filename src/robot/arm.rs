@@ -173,12 +173,10 @@ impl Arm {
                 });
             }
         }
-        shapes
-            .par_iter_mut()
-            .for_each(|s| {
-                s.inner = inner_balls(&s.polytope);
-                s.cover = cover(&s.polytope);
-            });
+        shapes.par_iter_mut().for_each(|s| {
+            s.inner = inner_balls(&s.polytope);
+            s.cover = cover(&s.polytope);
+        });
         let values = model
             .urdf
             .joints

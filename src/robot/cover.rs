@@ -277,8 +277,7 @@ mod tests {
 
     /// Every vertex and random points on every triangle of a mesh lie in some ball.
     pub(crate) fn assert_covers(mesh: &TriMesh, balls: &[CoverBall], what: &str) {
-        let inside =
-            |p: &Point3<f64>| balls.iter().any(|b| (p - b.centre).norm() <= b.radius);
+        let inside = |p: &Point3<f64>| balls.iter().any(|b| (p - b.centre).norm() <= b.radius);
         for v in &mesh.vertices {
             assert!(inside(v), "{what}: vertex {v:?} outside the cover");
         }

@@ -131,4 +131,3 @@ pub(crate) fn robot_xml<'t>(
     }
     Ok(doc)
 }
-

@@ -424,10 +424,7 @@ fn se3(pose: &Isometry3<f64>) -> Vec<f64> {
 /// The scene's collision objects placed in the world (curved primitives circumscribed): each
 /// part's mesh with its ball, its exact solid where it has one (for the sure test), its box and
 /// the outer shape that holds it (for the covers).
-fn place_objects(
-    arm: &Arm,
-    objects: &[CollisionObject],
-) -> Result<PlacedObjects, RobotError> {
+fn place_objects(arm: &Arm, objects: &[CollisionObject]) -> Result<PlacedObjects, RobotError> {
     let mut environment = Vec::new();
     let mut solids = Vec::new();
     let mut env_boxes = Vec::new();
@@ -630,14 +627,16 @@ impl ArmOracle {
         counts: &mut CallCounts,
     ) -> bool {
         self.pair_oracles.get(&(a, b)).is_some_and(|o| {
-            self.cover_to_link(a, &poses[a], b, &poses[b]) <= o.tolerance() * CLEARANCE_PER_TOLERANCE
+            self.cover_to_link(a, &poses[a], b, &poses[b])
+                <= o.tolerance() * CLEARANCE_PER_TOLERANCE
                 && !self.apart(
-                l_cloud(&self.link_clouds, a),
-                &poses[a],
-                l_cloud(&self.link_clouds, b),
-                &poses[b],
-                o,
-            ) && o.collides(&se3(&(poses[b].inverse() * poses[a])), counts)
+                    l_cloud(&self.link_clouds, a),
+                    &poses[a],
+                    l_cloud(&self.link_clouds, b),
+                    &poses[b],
+                    o,
+                )
+                && o.collides(&se3(&(poses[b].inverse() * poses[a])), counts)
         })
     }
 
