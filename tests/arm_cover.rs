@@ -69,13 +69,28 @@ fn covers_keep_the_static_verdicts_and_every_motion_they_prove_is_free() {
     let step = 0.001 * checker.arm().group.max_extent();
     let mut rng = ChaCha8Rng::seed_from_u64(13);
     let mut counts = CallCounts::default();
+    let configs: Vec<_> = (0..400)
+        .map(|_| scene.space.sample_uniform(&mut rng))
+        .collect();
+    // the reference on a thread of its own: the static memo is per thread (and per oracle id,
+    // which the clone shares), so no verdict of one is read by the other
+    let reference: Vec<bool> = std::thread::scope(|s| {
+        s.spawn(|| {
+            let mut counts = CallCounts::default();
+            configs
+                .iter()
+                .map(|q| without.collides(q, &mut counts).unwrap())
+                .collect()
+        })
+        .join()
+        .unwrap()
+    });
     let mut free_configs = Vec::new();
-    for _ in 0..400 {
-        let q = scene.space.sample_uniform(&mut rng);
-        let verdict = with.collides(&q, &mut counts).unwrap();
-        assert_eq!(verdict, without.collides(&q, &mut counts).unwrap(), "{q:?}");
+    for (q, expected) in configs.iter().zip(reference) {
+        let verdict = with.collides(q, &mut counts).unwrap();
+        assert_eq!(verdict, expected, "{q:?}");
         if !verdict {
-            free_configs.push(q);
+            free_configs.push(q.clone());
         }
     }
     assert!(free_configs.len() >= 40, "{} free", free_configs.len());
