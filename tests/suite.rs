@@ -11,6 +11,7 @@ mod common;
 mod roadmap_support;
 
 mod arm_checker;
+mod arm_cover;
 mod arm_envelope;
 mod arm_mbm;
 mod arm_moveit;

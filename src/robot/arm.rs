@@ -1,6 +1,7 @@
 //! A loaded arm: the kinematic model, the collision geometry of every link, the link pairs
 //! checked for self-collision, and the planning group with the values of all other joints.
 
+use super::cover::{cover, CoverBall};
 use super::inner::{inner_balls, InnerBall};
 use super::kinematics::{Group, Model};
 use super::shapes::Primitive;
@@ -79,6 +80,9 @@ pub struct LinkShape {
     /// ([`super::inner`]); none where the polytope is not closed. Found once per robot load,
     /// not per scene.
     pub inner: Vec<InnerBall>,
+    /// Balls whose union holds `polytope`, in the element's frame, for the oracle's cheap
+    /// proof of "apart" ([`super::cover`]). Found once per robot load, not per scene.
+    pub cover: Vec<CoverBall>,
 }
 
 /// A robot arm ready for planning: model, geometry, self-collision pairs, group.
@@ -165,12 +169,14 @@ impl Arm {
                     polytope,
                     envelope_gap,
                     inner: Vec::new(),
+                    cover: Vec::new(),
                 });
             }
         }
-        shapes
-            .par_iter_mut()
-            .for_each(|s| s.inner = inner_balls(&s.polytope));
+        shapes.par_iter_mut().for_each(|s| {
+            s.inner = inner_balls(&s.polytope);
+            s.cover = cover(&s.polytope);
+        });
         let values = model
             .urdf
             .joints

@@ -17,11 +17,13 @@
 //! | [`objects`] | the world's collision objects: primitives and meshes placed in a frame |
 //! | [`oracle`] | exact collision intervals of a single-joint move (the polyhedra oracle's rotations) |
 //! | [`inner`] | balls inside the links: a sure collision test ahead of the exact one |
+//! | [`cover`] | balls about the links and shapes about the obstacles: a cheap proof of "apart" |
 //! | [`checker`] | the independent checker: parry `intersection_test` of every pair, sampled paths |
 
 pub mod arm;
 pub mod checker;
 mod clearance;
+pub mod cover;
 pub mod inner;
 pub mod kinematics;
 pub mod objects;

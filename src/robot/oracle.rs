@@ -59,6 +59,7 @@
 
 use super::arm::Arm;
 use super::clearance::{self, Cloud, Move, Pair};
+use super::cover::{CoverBall, Outer};
 use super::inner::{InnerBall, Solid};
 use super::objects::{CollisionObject, ObjectShape};
 use super::RobotError;
@@ -284,6 +285,13 @@ pub struct ArmOracle {
     /// Per environment polytope: its box in its own frame, with the map from the world into
     /// that frame ([`ObstacleBox`]).
     env_boxes: Vec<ObstacleBox>,
+    /// Per link: balls whose union holds its polytope, in the link frame ([`super::cover`]).
+    covers: Vec<Vec<CoverBall>>,
+    /// Per environment polytope: a convex shape that holds it ([`super::cover::Outer`]).
+    outers: Vec<Outer>,
+    /// Whether the covers prove pairs apart before the separating planes
+    /// ([`ArmOracle::with_covers`]).
+    use_covers: bool,
     /// This oracle's key in the thread's memo of static link tests ([`STATIC_MEMO`]): unique
     /// per construction, so that no other oracle's answers are ever read.
     id: u64,
@@ -414,15 +422,13 @@ fn se3(pose: &Isometry3<f64>) -> Vec<f64> {
 }
 
 /// The scene's collision objects placed in the world (curved primitives circumscribed): each
-/// part's mesh with its ball, its exact solid where it has one (for the sure test), and its box.
-#[allow(clippy::type_complexity)]
-fn place_objects(
-    arm: &Arm,
-    objects: &[CollisionObject],
-) -> Result<(Vec<(TriMesh, Ball)>, Vec<Option<Solid>>, Vec<ObstacleBox>), RobotError> {
+/// part's mesh with its ball, its exact solid where it has one (for the sure test), its box and
+/// the outer shape that holds it (for the covers).
+fn place_objects(arm: &Arm, objects: &[CollisionObject]) -> Result<PlacedObjects, RobotError> {
     let mut environment = Vec::new();
     let mut solids = Vec::new();
     let mut env_boxes = Vec::new();
+    let mut outers = Vec::new();
     for o in objects {
         let what = || format!("collision object {}", o.id);
         let at = arm.frame_pose(&o.frame).map_err(|e| RobotError::Config {
@@ -442,14 +448,25 @@ fn place_objects(
             let ball = Ball::of(&world);
             environment.push((world, ball));
             env_boxes.push(ObstacleBox::of(&local, &in_world));
-            solids.push(match shape {
-                ObjectShape::Primitive(p) => Solid::of(p, &in_world),
+            let primitive = match shape {
+                ObjectShape::Primitive(p) => Some(p),
                 ObjectShape::Mesh(_) => None,
-            });
+            };
+            outers.push(Outer::of(primitive, &local, &in_world));
+            solids.push(primitive.and_then(|p| Solid::of(p, &in_world)));
         }
     }
-    Ok((environment, solids, env_boxes))
+    Ok((environment, solids, env_boxes, outers))
 }
+
+/// [`place_objects`]' answer: the polytopes with their balls, the exact solids, the boxes and
+/// the outer shapes, one of each per part.
+type PlacedObjects = (
+    Vec<(TriMesh, Ball)>,
+    Vec<Option<Solid>>,
+    Vec<ObstacleBox>,
+    Vec<Outer>,
+);
 
 /// Each link's inner balls (found at load) in its link's frame, largest first, for the sure
 /// test.
@@ -473,11 +490,29 @@ fn inner_balls(arm: &Arm) -> Vec<Vec<InnerBall>> {
         .collect()
 }
 
+/// Each link's cover (its elements' covers, found at load) in its link's frame.
+fn link_covers(arm: &Arm) -> Vec<Vec<CoverBall>> {
+    (0..arm.model.urdf.links.len())
+        .map(|l| {
+            arm.shapes
+                .iter()
+                .filter(|s| s.link == l)
+                .flat_map(|s| {
+                    s.cover.iter().map(|b| CoverBall {
+                        centre: s.origin * b.centre,
+                        radius: b.radius * (1.0 + 1e-12),
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
 impl ArmOracle {
     /// The oracle of `arm` (with its group, other joint values, base and exempt pairs as set)
     /// among the scene's collision objects (curved primitives circumscribed).
     pub fn new(arm: &Arm, objects: &[CollisionObject]) -> Result<ArmOracle, RobotError> {
-        let (environment, solids, env_boxes) = place_objects(arm, objects)?;
+        let (environment, solids, env_boxes, outers) = place_objects(arm, objects)?;
         let link_meshes = (0..arm.model.urdf.links.len())
             .map(|l| {
                 merged(
@@ -551,6 +586,7 @@ impl ArmOracle {
             .map(|(m, _)| Cloud::of(&m.vertices))
             .collect();
         let inner = inner_balls(arm);
+        let covers = link_covers(arm);
         let reach = reach::reach_of(
             &arm.model,
             link_meshes.iter().map(|m| m.as_ref().map(|(mesh, _)| mesh)),
@@ -562,6 +598,9 @@ impl ArmOracle {
             solids,
             sure_test: true,
             env_boxes,
+            covers,
+            outers,
+            use_covers: true,
             environment,
             link_meshes,
             pair_oracles,
@@ -588,13 +627,16 @@ impl ArmOracle {
         counts: &mut CallCounts,
     ) -> bool {
         self.pair_oracles.get(&(a, b)).is_some_and(|o| {
-            !self.apart(
-                l_cloud(&self.link_clouds, a),
-                &poses[a],
-                l_cloud(&self.link_clouds, b),
-                &poses[b],
-                o,
-            ) && o.collides(&se3(&(poses[b].inverse() * poses[a])), counts)
+            self.cover_to_link(a, &poses[a], b, &poses[b])
+                <= o.tolerance() * CLEARANCE_PER_TOLERANCE
+                && !self.apart(
+                    l_cloud(&self.link_clouds, a),
+                    &poses[a],
+                    l_cloud(&self.link_clouds, b),
+                    &poses[b],
+                    o,
+                )
+                && o.collides(&se3(&(poses[b].inverse() * poses[a])), counts)
         })
     }
 
@@ -639,8 +681,10 @@ impl ArmOracle {
         let Some(o) = &self.env_oracles[l] else {
             return false;
         };
+        let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
         let near = |(i, (_, b)): &(usize, &(TriMesh, Ball))| {
             b.meets(ball)
+                && self.cover_to_obstacle(l, pose, *i) <= margin
                 && !self.apart(
                     l_cloud(&self.link_clouds, l),
                     pose,
@@ -650,6 +694,44 @@ impl ArmOracle {
                 )
         };
         self.environment.iter().enumerate().any(|e| near(&e)) && o.collides(&se3(pose), counts)
+    }
+
+    /// A lower bound on the distance from link `l` at `pose` to obstacle `i`: the least distance
+    /// from a ball of the link's cover to the obstacle's outer shape ([`super::cover`]); 0
+    /// with the covers off or without a cover.
+    fn cover_to_obstacle(&self, l: usize, pose: &Isometry3<f64>, i: usize) -> f64 {
+        let balls = &self.covers[l];
+        if !self.use_covers || balls.is_empty() {
+            return 0.0;
+        }
+        let outer = &self.outers[i];
+        balls
+            .iter()
+            .map(|b| outer.distance(&(pose * b.centre)) - b.radius)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// A lower bound on the distance between links `a` and `b` at these poses: the least
+    /// distance between balls of their covers; 0 with the covers off or without covers.
+    fn cover_to_link(
+        &self,
+        a: usize,
+        pose_a: &Isometry3<f64>,
+        b: usize,
+        pose_b: &Isometry3<f64>,
+    ) -> f64 {
+        let (ca, cb) = (&self.covers[a], &self.covers[b]);
+        if !self.use_covers || ca.is_empty() || cb.is_empty() {
+            return 0.0;
+        }
+        let mut least = f64::INFINITY;
+        for x in ca {
+            let px = pose_a * x.centre;
+            for y in cb {
+                least = least.min((px - pose_b * y.centre).norm() - x.radius - y.radius);
+            }
+        }
+        least
     }
 
     /// Whether conservative advancement's clouds (with culling on) show two bodies more than
@@ -947,6 +1029,14 @@ impl ArmOracle {
     /// default.
     pub fn with_sure_test(mut self, on: bool) -> ArmOracle {
         self.sure_test = on;
+        self
+    }
+
+    /// Switches the outer sphere covers ([`super::cover`]) on or off: pairs they prove apart
+    /// skip the separating planes (static tests and straight motions). The same verdicts
+    /// either way, only slower off. On by default.
+    pub fn with_covers(mut self, on: bool) -> ArmOracle {
+        self.use_covers = on;
         self
     }
 

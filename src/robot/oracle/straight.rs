@@ -25,7 +25,8 @@
 //! p50 fell from 1.3–2.3 ms to 0.4–0.5 ms.
 //!
 //! Every link–obstacle and non-exempt link–link pair whose balls, grown by the motion's bound,
-//! meet is proved apart from both ends plane after plane, or the motion is not certified. Near
+//! meet, and whose outer sphere covers ([`crate::robot::cover`]), grown alike, come near, is
+//! proved apart from both ends plane after plane, or the motion is not certified. Near
 //! contact the planes' steps shrink and the proof gives up: a motion it does not prove is
 //! treated as blocked (planners ask only the yes/no question), never as a collision found.
 
@@ -69,8 +70,10 @@ fn interrupted() -> Result<(), RobotError> {
 /// fast the links' points move.
 struct Straight<'a> {
     oracle: &'a ArmOracle,
-    q0: &'a [f64],
-    q1: &'a [f64],
+    /// Every joint's value at the start (the group's from `q0`, the others as set).
+    start: Vec<f64>,
+    /// [`Self::place`]'s buffer of every joint's value.
+    values: std::cell::RefCell<Vec<f64>>,
     /// Each joint's change over the motion ([`ArmOracle::joint_deltas`]).
     delta: Vec<f64>,
     /// Each joint's rate: the size of its change.
@@ -84,6 +87,10 @@ struct Pieces {
     n: usize,
     /// Each piece's grown balls, link by link (`None`: no geometry).
     balls: Vec<Vec<Option<Ball>>>,
+    /// Each piece's link poses (at its middle), where the covers are placed.
+    poses: Vec<Vec<Isometry3<f64>>>,
+    /// Per link, how far its points may move in half a piece.
+    grow: Vec<f64>,
 }
 
 impl Pieces {
@@ -114,32 +121,34 @@ impl Straight<'_> {
             .sum()
     }
 
-    /// The group's joint values at `t`.
-    fn values(&self, t: f64) -> Vec<f64> {
-        self.q0
-            .iter()
-            .zip(self.q1)
-            .map(|(a, b)| a + t * (b - a))
-            .collect()
-    }
-
-    /// The link poses at `t`.
+    /// The link poses at `t` (every joint's value from the motion's start and change, in a
+    /// buffer the motion keeps: no allocation per moment).
     fn place(&self, t: f64, poses: &mut [Isometry3<f64>]) {
         let arm = &self.oracle.arm;
-        arm.model
-            .link_poses_into(&arm.base, &arm.full_values(&self.values(t)), poses);
+        let mut values = self.values.borrow_mut();
+        for ((v, a), d) in values.iter_mut().zip(&self.start).zip(&self.delta) {
+            *v = a + t * d;
+        }
+        arm.model.link_poses_into(&arm.base, &values, poses);
     }
 
     /// Whether the sure test finds a collision at a few points along the motion, halving the
     /// step each round.
-    fn surely_collides_somewhere(&self) -> bool {
+    fn surely_collides_somewhere(&self, poses: &mut [Isometry3<f64>]) -> bool {
+        let o = self.oracle;
+        let mut balls = Vec::with_capacity(poses.len());
         let mut k = 2;
         while k <= SURE_SAMPLES {
             for i in (1..k).step_by(2) {
-                if self
-                    .oracle
-                    .surely_collides(&self.values(i as f64 / k as f64))
-                {
+                self.place(i as f64 / k as f64, poses);
+                balls.clear();
+                balls.extend(
+                    o.link_meshes
+                        .iter()
+                        .zip(poses.iter())
+                        .map(|(m, p)| m.as_ref().map(|(_, b)| b.placed(p))),
+                );
+                if o.surely_collides_at(poses, &balls) {
                     return true;
                 }
             }
@@ -157,8 +166,13 @@ impl Straight<'_> {
             .fold(0.0, f64::max);
         let n = ((fastest_link / PIECE_GROWTH).ceil() as usize).clamp(1, MAX_PIECES);
         let mut balls: Vec<Vec<Option<Ball>>> = Vec::with_capacity(n);
+        let mut at = Vec::with_capacity(n);
+        let grow = (0..o.link_meshes.len())
+            .map(|l| self.speed(l, None) / (2 * n) as f64)
+            .collect();
         for p in 0..n {
             self.place((p as f64 + 0.5) / n as f64, poses);
+            at.push(poses.to_vec());
             balls.push(
                 o.link_meshes
                     .iter()
@@ -173,7 +187,12 @@ impl Straight<'_> {
                     .collect(),
             );
         }
-        Pieces { n, balls }
+        Pieces {
+            n,
+            balls,
+            poses: at,
+            grow,
+        }
     }
 
     /// How fast link `l`'s points may move at the poses of a moment, by the joints between it
@@ -237,19 +256,20 @@ impl ArmOracle {
         self.arm.check_config(q1, "configuration")?;
         counts.segment_calls += 1;
         let delta = self.joint_deltas(q0, q1);
+        let start = self.arm.full_values(q0);
         let motion = Straight {
             oracle: self,
-            q0,
-            q1,
+            values: std::cell::RefCell::new(start.clone()),
+            start,
             rate: delta.iter().map(|d| d.abs()).collect(),
             delta,
         };
+        let mut poses = vec![Isometry3::identity(); self.arm.model.urdf.links.len()];
         // a motion through an obstacle is found by the sure test at a few points along it
         // (~1 µs each) before advancement creeps up to the contact plane by plane
-        if self.sure_test && motion.surely_collides_somewhere() {
+        if self.sure_test && motion.surely_collides_somewhere(&mut poses) {
             return Ok(false);
         }
-        let mut poses = vec![Isometry3::identity(); self.arm.model.urdf.links.len()];
         let pieces = motion.pieces(&mut poses);
         if !self.self_pairs_apart(&motion, &pieces, &mut poses, counts)? {
             return Ok(false);
@@ -267,52 +287,77 @@ impl ArmOracle {
         counts: &mut CallCounts,
     ) -> Result<bool, RobotError> {
         for &(a, b) in &self.arm.self_pairs {
+            let margin = self
+                .pair_oracles
+                .get(&(a, b))
+                .map_or(0.0, |o| o.tolerance() * CLEARANCE_PER_TOLERANCE);
+            // the links' balls meet, and so do their covers' balls, grown alike
             let near = |p: usize| match (&pieces.balls[p][a], &pieces.balls[p][b]) {
-                (Some(ba), Some(bb)) => ba.meets(bb),
+                (Some(ba), Some(bb)) => {
+                    ba.meets(bb) && {
+                        let at = &pieces.poses[p];
+                        self.cover_to_link(a, &at[a], b, &at[b])
+                            <= pieces.grow[a] + pieces.grow[b] + margin
+                    }
+                }
                 _ => false,
             };
             let windows = pieces.runs(&near);
             if windows.is_empty() {
                 continue;
             }
-            let (Some(ca), Some(cb), Some(o)) = (
-                l_cloud(&self.link_clouds, a),
-                l_cloud(&self.link_clouds, b),
-                self.pair_oracles.get(&(a, b)),
-            ) else {
-                return Ok(false);
-            };
-            counts.pairs_tested += 1;
-            let relative = motion.speed(a, Some(b)) + motion.speed(b, Some(a));
-            let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
-            let mut at = |t: f64| {
-                motion.place(t, poses);
-                let (sa, sb) = (
-                    motion.tight(a, Some(b), poses),
-                    motion.tight(b, Some(a), poses),
-                );
-                let along = self
-                    .moving(a, Some(b), &motion.delta, poses)
-                    .zip(self.moving(b, Some(a), &motion.delta, poses))
-                    .map(|((ma, xa), (mb, xb))| clearance::Along {
-                        bodies: [ma, mb],
-                        accel: xa + xb,
-                    });
-                let speed = Speed {
-                    rate: sa.rate + sb.rate,
-                    growth: sa.growth + sb.growth,
-                    along,
-                };
-                (poses[a], poses[b], speed)
-            };
             for w in windows {
                 interrupted()?;
-                if !clearance::apart_along(ca, cb, &mut at, w, relative, margin, MAX_PLANES) {
+                if !self.pair_apart_in(a, b, motion, w, poses, counts) {
                     return Ok(false);
                 }
             }
         }
         Ok(true)
+    }
+
+    /// Whether links `a` and `b` (a self pair) are proved apart by separating planes over the
+    /// window `w` of the motion (`false`: not proved).
+    fn pair_apart_in(
+        &self,
+        a: usize,
+        b: usize,
+        motion: &Straight,
+        w: Interval,
+        poses: &mut [Isometry3<f64>],
+        counts: &mut CallCounts,
+    ) -> bool {
+        let (Some(ca), Some(cb), Some(o)) = (
+            l_cloud(&self.link_clouds, a),
+            l_cloud(&self.link_clouds, b),
+            self.pair_oracles.get(&(a, b)),
+        ) else {
+            return false;
+        };
+        counts.pairs_tested += 1;
+        let relative = motion.speed(a, Some(b)) + motion.speed(b, Some(a));
+        let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
+        let mut at = |t: f64| {
+            motion.place(t, poses);
+            let (sa, sb) = (
+                motion.tight(a, Some(b), poses),
+                motion.tight(b, Some(a), poses),
+            );
+            let along = self
+                .moving(a, Some(b), &motion.delta, poses)
+                .zip(self.moving(b, Some(a), &motion.delta, poses))
+                .map(|((ma, xa), (mb, xb))| clearance::Along {
+                    bodies: [ma, mb],
+                    accel: xa + xb,
+                });
+            let speed = Speed {
+                rate: sa.rate + sb.rate,
+                growth: sa.growth + sb.growth,
+                along,
+            };
+            (poses[a], poses[b], speed)
+        };
+        clearance::apart_along(ca, cb, &mut at, w, relative, margin, MAX_PLANES)
     }
 
     /// Whether every link is proved apart from every obstacle along the motion, over the pieces
@@ -328,46 +373,65 @@ impl ArmOracle {
             if self.link_meshes[l].is_none() {
                 continue;
             }
-            let fastest = motion.speed(l, None);
-            let mut at = |t: f64| {
-                motion.place(t, poses);
-                let mut speed = motion.tight(l, None, poses);
-                speed.along = self
-                    .moving(l, None, &motion.delta, poses)
-                    .map(|(m, accel)| clearance::Along {
-                        bodies: [m, clearance::Moving::default()],
-                        accel,
-                    });
-                (poses[l], Isometry3::identity(), speed)
-            };
-            for (i, (_, ob)) in self.environment.iter().enumerate() {
+            let margin = self.env_oracles[l]
+                .as_ref()
+                .map_or(0.0, |o| o.tolerance() * CLEARANCE_PER_TOLERANCE);
+            for i in 0..self.environment.len() {
+                let ob = &self.environment[i].1;
+                // the link's ball meets the obstacle's ball and box, and its cover's balls,
+                // grown alike, the obstacle's outer shape
                 let near = |p: usize| {
                     pieces.balls[p][l].as_ref().is_some_and(|b| {
-                        b.meets(ob) && (!self.culling || self.env_boxes[i].meets_ball(b))
+                        b.meets(ob)
+                            && (!self.culling || self.env_boxes[i].meets_ball(b))
+                            && self.cover_to_obstacle(l, &pieces.poses[p][l], i)
+                                <= pieces.grow[l] + margin
                     })
                 };
-                let windows = pieces.runs(&near);
-                if windows.is_empty() {
-                    continue;
-                }
-                let (Some(cl), Some(o), Some(ce)) = (
-                    l_cloud(&self.link_clouds, l),
-                    &self.env_oracles[l],
-                    self.env_clouds[i].as_ref(),
-                ) else {
-                    return Ok(false);
-                };
-                let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
-                counts.pairs_tested += 1;
-                for w in windows {
+                for w in pieces.runs(&near) {
                     interrupted()?;
-                    if !clearance::apart_along(cl, ce, &mut at, w, fastest, margin, MAX_PLANES) {
+                    if !self.env_apart_in(l, i, motion, w, poses, counts) {
                         return Ok(false);
                     }
                 }
             }
         }
         Ok(true)
+    }
+
+    /// Whether link `l` is proved apart from environment polytope `i` by separating planes
+    /// over the window `w` of the motion (`false`: not proved).
+    fn env_apart_in(
+        &self,
+        l: usize,
+        i: usize,
+        motion: &Straight,
+        w: Interval,
+        poses: &mut [Isometry3<f64>],
+        counts: &mut CallCounts,
+    ) -> bool {
+        let (Some(cl), Some(o), Some(ce)) = (
+            l_cloud(&self.link_clouds, l),
+            &self.env_oracles[l],
+            self.env_clouds[i].as_ref(),
+        ) else {
+            return false;
+        };
+        let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
+        counts.pairs_tested += 1;
+        let fastest = motion.speed(l, None);
+        let mut at = |t: f64| {
+            motion.place(t, poses);
+            let mut speed = motion.tight(l, None, poses);
+            speed.along = self
+                .moving(l, None, &motion.delta, poses)
+                .map(|(m, accel)| clearance::Along {
+                    bodies: [m, clearance::Moving::default()],
+                    accel,
+                });
+            (poses[l], Isometry3::identity(), speed)
+        };
+        clearance::apart_along(cl, ce, &mut at, w, fastest, margin, MAX_PLANES)
     }
 
     /// Per link, a bound on how far any point of the link (of any of its collision shapes:
