@@ -704,27 +704,7 @@ pub fn run_workcell(
         groups: &groups,
         straight: o.straight,
     };
-    // in turn with trees out of the roadmap, the query grows them itself after attaching
-    // (`QueryOptions::trees`, as `viaroad query` does); in turn from the bare ends, the
-    // roadmap's query gets half the time and the trees the rest
-    // racing or in turn, trees out of the roadmap are the query's own (`QueryOptions::trees`,
-    // `QueryOptions::race`, as `viaroad query` grows them); trees from the bare ends are
-    // grown here, beside the query or after its half of the time
-    let in_query = o.trees_from_roadmap;
-    let roadmap_time = if o.trees.is_some() && o.race.is_none() && !in_query {
-        o.query_time / 2
-    } else {
-        o.query_time
-    };
-    let options = QueryOptions {
-        time: Some(roadmap_time),
-        trees: o.trees.clone().filter(|_| in_query),
-        race: o.race.filter(|_| in_query),
-        return_trees: o.keep_trees,
-        straight_shortcuts: o.straight,
-        exact_shortening_limit: o.exact_shortening_limit,
-        ..QueryOptions::default()
-    };
+    let options = query_options(o);
     let arm = &check.arm().clone();
     // requests are validated with an oracle of their own: the queries' oracle keeps its
     // answers (static checks among them), and a query must not find its ends checked by the
@@ -807,6 +787,28 @@ pub fn run_workcell(
     r.length = Stats::of(&lengths);
     r.latencies_ms = times;
     Ok(r)
+}
+
+/// The workcell's query options: racing or in turn, trees out of the roadmap are the query's
+/// own ([`QueryOptions::trees`], [`QueryOptions::race`], as `viaroad query` grows them); trees
+/// from the bare ends are grown by [`answer_request`], beside the query or after its half of
+/// the time.
+fn query_options(o: &WorkcellOptions) -> QueryOptions {
+    let in_query = o.trees_from_roadmap;
+    let roadmap_time = if o.trees.is_some() && o.race.is_none() && !in_query {
+        o.query_time / 2
+    } else {
+        o.query_time
+    };
+    QueryOptions {
+        time: Some(roadmap_time),
+        trees: o.trees.clone().filter(|_| in_query),
+        race: o.race.filter(|_| in_query),
+        return_trees: o.keep_trees,
+        straight_shortcuts: o.straight,
+        exact_shortening_limit: o.exact_shortening_limit,
+        ..QueryOptions::default()
+    }
 }
 
 /// What learning and training a workcell's roadmap ask: its first scene, the queries'
