@@ -877,10 +877,16 @@ impl Workcell<'_> {
             return Ok(roadmap);
         }
         let check = self.check;
+        // the trees in turn, not racing the roadmap on the pool: which side answers first
+        // would decide what is kept, and the trained roadmap would depend on the machine
+        let in_turn = QueryOptions {
+            race: None,
+            ..self.options.clone()
+        };
         let kept = answer_keeping(
             roadmap,
             self.oracle,
-            self.options,
+            &in_turn,
             &requests,
             true,
             &Deadline::none(),
