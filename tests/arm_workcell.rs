@@ -55,6 +55,8 @@ fn every_workcell_answer_is_certified_with_the_trees_behind_or_beside_the_roadma
             keep_trees: false,
             trees_from_roadmap,
             straight: true,
+            train: Vec::new(),
+            exact_shortening_limit: 32,
         };
         let r = run_workcell(&robot, &problems, &options, &dir.join("box.roadmap")).unwrap();
         assert_eq!(r.requests, 3);
@@ -107,6 +109,8 @@ fn every_edge_a_kept_answer_adds_is_certified() {
         keep_trees: false,
         trees_from_roadmap: true,
         straight: true,
+        train: Vec::new(),
+        exact_shortening_limit: 32,
     };
     let r = run_workcell(&robot, &problems, &options, &dir.join("table_pick.roadmap")).unwrap();
     assert_eq!((r.latencies_ms.len(), r.calls.len()), (r.valid, r.valid));
@@ -152,6 +156,8 @@ fn kept_trees_add_certified_edges_beyond_the_answer() {
             keep_trees,
             trees_from_roadmap: true,
             straight: true,
+            train: Vec::new(),
+            exact_shortening_limit: 32,
         };
         let name = format!("box-{keep_trees}.roadmap");
         let r = run_workcell(&robot, &problems, &options, &dir.join(&name)).unwrap();
@@ -183,5 +189,52 @@ fn kept_trees_add_certified_edges_beyond_the_answer() {
         with_corners > 0,
         "an extend's stairs are kept as one edge through their corners"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_workcell_trained_on_example_requests_keeps_certified_edges_and_answers_them() {
+    // the box's goals lie inside it: the 40-node roadmap reaches none, trees answer them.
+    // Trained on the family's requests (offline, before the roadmap is saved), the saved
+    // roadmap holds their answers and trees, every added edge certified, and a request asked
+    // again attaches inside the box: no tree grows for it.
+    let (robot, problems, dir) = family("box", "train");
+    let options = WorkcellOptions {
+        budget: Budget::nodes(40),
+        seed: 1,
+        query_time: Duration::from_secs(8),
+        trees: Some(TreeParams {
+            max_nodes: Some(3000),
+            ..TreeParams::default()
+        }),
+        race: Some(Duration::from_millis(2)),
+        keep_answers: false,
+        keep_trees: false,
+        trees_from_roadmap: true,
+        straight: true,
+        train: problems.clone(),
+        exact_shortening_limit: 0,
+    };
+    let r = run_workcell(&robot, &problems, &options, &dir.join("box.roadmap")).unwrap();
+    assert!(r.train_valid >= 1, "{r:?}");
+    assert_eq!(r.train_kept, r.train_valid, "every example answered: {r:?}");
+    assert_eq!(r.train_valid, r.valid, "the same requests: {r:?}");
+    assert!(r.nodes > r.sampled_nodes, "{r:?}");
+    assert_eq!((r.solved, r.certified), (r.valid, r.valid), "{r:?}");
+    assert_eq!(
+        r.by_trees, 0,
+        "each request attaches to its kept answer: {r:?}"
+    );
+    let scene = problem_scene(&robot, &problems[0]).unwrap();
+    let trained = Roadmap::load(&dir.join("box.roadmap"), scene.fingerprint()).unwrap();
+    assert_eq!(trained.node_count(), r.nodes);
+    let check = checker(&scene).unwrap();
+    assert!(trained.edge_count() > r.sampled_edges);
+    for (e, edge) in trained.edges().iter().enumerate().skip(r.sampled_edges) {
+        let report = check
+            .check_path(&trained.edge_path(e, edge.a), check_step(&check))
+            .unwrap();
+        assert!(report.valid, "trained edge {e}: {report:?}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -483,10 +483,11 @@ fn shortening(options: &mut QueryOptions, shorten: &str) -> PyResult<()> {
     match shorten {
         "fast" => {}
         "exact" => options.exact_shortening_limit = usize::MAX,
+        "greedy" => options.exact_shortening_limit = 0,
         "off" => options.shorten = false,
         other => {
             return Err(QueryError::new_err(format!(
-                "shorten must be \"fast\", \"exact\" or \"off\", got {other:?}"
+                "shorten must be \"fast\", \"exact\", \"greedy\" or \"off\", got {other:?}"
             )))
         }
     }

@@ -26,6 +26,7 @@ use crate::local::{path_length, LocalMethod, LocalSpec};
 use crate::oracle::CollisionOracle;
 pub use crate::portfolio::{tree_stage, Planning, TreeStage};
 use crate::portfolio::{trees_found, Portfolio, Stage};
+use crate::roadmap::query::keep::answer_keeping;
 use crate::roadmap::tree::{Rooted, TreeParams};
 use crate::roadmap::{
     Budget, LearnParams, Learner, QueryOptions, QueryOutcome, QueryPlanner, QueryResult, Roadmap,
@@ -620,6 +621,16 @@ pub struct WorkcellResult {
     pub kept: usize,
     /// Nodes of the roadmap after the last request (more than `nodes` where answers were kept).
     pub nodes_after: usize,
+    /// Example requests learnt from ([`WorkcellOptions::train`]) valid in the first scene.
+    pub train_valid: usize,
+    /// Of those, answered, certified and kept.
+    pub train_kept: usize,
+    /// Seconds of learning from the examples (part of `learn_s`).
+    pub train_s: f64,
+    /// Nodes of the roadmap as learnt by sampling, before the examples (`nodes` after them).
+    pub sampled_nodes: usize,
+    /// Edges of the roadmap as learnt by sampling (those the examples added come after them).
+    pub sampled_edges: usize,
 }
 
 /// How [`run_workcell`] learns its roadmap and asks it.
@@ -661,6 +672,14 @@ pub struct WorkcellOptions {
     /// Shorten with straight motions of several joints at once where they are proved free
     /// ([`QueryOptions::straight_shortcuts`], [`Planning::straight`]).
     pub straight: bool,
+    /// Example requests the roadmap learns from offline, after sampling and before it is
+    /// saved ([`answer_keeping`]): each valid in the first scene is answered as a query would
+    /// be, and its path with the trees that found it, once the independent checker passes
+    /// the path, is kept. A benchmark takes them from problems it does not ask (held out),
+    /// so that no request is answered by its own kept answer.
+    pub train: Vec<Problem>,
+    /// The queries' [`QueryOptions::exact_shortening_limit`] (0: greedy passes alone).
+    pub exact_shortening_limit: usize,
 }
 
 /// Learns a roadmap of the family's first scene ([`WorkcellOptions`]), saves it to `save_to`,
@@ -685,42 +704,28 @@ pub fn run_workcell(
         groups: &groups,
         straight: o.straight,
     };
-    let (roadmap, learn_s, loads) =
-        learn_and_load(&scene, oracle.as_ref(), method.as_ref(), o, save_to)?;
-    let mut r = WorkcellResult {
-        family: first.family.clone(),
-        nodes: roadmap.node_count(),
-        learn_s,
-        learn_calls: roadmap.header().counts.intersect_calls(),
-        load_ms: Stats::of(&loads).p50,
-        requests: problems.len(),
-        ..WorkcellResult::default()
-    };
-    // in turn with trees out of the roadmap, the query grows them itself after attaching
-    // (`QueryOptions::trees`, as `viaroad query` does); in turn from the bare ends, the
-    // roadmap's query gets half the time and the trees the rest
-    // racing or in turn, trees out of the roadmap are the query's own (`QueryOptions::trees`,
-    // `QueryOptions::race`, as `viaroad query` grows them); trees from the bare ends are
-    // grown here, beside the query or after its half of the time
-    let in_query = o.trees_from_roadmap;
-    let roadmap_time = if o.trees.is_some() && o.race.is_none() && !in_query {
-        o.query_time / 2
-    } else {
-        o.query_time
-    };
-    let options = QueryOptions {
-        time: Some(roadmap_time),
-        trees: o.trees.clone().filter(|_| in_query),
-        race: o.race.filter(|_| in_query),
-        return_trees: o.keep_trees,
-        straight_shortcuts: o.straight,
-        ..QueryOptions::default()
-    };
+    let options = query_options(o);
     let arm = &check.arm().clone();
     // requests are validated with an oracle of their own: the queries' oracle keeps its
     // answers (static checks among them), and a query must not find its ends checked by the
     // validation outside its time
     let validator = scene.oracle();
+    let mut r = WorkcellResult {
+        family: first.family.clone(),
+        requests: problems.len(),
+        ..WorkcellResult::default()
+    };
+    let workcell = Workcell {
+        scene: &scene,
+        oracle: oracle.as_ref(),
+        validator: validator.as_ref(),
+        check: &check,
+        options: &options,
+    };
+    let (roadmap, loads) = workcell.learn_and_load(method.as_ref(), o, save_to, &mut r)?;
+    r.nodes = roadmap.node_count();
+    r.learn_calls = roadmap.header().counts.intersect_calls();
+    r.load_ms = Stats::of(&loads).p50;
     let mut roadmap = roadmap;
     let mut times = Vec::new();
     let (mut raw_lengths, mut lengths) = (Vec::new(), Vec::new());
@@ -784,33 +789,119 @@ pub fn run_workcell(
     Ok(r)
 }
 
-/// Learns the roadmap of the workcell, saves it to `save_to` and loads it back five times: the
-/// roadmap as loaded, the learning time and the load times (ms), since a workcell's roadmap is
-/// learnt once and loaded for every session.
-#[allow(clippy::type_complexity)]
-fn learn_and_load(
-    scene: &Scene,
-    oracle: &dyn CollisionOracle,
-    method: &dyn LocalMethod,
-    o: &WorkcellOptions,
-    save_to: &Path,
-) -> Result<(Roadmap, f64, Vec<f64>), Box<dyn std::error::Error + Send + Sync>> {
-    let learnt = Learner::for_scene(scene, oracle, method).learn(
-        &LearnParams::default(),
-        &o.budget,
-        o.seed,
-        &mut |_| {},
-    )?;
-    learnt.roadmap.save(save_to)?;
-    let mut loads = Vec::new();
-    let mut roadmap: Option<Roadmap> = None;
-    for _ in 0..5 {
-        let t = Instant::now();
-        roadmap = Some(Roadmap::load(save_to, scene.fingerprint())?);
-        loads.push(t.elapsed().as_secs_f64() * 1e3);
+/// The workcell's query options: racing or in turn, trees out of the roadmap are the query's
+/// own ([`QueryOptions::trees`], [`QueryOptions::race`], as `viaroad query` grows them); trees
+/// from the bare ends are grown by [`answer_request`], beside the query or after its half of
+/// the time.
+fn query_options(o: &WorkcellOptions) -> QueryOptions {
+    let in_query = o.trees_from_roadmap;
+    let roadmap_time = if o.trees.is_some() && o.race.is_none() && !in_query {
+        o.query_time / 2
+    } else {
+        o.query_time
+    };
+    QueryOptions {
+        time: Some(roadmap_time),
+        trees: o.trees.clone().filter(|_| in_query),
+        race: o.race.filter(|_| in_query),
+        return_trees: o.keep_trees,
+        straight_shortcuts: o.straight,
+        exact_shortening_limit: o.exact_shortening_limit,
+        ..QueryOptions::default()
     }
-    let roadmap = roadmap.ok_or("not loaded")?;
-    Ok((roadmap, learnt.report.elapsed.as_secs_f64(), loads))
+}
+
+/// What learning and training a workcell's roadmap ask: its first scene, the queries'
+/// oracle, the validator's, the independent checker and the query options.
+struct Workcell<'w> {
+    scene: &'w Scene,
+    oracle: &'w dyn CollisionOracle,
+    validator: &'w dyn CollisionOracle,
+    check: &'w ArmChecker,
+    options: &'w QueryOptions,
+}
+
+impl Workcell<'_> {
+    /// Learns the roadmap of the workcell, trains it on the example requests
+    /// ([`WorkcellOptions::train`]), saves it to `save_to` and loads it back five times: the
+    /// roadmap as loaded and the load times (ms), since a workcell's roadmap is learnt once
+    /// and loaded for every session. Learning's figures go into `r`.
+    fn learn_and_load(
+        &self,
+        method: &dyn LocalMethod,
+        o: &WorkcellOptions,
+        save_to: &Path,
+        r: &mut WorkcellResult,
+    ) -> Result<(Roadmap, Vec<f64>), Box<dyn std::error::Error + Send + Sync>> {
+        let scene = self.scene;
+        let learnt = Learner::for_scene(scene, self.oracle, method).learn(
+            &LearnParams::default(),
+            &o.budget,
+            o.seed,
+            &mut |_| {},
+        )?;
+        r.sampled_nodes = learnt.roadmap.node_count();
+        r.sampled_edges = learnt.roadmap.edge_count();
+        let began = Instant::now();
+        let roadmap = self.train(learnt.roadmap, &o.train, r)?;
+        r.train_s = began.elapsed().as_secs_f64();
+        r.learn_s = learnt.report.elapsed.as_secs_f64() + r.train_s;
+        roadmap.save(save_to)?;
+        let mut loads = Vec::new();
+        let mut roadmap: Option<Roadmap> = None;
+        for _ in 0..5 {
+            let t = Instant::now();
+            roadmap = Some(Roadmap::load(save_to, scene.fingerprint())?);
+            loads.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        let roadmap = roadmap.ok_or("not loaded")?;
+        Ok((roadmap, loads))
+    }
+
+    /// `roadmap` with the answers to the example requests `train` that are valid in the first
+    /// scene kept, with the trees that found them, where the independent checker certifies
+    /// the path ([`answer_keeping`]).
+    fn train(
+        &self,
+        roadmap: Roadmap,
+        train: &[Problem],
+        r: &mut WorkcellResult,
+    ) -> Result<Roadmap, Box<dyn std::error::Error + Send + Sync>> {
+        let arm = self.check.arm();
+        let requests: Vec<(Config, Config)> = train
+            .iter()
+            .filter_map(|p| valid_request(arm, self.scene, self.validator, p))
+            .collect();
+        r.train_valid = requests.len();
+        if requests.is_empty() {
+            return Ok(roadmap);
+        }
+        let check = self.check;
+        // the trees in turn, not racing the roadmap on the pool: which side answers first
+        // would decide what is kept, and the trained roadmap would depend on the machine
+        let in_turn = QueryOptions {
+            race: None,
+            ..self.options.clone()
+        };
+        let kept = answer_keeping(
+            roadmap,
+            self.oracle,
+            &in_turn,
+            &requests,
+            true,
+            &Deadline::none(),
+            &mut |_, a| {
+                a.result.as_ref().is_ok_and(|q| {
+                    q.is_solved()
+                        && check
+                            .check_path(&q.path, check_step(check))
+                            .is_ok_and(|rep| rep.valid)
+                })
+            },
+        )?;
+        r.train_kept = kept.kept;
+        Ok(kept.roadmap)
+    }
 }
 
 /// One request's answer and what it took.

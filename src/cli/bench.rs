@@ -314,6 +314,16 @@ pub struct MbmArgs {
     /// that the next goal in the same pocket attaches to them.
     #[arg(long, requires = "keep_answers", help_heading = "Tuning")]
     pub keep_trees: bool,
+    /// Workcell mode: learn each roadmap from the family's last N problems too (held out: they
+    /// are not asked), offline after sampling: each request valid in the first scene answered
+    /// as a query, its certified path and the trees that found it kept in the roadmap before
+    /// it is saved. The requests asked are the first `--limit` of the others.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub train: usize,
+    /// Workcell mode: how the queries shorten their paths, as `viaroad query --shorten`
+    /// (`fast`, `exact`, `greedy`; `greedy` suits a roadmap trained with `--train`).
+    #[arg(long, value_enum, default_value_t = super::query::Shortening::Fast, help_heading = "Tuning")]
+    pub shorten: super::query::Shortening,
     /// Workcell mode, `--planner tree`: where the trees grow from. `roadmap` (default): each
     /// end that a free direct path attaches to one of its 5 nearest roadmap nodes brings that
     /// node's component along as its tree, so the other end's tree need only reach the roadmap;
@@ -361,7 +371,9 @@ fn mbm(a: MbmArgs) -> anyhow::Result<()> {
     for w in &robot.warnings {
         eprintln!("warning: {w}");
     }
-    let problems = mbm::find_problems(&a.dir, a.limit)?;
+    // held-out training problems come from the end of each family, beyond any --limit
+    let limit = a.limit.filter(|_| !(a.workcell && a.train > 0));
+    let problems = mbm::find_problems(&a.dir, limit)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let options = mbm_options(&a, time)?;
     options.tree.validate().map_err(anyhow::Error::msg)?;
@@ -421,6 +433,7 @@ fn mbm_workcells(
     problems: &[viaroad::bench::mbm::Problem],
     options: &viaroad::bench::mbm::MbmOptions,
 ) -> anyhow::Result<()> {
+    use super::query::Shortening;
     use viaroad::bench::mbm;
     let race = options.race;
     let workcell = mbm::WorkcellOptions {
@@ -433,27 +446,47 @@ fn mbm_workcells(
         keep_trees: a.keep_trees,
         trees_from_roadmap: a.trees_from == TreesFrom::Roadmap,
         straight: !a.no_straight,
+        train: Vec::new(),
+        exact_shortening_limit: match a.shorten {
+            Shortening::Fast => viaroad::roadmap::QueryOptions::default().exact_shortening_limit,
+            Shortening::Exact => usize::MAX,
+            Shortening::Greedy => 0,
+            Shortening::Off => {
+                anyhow::bail!("bench mbm --workcell shortens: --shorten off is not offered")
+            }
+        },
     };
     let mut families: Vec<String> = problems.iter().map(|p| p.family.clone()).collect();
     families.dedup();
     let mut md = String::from(
-        "| family | nodes | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms | raw length p50 | length p50 |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| family | nodes | trained on (kept) | learn s | learn calls | load ms | requests | valid in scene 1 | solved | by trees | certified | kept (nodes after) | query p50 ms | p95 ms | max ms | found p50 ms | found p95 ms | raw length p50 | length p50 |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mut all = Vec::new();
     for f in &families {
-        let ps: Vec<mbm::Problem> = problems
+        let mut ps: Vec<mbm::Problem> = problems
             .iter()
             .filter(|p| &p.family == f)
             .cloned()
             .collect();
+        let train = ps.split_off(ps.len().saturating_sub(a.train));
+        if ps.is_empty() {
+            anyhow::bail!("{f}: --train {} leaves no problem to ask", a.train);
+        }
+        ps.truncate(a.limit.unwrap_or(usize::MAX));
+        let workcell = mbm::WorkcellOptions {
+            train,
+            ..workcell.clone()
+        };
         let save = a.out.join(format!("{f}.roadmap"));
         let r = mbm::run_workcell(robot, &ps, &workcell, &save)
             .map_err(|e| anyhow::anyhow!("{f}: {e}"))?;
         let line = format!(
-            "| {} | {} | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
+            "| {} | {} | {} ({}) | {:.1} | {} | {:.2} | {} | {} | {} | {} | {} | {} ({}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
             r.family,
             r.nodes,
+            r.train_valid,
+            r.train_kept,
             r.learn_s,
             r.learn_calls,
             r.load_ms,

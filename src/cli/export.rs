@@ -384,10 +384,10 @@ fn through_roadmap(
     let options = QueryOptions {
         landmarks: 0,
         shorten: a.shorten != Shortening::Off,
-        exact_shortening_limit: if a.shorten == Shortening::Exact {
-            usize::MAX
-        } else {
-            QueryOptions::default().exact_shortening_limit
+        exact_shortening_limit: match a.shorten {
+            Shortening::Exact => usize::MAX,
+            Shortening::Greedy => 0,
+            _ => QueryOptions::default().exact_shortening_limit,
         },
         grow: true,
         ..QueryOptions::default()

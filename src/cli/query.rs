@@ -10,6 +10,7 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 use viaroad::bench::validity::Checker;
 use viaroad::deadline::Deadline;
+use viaroad::roadmap::query::keep::{answer_keeping, KeptAnswers};
 use viaroad::roadmap::tree::TreeParams;
 use viaroad::roadmap::{BatchAnswer, QueryOptions, QueryPlanner, Roadmap};
 use viaroad::scene::{ompl_cfg, Scene};
@@ -47,7 +48,8 @@ pub struct QueryArgs {
     pub path_out: Option<PathBuf>,
     /// Path shortening (CHS A.1): `fast` drops corners greedily on paths of more than 32
     /// corners before the visibility graph, `exact` builds the visibility graph over every
-    /// corner (shortest, up to m²/2 checks), `off` returns the roadmap path as found.
+    /// corner (shortest, up to m²/2 checks), `greedy` drops corners greedily pass after pass
+    /// and builds no visibility graph, `off` returns the roadmap path as found.
     #[arg(long, value_enum, default_value_t = Shortening::Fast, help_heading = "Tuning")]
     pub shorten: Shortening,
     /// Call budget of the quick via-point try from start to goal before the roadmap
@@ -127,6 +129,9 @@ pub enum Shortening {
     Fast,
     /// The visibility graph over every corner.
     Exact,
+    /// Greedy corner dropping alone, pass after pass (at most one check per corner and
+    /// pass): for a workcell's roadmap whose answers run along kept, already shortened ones.
+    Greedy,
     /// No shortening.
     Off,
 }
@@ -195,47 +200,6 @@ impl Printer {
             }
         }
     }
-}
-
-/// Answers `queries` in their order over `roadmap`, each path found (with `keep_trees`, and
-/// the trees that found it) fed back into it before the next query ([`Roadmap::with_kept`]);
-/// every answer goes to `printer` as it comes. The grown roadmap and the number of answers
-/// kept.
-fn answer_keeping(
-    mut roadmap: Roadmap,
-    oracle: &dyn viaroad::oracle::CollisionOracle,
-    options: &QueryOptions,
-    queries: &[(Config, Config)],
-    keep_trees: bool,
-    deadline: &Deadline,
-    printer: &Printer,
-) -> anyhow::Result<(Roadmap, usize)> {
-    let mut kept = 0;
-    for (i, (s, g)) in queries.iter().enumerate() {
-        let began = Instant::now();
-        let result = QueryPlanner::new(&roadmap, oracle)
-            .context("roadmap")?
-            .with_options(options.clone())
-            .query_within(s, g, deadline);
-        let answer = BatchAnswer {
-            result,
-            elapsed: began.elapsed(),
-        };
-        printer.answer(i, &answer);
-        if let Ok(r) = &answer.result {
-            if r.is_solved() {
-                let trees: Vec<_> = match &r.trees {
-                    Some(t) if keep_trees => t.iter().collect(),
-                    _ => Vec::new(),
-                };
-                roadmap = roadmap
-                    .with_kept(&r.path, &trees)
-                    .map_err(anyhow::Error::msg)?;
-                kept += 1;
-            }
-        }
-    }
-    Ok((roadmap, kept))
 }
 
 /// The scene's independent checker for `--check` (`query`, `serve`), or `None` without it.
@@ -441,14 +405,20 @@ pub fn run(a: QueryArgs) -> anyhow::Result<()> {
         None => planner.query_each(&queries, &deadline, &|i, answer| printer.answer(i, &answer)),
         Some(out) => {
             drop(planner);
-            let (grown, kept) = answer_keeping(
+            let KeptAnswers {
+                roadmap: grown,
+                kept,
+            } = answer_keeping(
                 roadmap.clone(),
                 oracle.as_ref(),
                 &options,
                 &queries,
                 a.keep_trees,
                 &deadline,
-                &printer,
+                &mut |i, answer| {
+                    printer.answer(i, answer);
+                    true
+                },
             )?;
             super::output::create_parent(out)?;
             grown
@@ -536,6 +506,10 @@ fn query_options(
         Shortening::Fast => defaults,
         Shortening::Exact => QueryOptions {
             exact_shortening_limit: usize::MAX,
+            ..defaults
+        },
+        Shortening::Greedy => QueryOptions {
+            exact_shortening_limit: 0,
             ..defaults
         },
         Shortening::Off => QueryOptions {

@@ -346,9 +346,10 @@ struct Server<'a> {
 }
 
 /// The shortenings a request may name, in [`Server::planners`]'s order.
-const SHORTENINGS: [(&str, Shortening); 3] = [
+const SHORTENINGS: [(&str, Shortening); 4] = [
     ("fast", Shortening::Fast),
     ("exact", Shortening::Exact),
+    ("greedy", Shortening::Greedy),
     ("off", Shortening::Off),
 ];
 
@@ -387,7 +388,7 @@ impl Server<'_> {
                 .position(|(name, _)| *name == s)
                 .ok_or_else(|| {
                     bad(format!(
-                        "unknown shorten {s:?} (known: \"fast\", \"exact\", \"off\")"
+                        "unknown shorten {s:?} (known: \"fast\", \"exact\", \"greedy\", \"off\")"
                     ))
                 })?,
         };
@@ -606,6 +607,7 @@ fn planners<'a>(
         match s {
             Shortening::Fast => {}
             Shortening::Exact => options.exact_shortening_limit = usize::MAX,
+            Shortening::Greedy => options.exact_shortening_limit = 0,
             Shortening::Off => options.shorten = false,
         }
         planners.push(planner.with_options(options));
