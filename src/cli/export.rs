@@ -233,7 +233,9 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
-    let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
+    let spec = a
+        .local
+        .spec_or(LocalSpec::roadmap_default_for(&scene.space))?;
     let method = spec.build();
     let groups = method.groups(&scene.space);
     let oracle = scene.oracle();

@@ -39,7 +39,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
 
 /// `solve --local-only`: each query connected by the local method alone, its path shortened.
 fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
-    let spec = a.local.spec_or(LocalSpec::default())?;
+    let spec = a.local.spec_or(LocalSpec::default_for(&scene.space))?;
     let time = super::limits::optional_seconds("--time", a.time)?;
     let oracle = scene.oracle();
     if scene.queries.is_empty() {
@@ -119,7 +119,9 @@ fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
 /// `solve --roadmap`: each query answered by a roadmap grown from its start and goal.
 fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
+    let spec = a
+        .local
+        .spec_or(LocalSpec::roadmap_default_for(&scene.space))?;
     let SingleQuery {
         time,
         queries,

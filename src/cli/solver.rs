@@ -25,7 +25,9 @@ pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
     } = SingleQuery::prepare(a, scene, "trees that large do not fit in memory")?;
     let oracle = scene.oracle();
     let checker = super::query::independent_checker(scene, a.check)?;
-    let groups = LocalSpec::default().build().groups(&scene.space);
+    let groups = LocalSpec::default_for(&scene.space)
+        .build()
+        .groups(&scene.space);
     let length = |p: &Vec<_>| path_length(&scene.space, &groups, p);
     for (i, q) in queries.iter().enumerate() {
         let began = Instant::now();
