@@ -20,7 +20,7 @@ use crate::portfolio::{tree_stage, trees_found, Planning, Portfolio, PortfolioEr
 use crate::roadmap::tree::{TreeError, TreeParams};
 use crate::roadmap::{
     Budget, LearnError, LearnParams, Learner, QueryError, QueryOptions, QueryPlanner, Roadmap,
-    RoadmapError,
+    RoadmapError, Sampler,
 };
 use crate::scene::{Robot, Scene};
 use crate::space::{Config, Space, SpaceKind};
@@ -39,6 +39,9 @@ pub struct Solver {
     /// Oracle calls of the via-point planner's first try; `None`: suited to the scene
     /// ([`Solver::direct_calls_for`]).
     pub direct_calls: Option<u64>,
+    /// Where the grown roadmap draws new nodes; `None`: the learner's default
+    /// ([`LearnParams::sampler`]).
+    pub sampler: Option<Sampler>,
 }
 
 /// Oracle calls of the via-point planner's first try on one body or one arm: it answers open
@@ -59,6 +62,7 @@ impl Default for Solver {
             nodes: None,
             straight: true,
             direct_calls: None,
+            sampler: None,
         }
     }
 }
@@ -330,8 +334,12 @@ impl Solver {
         let method = LocalSpec::roadmap_default_for(&scene.space).build();
         let learner = Learner::for_scene(scene, oracle, method.as_ref())
             .with_attempt_cap(search.remaining().map(Learner::attempt_cap_for));
+        let params = LearnParams {
+            sampler: self.sampler.clone().unwrap_or_default(),
+            ..LearnParams::default()
+        };
         let grown = learner.connect_pair(
-            &LearnParams::default(),
+            &params,
             None,
             (start, goal),
             &Budget {

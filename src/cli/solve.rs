@@ -32,6 +32,9 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     }
     let scene = Scene::load(&a.scene)?;
     if a.local_alone() {
+        if a.sampler.is_some() {
+            anyhow::bail!("--sampler: the local method alone draws no samples");
+        }
         return run_local(&a, &scene);
     }
     super::solver::run_solver(&a, &scene)
@@ -136,6 +139,9 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let mut params = LearnParams::default();
     if let Some(share) = a.directed_share {
         params.directed_share = share;
+    }
+    if let Some(sampler) = &a.sampler {
+        params.sampler = sampler.clone();
     }
     params.validate().map_err(anyhow::Error::msg)?;
     for (i, q) in queries.iter().enumerate() {

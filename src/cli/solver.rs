@@ -12,10 +12,15 @@ use viaroad::solve::Solver;
 
 /// Runs the default `solve` on the loaded `scene`.
 pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
+    if let Some(s) = &a.sampler {
+        s.validate()
+            .map_err(|e| anyhow::anyhow!("--sampler {s}: {e}"))?;
+    }
     let solver = Solver {
         seed: a.seed,
         nodes: a.nodes,
         straight: !a.no_straight,
+        sampler: a.sampler.clone(),
         ..Solver::default()
     };
     let SingleQuery {
