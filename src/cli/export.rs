@@ -237,7 +237,12 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
         .local
         .spec_or(LocalSpec::roadmap_default_for(&scene.space))?;
     let method = spec.build();
-    let groups = method.groups(&scene.space);
+    // a given path's corners are joined by the seed's motions of the natural groups (as
+    // `certify` reads them), whatever groups a planner would split them into
+    let groups = match a.path.is_some() && !a.local.given() {
+        true => scene.space.groups(false),
+        false => method.groups(&scene.space),
+    };
     let oracle = scene.oracle();
     let mut legend = Legend {
         scene: scene.name.clone(),
