@@ -233,16 +233,9 @@ pub fn plan(a: &PlanArgs) -> anyhow::Result<Planned> {
     for w in &scene.warnings {
         eprintln!("warning: {w}");
     }
-    let spec = a
-        .local
-        .spec_or(LocalSpec::roadmap_default_for(&scene.space))?;
+    let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
     let method = spec.build();
-    // a given path's corners are joined by the seed's motions of the natural groups (as
-    // `certify` reads them), whatever groups a planner would split them into
-    let groups = match a.path.is_some() && !a.local.given() {
-        true => scene.space.groups(false),
-        false => method.groups(&scene.space),
-    };
+    let groups = method.groups(&scene.space);
     let oracle = scene.oracle();
     let mut legend = Legend {
         scene: scene.name.clone(),
