@@ -16,10 +16,10 @@ summary() {
 for l in sys.stdin:
     d=json.loads(l); print({k: d.get(k) for k in ("solved","method","calls","nodes","seconds","stop","certified")})'
 }
-echo "## 1. plain solve, three seeds, --check (time: the default 60 s)"
+echo "## 1. plain solve --time 10, three seeds, --check"
 for v in "$B" "$A"; do
   for seed in 1 2 3; do
-    echo "$v seed $seed: $($v solve $S3 --seed $seed --check --json | summary)"
+    echo "$v seed $seed: $($v solve $S3 --time 10 --seed $seed --check --json | summary)"
   done
 done
 echo "## 1. build --time 10 + query --check, default local method"
