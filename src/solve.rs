@@ -3,7 +3,9 @@
 //!
 //! - Arms: [`Portfolio`]'s stages (the direct path, trees, the via-point planner, trees afresh).
 //! - Every other space: the via-point planner first, for a few hundred oracle calls (it answers
-//!   open scenes at once and costs little where it cannot), then two trees and a roadmap grown
+//!   open scenes at once and costs little where it cannot; where several bodies move, its own
+//!   budget of thousands, with their translation split along the axes as every default local
+//!   method there, [`LocalSpec::default_for`]), then two trees and a roadmap grown
 //!   from start and goal raced on the rayon pool ([`race`]; in turn on a busy or one-thread
 //!   pool). On OMPL.app's hard problems the trees answer most soonest, while a roadmap answers
 //!   where the trees' random extends keep missing a narrow passage: no single planner wins
@@ -18,10 +20,10 @@ use crate::portfolio::{tree_stage, trees_found, Planning, Portfolio, PortfolioEr
 use crate::roadmap::tree::{TreeError, TreeParams};
 use crate::roadmap::{
     Budget, LearnError, LearnParams, Learner, QueryError, QueryOptions, QueryPlanner, Roadmap,
-    RoadmapError,
+    RoadmapError, Sampler,
 };
 use crate::scene::{Robot, Scene};
-use crate::space::Config;
+use crate::space::{Config, Space, SpaceKind};
 use std::time::Duration;
 
 /// The planners of one query and their budgets.
@@ -34,9 +36,24 @@ pub struct Solver {
     pub nodes: Option<usize>,
     /// Straight motions of several joints at once where they are proved free (arms).
     pub straight: bool,
-    /// Oracle calls of the via-point planner's first try.
-    pub direct_calls: u64,
+    /// Oracle calls of the via-point planner's first try; `None`: suited to the scene
+    /// ([`Solver::direct_calls_for`]).
+    pub direct_calls: Option<u64>,
+    /// Where the grown roadmap draws new nodes; `None`: the learner's default
+    /// ([`LearnParams::sampler`]).
+    pub sampler: Option<Sampler>,
 }
+
+/// Oracle calls of the via-point planner's first try on one body or one arm: it answers open
+/// scenes at once and costs little where it cannot.
+pub const DIRECT_CALLS: u64 = 300;
+
+/// Oracle calls of the first try where several bodies move: the via-point planner's own budget
+/// ([`crate::local::ViaPointOptions::default`]). Split along the axes, the deep planner alone
+/// connects both cube scenes (87 and 2 361 calls) and the movers in a room (912), and gives up
+/// on the swaps within 4 500 calls (a tenth of a second), where the trees and the roadmap
+/// raced after it take seconds.
+pub const SEVERAL_BODIES_DIRECT_CALLS: u64 = 5000;
 
 impl Default for Solver {
     fn default() -> Self {
@@ -44,7 +61,8 @@ impl Default for Solver {
             seed: 1,
             nodes: None,
             straight: true,
-            direct_calls: 300,
+            direct_calls: None,
+            sampler: None,
         }
     }
 }
@@ -121,6 +139,16 @@ impl Solution {
 }
 
 impl Solver {
+    /// The calls of the via-point planner's first try in `space`: [`Self::direct_calls`] when
+    /// set, else [`SEVERAL_BODIES_DIRECT_CALLS`] where several bodies move and
+    /// [`DIRECT_CALLS`] elsewhere.
+    pub fn direct_calls_for(&self, space: &Space) -> u64 {
+        self.direct_calls.unwrap_or(match space.kind() {
+            SpaceKind::Se2Bodies(_) | SpaceKind::Se3Bodies(_) => SEVERAL_BODIES_DIRECT_CALLS,
+            _ => DIRECT_CALLS,
+        })
+    }
+
     /// Plans from `start` to `goal` (both free, as [`Scene::checked_queries`] gives them) until
     /// `deadline`. A planner's error is the answer only when no other planner answered.
     pub fn plan(
@@ -145,7 +173,7 @@ impl Solver {
     ) -> Result<Solution, SolveError> {
         let mut portfolio = Portfolio {
             seed: self.seed,
-            direct_calls: self.direct_calls,
+            direct_calls: self.direct_calls_for(&scene.space),
             ..Portfolio::default()
         };
         if let Some(tree) = &mut portfolio.tree {
@@ -248,7 +276,7 @@ impl Solver {
         }
     }
 
-    /// The via-point planner within [`Self::direct_calls`], its path shortened.
+    /// The via-point planner within [`Self::direct_calls_for`], its path shortened.
     fn direct(
         &self,
         scene: &Scene,
@@ -256,8 +284,8 @@ impl Solver {
         (start, goal): (&Config, &Config),
         deadline: &Deadline,
     ) -> Result<Solution, SolveError> {
-        let method = LocalSpec::default()
-            .budgeted(self.direct_calls)
+        let method = LocalSpec::default_for(&scene.space)
+            .budgeted(self.direct_calls_for(&scene.space))
             .unwrap_or_default()
             .build();
         let c = method.connect_within(&scene.space, oracle, start, goal, deadline)?;
@@ -306,11 +334,15 @@ impl Solver {
         search: &Deadline,
         whole: &Deadline,
     ) -> Result<Solution, SolveError> {
-        let method = LocalSpec::roadmap_default().build();
+        let method = LocalSpec::roadmap_default_for(&scene.space).build();
         let learner = Learner::for_scene(scene, oracle, method.as_ref())
             .with_attempt_cap(search.remaining().map(Learner::attempt_cap_for));
+        let params = LearnParams {
+            sampler: self.sampler.clone().unwrap_or_default(),
+            ..LearnParams::default()
+        };
         let grown = learner.connect_pair(
-            &LearnParams::default(),
+            &params,
             None,
             (start, goal),
             &Budget {

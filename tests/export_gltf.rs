@@ -396,6 +396,107 @@ fn several_bodies_in_space_each_follow_their_own_poses() {
     assert!(keyed.len() > path.len() + 2, "{}", keyed.len());
 }
 
+/// Decodes standard base64 (RFC 4648, padded), as the viewer page embeds its model.
+fn unbase64(text: &str) -> Vec<u8> {
+    let value = |c: u8| match c {
+        b'A'..=b'Z' => c - b'A',
+        b'a'..=b'z' => c - b'a' + 26,
+        b'0'..=b'9' => c - b'0' + 52,
+        b'+' => 62,
+        b'/' => 63,
+        _ => panic!("not base64: {c}"),
+    };
+    let mut out = Vec::new();
+    for chunk in text.trim().as_bytes().chunks(4) {
+        let pads = chunk.iter().filter(|&&c| c == b'=').count();
+        let n = chunk
+            .iter()
+            .map(|&c| if c == b'=' { 0 } else { value(c) as u32 })
+            .fold(0u32, |n, v| n << 6 | v);
+        out.extend_from_slice(&n.to_be_bytes()[1..4 - pads]);
+    }
+    out
+}
+
+/// `view --show-roadmap` on several bodies in space: the page's model holds the roadmap grown
+/// from start and goal, drawn at both cubes' reference points; the same roadmap grown here
+/// answers with a path the independent checker certifies, and its export draws every node once
+/// per body, at that body's reference point.
+#[test]
+fn several_bodies_in_space_show_their_roadmap() {
+    let file = "scenes/bodies/cubes-into-boxes-2.toml";
+    let dir = temp_dir("export_gltf", "bodies-roadmap");
+    let page = dir.join("cubes.html");
+    let o = viaroad(&[
+        "view",
+        file,
+        "--show-roadmap",
+        "--nodes",
+        "500",
+        "-o",
+        page.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", common::cli::stderr(&o));
+    let html = std::fs::read_to_string(&page).unwrap();
+    let embedded = html
+        .split("<script id=\"viaroad-glb\" type=\"application/octet-stream\">")
+        .nth(1)
+        .and_then(|rest| rest.split("</script>").next())
+        .expect("the page embeds its model");
+    let glb = Glb::parse(&unbase64(embedded));
+    for name in ["red", "blue", "roadmap nodes", "roadmap edges"] {
+        glb.node(name);
+    }
+    assert!(glb.positions(glb.node("roadmap nodes")).len() >= 4);
+
+    let scene = Scene::load(&root().join(file)).unwrap();
+    let oracle = scene.oracle();
+    let q = &scene.checked_queries().unwrap()[0];
+    let solver = viaroad::solve::Solver {
+        nodes: Some(500),
+        ..viaroad::solve::Solver::default()
+    };
+    let s = solver
+        .plan_by_roadmap(
+            &scene,
+            oracle.as_ref(),
+            (&q.start, &q.goal),
+            &Deadline::none(),
+        )
+        .unwrap();
+    assert!(s.is_solved(), "the roadmap joins start and goal");
+    let checker = common::bodies3::SolidBodiesChecker::new(&scene);
+    checker.certify_path(&s.raw).unwrap();
+    checker.certify_path(&s.shortened).unwrap();
+    let roadmap = s.roadmap.expect("the roadmap that answered");
+    let plan = Plan {
+        raw: s.raw,
+        shortened: s.shortened,
+    };
+    let groups = LocalSpec::roadmap_default_for(&scene.space)
+        .build()
+        .groups(&scene.space);
+    let g = export::scene_gltf(&scene, &groups, &plan, Some(&roadmap), &Legend::default()).unwrap();
+    let glb = Glb::parse(&g.to_glb());
+    let points = glb.positions(glb.node("roadmap nodes"));
+    assert_eq!(
+        points.len(),
+        2 * roadmap.node_count(),
+        "each node once per body"
+    );
+    for (b, drawn) in points.chunks(roadmap.node_count()).enumerate() {
+        for (q, p) in roadmap.nodes().zip(drawn) {
+            let at = &q[7 * b..7 * b + 3];
+            assert!(
+                (0..3).all(|i| (at[i] - p[i]).abs() < 1e-5),
+                "body {b}: {p:?} is not its reference point {at:?}"
+            );
+        }
+    }
+    let edges = glb.positions(glb.node("roadmap edges"));
+    assert!(edges.len() % 2 == 0 && edges.len() >= 2 * 2 * roadmap.edge_count());
+}
+
 #[test]
 fn point_robot_among_discs_stays_clear_of_them() {
     let scene = Scene::load(&root().join("scenes/discs-cluttered.toml")).unwrap();

@@ -659,7 +659,7 @@ impl Roadmap {
             Some(s) => s
                 .parse::<LocalSpec>()
                 .map_err(|e| LearnError::new_err(one_line(&e)))?,
-            None => LocalSpec::roadmap_default(),
+            None => LocalSpec::roadmap_default_for(&scene.data.scene.space),
         };
         viaroad::local::check_local_spec(&spec).map_err(LearnError::new_err)?;
         let time = match time {

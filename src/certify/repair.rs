@@ -340,7 +340,7 @@ fn plan_detour(
     let scene = c.scene();
     let oracle = c.oracle();
     let mut counts = CallCounts::default();
-    let spec = LocalSpec::default()
+    let spec = LocalSpec::default_for(&scene.space)
         .budgeted(options.local_calls)
         .unwrap_or_default();
     let method = spec.build();

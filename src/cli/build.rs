@@ -53,7 +53,7 @@ fn learn_part(
     default_nodes: usize,
     shard: Option<Shard>,
 ) -> anyhow::Result<Learnt> {
-    let spec = local.spec_or(LocalSpec::roadmap_default())?;
+    let spec = local.spec_or(LocalSpec::roadmap_default_for(&scene.space))?;
     if matches!(&spec, LocalSpec::ViaPoint(o) if o.sidestep.is_some()) {
         anyhow::bail!(
             "--local {spec}: roadmap files do not record sidestep; build without it \

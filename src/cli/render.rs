@@ -38,7 +38,7 @@ pub struct RenderArgs {
 /// Runs `render`.
 pub fn run(a: RenderArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let mut spec = a.local.spec_or(LocalSpec::default())?;
+    let mut spec = a.local.spec_or(LocalSpec::default_for(&scene.space))?;
     if let LocalSpec::ViaPoint(o) = &mut spec {
         o.trace = true;
     }

@@ -32,6 +32,9 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     }
     let scene = Scene::load(&a.scene)?;
     if a.local_alone() {
+        if a.sampler.is_some() {
+            anyhow::bail!("--sampler: the local method alone draws no samples");
+        }
         return run_local(&a, &scene);
     }
     super::solver::run_solver(&a, &scene)
@@ -39,7 +42,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
 
 /// `solve --local-only`: each query connected by the local method alone, its path shortened.
 fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
-    let spec = a.local.spec_or(LocalSpec::default())?;
+    let spec = a.local.spec_or(LocalSpec::default_for(&scene.space))?;
     let time = super::limits::optional_seconds("--time", a.time)?;
     let oracle = scene.oracle();
     if scene.queries.is_empty() {
@@ -119,7 +122,9 @@ fn run_local(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
 /// `solve --roadmap`: each query answered by a roadmap grown from its start and goal.
 fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let scene = Scene::load(&a.scene)?;
-    let spec = a.local.spec_or(LocalSpec::roadmap_default())?;
+    let spec = a
+        .local
+        .spec_or(LocalSpec::roadmap_default_for(&scene.space))?;
     let SingleQuery {
         time,
         queries,
@@ -134,6 +139,9 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     let mut params = LearnParams::default();
     if let Some(share) = a.directed_share {
         params.directed_share = share;
+    }
+    if let Some(sampler) = &a.sampler {
+        params.sampler = sampler.clone();
     }
     params.validate().map_err(anyhow::Error::msg)?;
     for (i, q) in queries.iter().enumerate() {

@@ -70,6 +70,12 @@ pub struct SolveArgs {
     /// at once, neither as the trees' extends nor as shortcuts (as `query --no-straight`).
     #[arg(long, help_heading = "Tuning")]
     pub no_straight: bool,
+    /// Where the grown roadmap draws new nodes (`--roadmap`, and the roadmap the default races
+    /// against the trees; as `build --sampler`): `uniform`, `obstacle`, `gaussian:sigma=0.1`,
+    /// `bridge:sigma=0.1`, `gap:sigma=0.1`, `bodies` (several bodies placed one at a time), or a
+    /// mix such as `mix:uniform=1,bridge=1`. Default: the learner's.
+    #[arg(long, value_name = "SPEC", conflicts_with_all = ["tree", "local_only", "global", "oracle"], help_heading = "Tuning")]
+    pub sampler: Option<viaroad::roadmap::Sampler>,
     /// Share of the grown roadmap's expansion walks that are directed, RRT-Connect style
     /// (`--roadmap`; 0: random bounces only). Default: the learner's.
     #[arg(long, value_name = "SHARE", help_heading = "Tuning")]

@@ -6,16 +6,21 @@ use super::solve_args::{SingleQuery, SolveArgs};
 use serde_json::json;
 use std::time::Instant;
 use viaroad::deadline::Deadline;
-use viaroad::local::{path_length, LocalSpec};
+use viaroad::local::path_length;
 use viaroad::scene::Scene;
 use viaroad::solve::Solver;
 
 /// Runs the default `solve` on the loaded `scene`.
 pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
+    if let Some(s) = &a.sampler {
+        s.validate()
+            .map_err(|e| anyhow::anyhow!("--sampler {s}: {e}"))?;
+    }
     let solver = Solver {
         seed: a.seed,
         nodes: a.nodes,
         straight: !a.no_straight,
+        sampler: a.sampler.clone(),
         ..Solver::default()
     };
     let SingleQuery {
@@ -25,7 +30,9 @@ pub fn run_solver(a: &SolveArgs, scene: &Scene) -> anyhow::Result<()> {
     } = SingleQuery::prepare(a, scene, "trees that large do not fit in memory")?;
     let oracle = scene.oracle();
     let checker = super::query::independent_checker(scene, a.check)?;
-    let groups = LocalSpec::default().build().groups(&scene.space);
+    // lengths by the natural groups: a split planner's corners differ along one axis each,
+    // and the trees' staircases move all of a body's position at once
+    let groups = scene.space.groups(false);
     let length = |p: &Vec<_>| path_length(&scene.space, &groups, p);
     for (i, q) in queries.iter().enumerate() {
         let began = Instant::now();

@@ -23,6 +23,7 @@
 //! [`CallCounts::pairs_tested`].
 
 use super::polygons::Polygons;
+use super::several::{self, Parts};
 use super::{CallCounts, CollisionOracle, OracleError};
 use crate::geometry::Polygon;
 use crate::interval::{Interval, IntervalList};
@@ -107,8 +108,7 @@ impl PlanarBodies {
     }
 
     fn pair_index(&self, i: usize, j: usize) -> usize {
-        let k = self.world.len();
-        i * (k - 1) + if j < i { j } else { j - 1 }
+        several::pair_index(self.world.len(), i, j)
     }
 
     fn classify<'m>(&self, motion: &'m Motion) -> Result<Kind<'m>, OracleError> {
@@ -174,8 +174,11 @@ impl PlanarBodies {
         let d = x.hypot(y);
         d <= reach || d.is_nan()
     }
+}
 
-    /// The parts a motion asks: each as (oracle, motion of one robot), in a fixed order.
+impl Parts for PlanarBodies {
+    type Part = Polygons;
+
     fn parts(&self, motion: &Motion) -> Result<Vec<(&Polygons, Motion)>, OracleError> {
         let k = self.world.len();
         let o = &motion.origin;
@@ -229,8 +232,6 @@ impl PlanarBodies {
         Ok(parts)
     }
 
-    /// Whether the bodies other than `moving` collide with the obstacles or with each other
-    /// where they stand (`q` a configuration of all bodies).
     fn static_collision(&self, q: &[f64], moving: Option<usize>, counts: &mut CallCounts) -> bool {
         let k = self.world.len();
         let fixed = |i: &usize| Some(*i) != moving;
@@ -254,7 +255,6 @@ impl PlanarBodies {
         false
     }
 
-    /// The moving body of a turn, `None` for a translation (after [`Self::classify`]).
     fn turning_body(&self, motion: &Motion) -> Result<Option<usize>, OracleError> {
         Ok(match self.classify(motion)? {
             Kind::Rotation { body, .. } => Some(body),
@@ -269,16 +269,7 @@ impl CollisionOracle for PlanarBodies {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        if let Some(body) = self.turning_body(motion)? {
-            if self.static_collision(&motion.origin, Some(body), counts) {
-                return Ok(IntervalList::single(motion.range));
-            }
-        }
-        let mut all = Vec::new();
-        for (oracle, part) in self.parts(motion)? {
-            all.extend(oracle.intervals(&part, counts)?.iter().copied());
-        }
-        Ok(IntervalList::from_unsorted(all))
+        several::intervals(self, motion, counts)
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
@@ -311,17 +302,7 @@ impl CollisionOracle for PlanarBodies {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<bool, OracleError> {
-        if let Some(body) = self.turning_body(motion)? {
-            if self.static_collision(&motion.origin, Some(body), counts) {
-                return Ok(false);
-            }
-        }
-        for (oracle, part) in self.parts(motion)? {
-            if !oracle.motion_is_free(&part, counts)? {
-                return Ok(false);
-            }
-        }
-        Ok(true)
+        several::motion_is_free(self, motion, counts)
     }
 }
 

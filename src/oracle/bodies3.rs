@@ -25,6 +25,7 @@
 //! they test to [`CallCounts::pairs_tested`].
 
 use super::polyhedra::Polyhedra;
+use super::several::{self, Parts};
 use super::{CallCounts, CollisionOracle, OracleError};
 use crate::geometry::TriMesh;
 use crate::interval::{Interval, IntervalList};
@@ -116,8 +117,7 @@ impl SolidBodies {
     }
 
     fn pair_index(&self, i: usize, j: usize) -> usize {
-        let k = self.world.len();
-        i * (k - 1) + if j < i { j } else { j - 1 }
+        several::pair_index(self.world.len(), i, j)
     }
 
     fn classify<'m>(&self, motion: &'m Motion) -> Result<Kind<'m>, OracleError> {
@@ -204,8 +204,11 @@ impl SolidBodies {
         let d = (d0 + t * dm).norm();
         d <= reach || d.is_nan()
     }
+}
 
-    /// The parts a motion asks: each as (oracle, motion of one robot), in a fixed order.
+impl Parts for SolidBodies {
+    type Part = Polyhedra;
+
     fn parts(&self, motion: &Motion) -> Result<Vec<(&Polyhedra, Motion)>, OracleError> {
         let k = self.world.len();
         let o = &motion.origin;
@@ -258,8 +261,6 @@ impl SolidBodies {
         Ok(parts)
     }
 
-    /// Whether the bodies other than `moving` collide with the obstacles or with each other
-    /// where they stand (`q` a configuration of all bodies).
     fn static_collision(&self, q: &[f64], moving: Option<usize>, counts: &mut CallCounts) -> bool {
         let k = self.world.len();
         let fixed = |i: &usize| Some(*i) != moving;
@@ -283,7 +284,6 @@ impl SolidBodies {
         false
     }
 
-    /// The moving body of a turn, `None` for a translation (after [`Self::classify`]).
     fn turning_body(&self, motion: &Motion) -> Result<Option<usize>, OracleError> {
         Ok(match self.classify(motion)? {
             Kind::Rotation { body, .. } => Some(body),
@@ -298,16 +298,7 @@ impl CollisionOracle for SolidBodies {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<IntervalList, OracleError> {
-        if let Some(body) = self.turning_body(motion)? {
-            if self.static_collision(&motion.origin, Some(body), counts) {
-                return Ok(IntervalList::single(motion.range));
-            }
-        }
-        let mut all = Vec::new();
-        for (oracle, part) in self.parts(motion)? {
-            all.extend(oracle.intervals(&part, counts)?.iter().copied());
-        }
-        Ok(IntervalList::from_unsorted(all))
+        several::intervals(self, motion, counts)
     }
 
     fn collides(&self, q: &[f64], counts: &mut CallCounts) -> bool {
@@ -323,17 +314,7 @@ impl CollisionOracle for SolidBodies {
         motion: &Motion,
         counts: &mut CallCounts,
     ) -> Result<bool, OracleError> {
-        if let Some(body) = self.turning_body(motion)? {
-            if self.static_collision(&motion.origin, Some(body), counts) {
-                return Ok(false);
-            }
-        }
-        for (oracle, part) in self.parts(motion)? {
-            if !oracle.motion_is_free(&part, counts)? {
-                return Ok(false);
-            }
-        }
-        Ok(true)
+        several::motion_is_free(self, motion, counts)
     }
 }
 

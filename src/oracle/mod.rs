@@ -27,6 +27,7 @@ pub mod minkowski;
 pub mod polygons;
 pub mod polyhedra;
 pub mod sampled;
+mod several;
 
 use crate::interval::{Interval, IntervalList};
 use crate::space::{Motion, Space, Sweep};

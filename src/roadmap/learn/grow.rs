@@ -92,12 +92,21 @@ impl Learner<'_> {
         if let Some(base) = seeds.base {
             work.copy_roadmap(base);
         }
+        let (copied, tried) = (work.node_count(), work.attempts);
         let pair = match seeds.pair {
             Some(ends) => Some(self.seed_pair(&mut work, params, ends, &deadline.within(time))?),
             None => None,
         };
+        // the ends' attempts size the first round: where one attempt's feedback brings dozens
+        // of nodes, a first round of eight candidates, each trying its nearest neighbours,
+        // would under a small node budget compute candidates only to drop them at the budget
+        let per_attempt =
+            (work.node_count() - copied) as f64 / (work.attempts - tried).max(1) as f64;
         let mut rounds = Rounds {
-            nodes_per_candidate: 1.0,
+            nodes_per_candidate: match pair {
+                Some(_) => (per_attempt * params.neighbours as f64).max(1.0),
+                None => 1.0,
+            },
             ..Rounds::default()
         };
         let mut stage = 0;
