@@ -150,5 +150,24 @@ pub fn run(a: BuildArgs) -> anyhow::Result<()> {
         );
     }
     report(&learnt, &a.output);
+    if learnt.roadmap.node_count() == 0 {
+        eprintln!("warning: {}", empty_hint(&scene));
+    }
     Ok(())
+}
+
+/// Why a roadmap can come out empty, and what to do about it: a query still grows a roadmap
+/// from its own ends, so an empty one is no dead end.
+fn empty_hint(scene: &Scene) -> String {
+    let what = if scene.space.body_count() > 1 {
+        "the bodies fill the space too tightly for uniform draws (`--sampler bodies` places \
+         them one at a time)"
+    } else {
+        "the free space is too small for uniform draws (`--sampler gap:sigma=0.1` finds the gaps \
+         between colliding draws)"
+    };
+    format!(
+        "no free configuration was drawn: {what}; `query` grows the roadmap from its own start \
+         and goal"
+    )
 }
