@@ -97,14 +97,7 @@ fn covers_keep_the_static_verdicts_and_every_motion_they_prove_is_free() {
     let (mut proved, mut asked) = (0, 0);
     for (k, q0) in free_configs.iter().enumerate() {
         let reach = [0.05, 0.2, 0.6][k % 3];
-        let q1: Vec<f64> = q0
-            .iter()
-            .enumerate()
-            .map(|(i, x)| {
-                let (lo, hi) = (scene.space.lower()[i], scene.space.upper()[i]);
-                (x + rng.random_range(-reach..=reach)).clamp(lo, hi)
-            })
-            .collect();
+        let q1 = common::arms::near(&scene, q0, reach, &mut rng);
         asked += 1;
         if with.straight_free(q0, &q1, &mut counts).unwrap() {
             let path = [q0.clone(), q1];

@@ -8,7 +8,7 @@
 use crate::common;
 
 use common::arms::certify;
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::Path;
 use viaroad::local::{path_length, LocalSpec};
@@ -47,14 +47,7 @@ fn a_straight_motion_proved_free_is_free_under_the_independent_checker() {
         }
         // motions of every length: a few hundredths of a radian to across the space
         let reach = [0.05, 0.2, 0.8, 3.0][(proved + refused) % 4];
-        let q1: Vec<f64> = q0
-            .iter()
-            .enumerate()
-            .map(|(i, x)| {
-                let (lo, hi) = (scene.space.lower()[i], scene.space.upper()[i]);
-                (x + rng.random_range(-reach..=reach)).clamp(lo, hi)
-            })
-            .collect();
+        let q1 = common::arms::near(&scene, &q0, reach, &mut rng);
         if !free(&q1) {
             continue;
         }

@@ -168,6 +168,6 @@ fn empty_hint(scene: &Scene) -> String {
     };
     format!(
         "no free configuration was drawn: {what}; `query` grows the roadmap from its own start \
-         and goal"
+         and goal, and `query --keep-answers` saves what it found"
     )
 }

@@ -1,5 +1,6 @@
 //! The shipped Panda and its MotionBenchMaker scenes, for the arm tests.
 
+use rand::Rng;
 use std::path::{Path, PathBuf};
 use viaroad::robot::arm::GroupChoice;
 use viaroad::robot::{Arm, ArmChecker, ArmOptions};
@@ -46,4 +47,16 @@ pub fn certify(scene: &Scene, path: &[Config]) {
         scene.name
     );
     assert!(report.samples > path.len());
+}
+
+/// A configuration within `reach` of `q` in every joint, drawn uniformly and clamped to the
+/// space's limits: the far end of a random straight motion of every length the tests ask for.
+pub fn near<R: Rng>(scene: &Scene, q: &[f64], reach: f64, rng: &mut R) -> Config {
+    q.iter()
+        .enumerate()
+        .map(|(i, x)| {
+            let (lo, hi) = (scene.space.lower()[i], scene.space.upper()[i]);
+            (x + rng.random_range(-reach..=reach)).clamp(lo, hi)
+        })
+        .collect()
 }
