@@ -136,7 +136,6 @@ impl Space {
 mod tests {
     use super::*;
     use crate::space::GroupKind;
-    use rand::SeedableRng;
 
     fn space() -> Space {
         Space::joints(
@@ -176,21 +175,7 @@ mod tests {
     #[test]
     fn embedding_bounds_the_distance_from_below() {
         let s = space();
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
-        for _ in 0..200 {
-            let a = s.sample_uniform(&mut rng);
-            let b = s.sample_uniform(&mut rng);
-            assert!(s.in_bounds(&a));
-            let (ea, eb) = (&s.embeddings(&a)[0], &s.embeddings(&b)[0]);
-            assert_eq!(ea.len(), s.embedding_dim());
-            let e = ea
-                .iter()
-                .zip(eb)
-                .map(|(x, y)| (x - y) * (x - y))
-                .sum::<f64>()
-                .sqrt();
-            assert!(e <= s.distance(&a, &b) + 1e-12);
-        }
+        crate::space::assert_embedding_below_distance(&s, 5);
     }
 
     #[test]

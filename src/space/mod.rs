@@ -691,6 +691,32 @@ impl Space {
     }
 }
 
+/// Checks, for `draws` pairs of uniform samples of `space`, that the Euclidean distance of
+/// their embeddings is at most their distance (the nearest-neighbour index relies on it) and
+/// returns the pairs for further checks.
+#[cfg(test)]
+pub(crate) fn assert_embedding_below_distance(space: &Space, seed: u64) -> Vec<(Config, Config)> {
+    use rand::SeedableRng;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    (0..200)
+        .map(|_| {
+            let a = space.sample_uniform(&mut rng);
+            let b = space.sample_uniform(&mut rng);
+            assert!(space.in_bounds(&a));
+            let (ea, eb) = (&space.embeddings(&a)[0], &space.embeddings(&b)[0]);
+            assert_eq!(ea.len(), space.embedding_dim());
+            let e = ea
+                .iter()
+                .zip(eb)
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt();
+            assert!(e <= space.distance(&a, &b) + 1e-12);
+            (a, b)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
