@@ -46,6 +46,7 @@ fn raced_or_in_turn_every_answer_is_certified() {
             race,
             trees_first,
             straight: true,
+            repeat: 0,
         };
         for p in &problems {
             let r = run_problem(&robot, p, &options);
@@ -99,6 +100,7 @@ fn trees_first_hand_over_to_the_via_point_search() {
         race: None,
         trees_first: Some(0.2),
         straight: false,
+        repeat: 0,
     };
     let with_straight = run_problem(
         &robot,

@@ -101,6 +101,9 @@ pub struct MbmOptions {
     /// Shorten with straight motions of several joints at once where they are proved free
     /// ([`Planning::straight`]).
     pub straight: bool,
+    /// Plan each problem this many times more after the measured run, unmeasured, each time
+    /// with a fresh oracle: a profiler then sees planning rather than loading scenes.
+    pub repeat: usize,
 }
 
 impl MbmOptions {
@@ -425,6 +428,7 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         }
     }
     r.time_s = began.elapsed().as_secs_f64();
+    plan_again(o, &planning, (&start, &goal));
     r.calls = counts.intersect_calls();
     r.state_checks = counts.state_checks;
     if let Some((raw, short)) = path {
@@ -440,6 +444,20 @@ pub fn run_problem(robot: &Arm, p: &Problem, o: &MbmOptions) -> ProblemResult {
         r.path = short;
     }
     r
+}
+
+/// Plans the problem [`MbmOptions::repeat`] times more, unmeasured, each time with a fresh
+/// oracle: one that kept the measured run's answers would answer at once.
+fn plan_again(o: &MbmOptions, planning: &Planning, (start, goal): (&Config, &Config)) {
+    for _ in 0..o.repeat {
+        let oracle = planning.scene.oracle();
+        let again = Planning {
+            oracle: oracle.as_ref(),
+            ..*planning
+        };
+        let deadline = Deadline::none().within(Some(o.time));
+        o.portfolio().plan(&again, (start, goal), &deadline);
+    }
 }
 
 /// Mean, standard deviation and percentiles of a sample (VAMP's `evaluate_mbm` columns).

@@ -346,6 +346,11 @@ pub struct MbmArgs {
     /// problems this run asked are its own (an unsolved problem leaves none).
     #[arg(long, value_name = "DIR", conflicts_with = "workcell")]
     pub paths_out: Option<PathBuf>,
+
+    /// Plan each problem N times more after the measured run (not timed, not reported): for a
+    /// profiler, which then sees planning rather than scene loading
+    #[arg(long, default_value_t = 0, help_heading = "Tuning")]
+    pub repeat: usize,
 }
 
 /// Where a workcell's trees grow from (`bench mbm --trees-from`).
@@ -422,6 +427,7 @@ fn mbm_options(
         },
         race,
         straight: !a.no_straight,
+        repeat: a.repeat,
     })
 }
 
