@@ -29,6 +29,9 @@ pub struct Model {
     pub order: Vec<usize>,
     /// Per joint: the index of its mimic master, if any.
     pub mimic_master: Vec<Option<usize>>,
+    /// Per link: how many joints of [`Self::order`] place it and every link above it (a
+    /// prefix of the order: depth first, the joints above a link come before its own).
+    pub order_prefix: Vec<usize>,
     link_index: HashMap<String, usize>,
     joint_index: HashMap<String, usize>,
 }
@@ -130,6 +133,10 @@ impl Model {
                 mimic_master[k] = Some(master);
             }
         }
+        let mut order_prefix = vec![0; urdf.links.len()];
+        for (at, &k) in order.iter().enumerate() {
+            order_prefix[joint_links[k].1] = at + 1;
+        }
         Ok(Model {
             urdf,
             root,
@@ -137,6 +144,7 @@ impl Model {
             joint_links,
             order,
             mimic_master,
+            order_prefix,
             link_index,
             joint_index,
         })
@@ -184,8 +192,21 @@ impl Model {
         values: &[f64],
         poses: &mut [Isometry3<f64>],
     ) {
+        self.link_poses_prefix(base, values, poses, self.order.len());
+    }
+
+    /// [`Model::link_poses_into`] for the links the first `joints` joints of [`Self::order`]
+    /// place ([`Self::order_prefix`]); the other poses are left as they were. Conservative
+    /// advancement asks about one or two links at a time, far fewer joints on a chain.
+    pub fn link_poses_prefix(
+        &self,
+        base: &Isometry3<f64>,
+        values: &[f64],
+        poses: &mut [Isometry3<f64>],
+        joints: usize,
+    ) {
         poses[self.root] = *base;
-        for &k in &self.order {
+        for &k in &self.order[..joints.min(self.order.len())] {
             let (p, c) = self.joint_links[k];
             let value = match (self.mimic_master[k], &self.urdf.joints[k].mimic) {
                 // the master's own value (a fixed master stays at 0)
@@ -199,7 +220,27 @@ impl Model {
                 }
                 _ => values[k],
             };
-            poses[c] = poses[p] * self.urdf.joints[k].origin * self.joint_motion(k, value);
+            poses[c] = self.joint_child(k, &poses[p], value);
+        }
+    }
+
+    /// The pose of joint `k`'s child link from its parent's, `parent · origin · motion(value)`,
+    /// without the products by an identity (the same bits as the full products).
+    fn joint_child(&self, k: usize, parent: &Isometry3<f64>, value: f64) -> Isometry3<f64> {
+        let j = &self.urdf.joints[k];
+        let frame = parent * j.origin;
+        match j.kind {
+            JointKind::Revolute { .. } | JointKind::Continuous => Isometry3::from_parts(
+                frame.translation,
+                frame.rotation * UnitQuaternion::from_axis_angle(&j.axis, value),
+            ),
+            JointKind::Prismatic { .. } => Isometry3::from_parts(
+                Translation3::from(
+                    frame.translation.vector + frame.rotation * (j.axis.into_inner() * value),
+                ),
+                frame.rotation,
+            ),
+            JointKind::Fixed => frame,
         }
     }
 
@@ -465,6 +506,33 @@ mod tests {
         <joint name="p" type="prismatic"><parent link="tool"/><child link="slide"/><axis xyz="1 0 0"/><limit lower="0" upper="0.2"/></joint>
         <link name="slide"/>
     </robot>"#;
+
+    /// A prefix of the order places a link and every link above it exactly as the whole order
+    /// does, bit for bit, on the Panda (fixed joints, a mimic finger) at random values.
+    #[test]
+    fn a_prefix_places_each_link_as_the_whole_order_does() {
+        use rand::{Rng, SeedableRng};
+        let arm = crate::robot::arm::tests::panda();
+        let m = &arm.model;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let base = Isometry3::translation(0.1, -0.2, 0.3);
+        let mut prefix = vec![Isometry3::identity(); m.urdf.links.len()];
+        for _ in 0..50 {
+            let values: Vec<f64> = (0..m.urdf.joints.len())
+                .map(|_| rng.random_range(-3.0..3.0))
+                .collect();
+            let all = m.link_poses(&base, &values);
+            for l in 0..m.urdf.links.len() {
+                prefix.fill(Isometry3::identity());
+                m.link_poses_prefix(&base, &values, &mut prefix, m.order_prefix[l]);
+                let mut above = Some(l);
+                while let Some(k) = above {
+                    assert_eq!(prefix[k], all[k], "link {k} above {l}");
+                    above = m.parent_joint[k].map(|j| m.joint_links[j].0);
+                }
+            }
+        }
+    }
 
     #[test]
     fn planar_two_link_forward_kinematics_matches_the_closed_form() {

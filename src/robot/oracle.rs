@@ -108,7 +108,9 @@ impl Ball {
     }
 
     fn meets(&self, o: &Ball) -> bool {
-        (self.centre - o.centre).norm() <= self.radius + o.radius
+        // squares: the sure test and the proofs' pieces run this by the thousand
+        let reach = self.radius + o.radius;
+        (self.centre - o.centre).norm_squared() <= reach * reach
     }
 }
 
@@ -298,6 +300,9 @@ pub struct ArmOracle {
     /// Per link, how fast its points may move per unit of each joint's rate
     /// ([`ArmOracle::straight_free`]).
     reach: reach::Reach,
+    /// Per link, the environment polytopes it can meet in some configuration
+    /// ([`reach::reachable_obstacles`]).
+    reachable: Vec<Vec<u32>>,
 }
 
 /// The sure test's inner balls in the world, each link's placed when first asked for (most
@@ -591,9 +596,26 @@ impl ArmOracle {
             &arm.model,
             link_meshes.iter().map(|m| m.as_ref().map(|(mesh, _)| mesh)),
         );
+        let mid: Vec<f64> = (0..arm.group.dof())
+            .map(|i| (arm.group.lower[i] + arm.group.upper[i]) / 2.0)
+            .collect();
+        let reachable = reach::reachable_obstacles(
+            &arm.model,
+            &reach,
+            &link_meshes
+                .iter()
+                .map(|m| m.as_ref().map(|(_, b)| (b.centre, b.radius)))
+                .collect::<Vec<_>>(),
+            &arm.link_poses(&mid),
+            &environment
+                .iter()
+                .map(|(_, b)| (b.centre, b.radius))
+                .collect::<Vec<_>>(),
+        );
         Ok(ArmOracle {
             arm: arm.clone(),
             reach,
+            reachable,
             inner,
             solids,
             sure_test: true,
@@ -728,7 +750,13 @@ impl ArmOracle {
         for x in ca {
             let px = pose_a * x.centre;
             for y in cb {
-                least = least.min((px - pose_b * y.centre).norm() - x.radius - y.radius);
+                let d2 = (px - pose_b * y.centre).norm_squared();
+                // no root where the ball pair cannot come closer than the least so far
+                let beat = least + x.radius + y.radius;
+                if beat > 0.0 && d2 >= beat * beat {
+                    continue;
+                }
+                least = least.min(d2.sqrt() - x.radius - y.radius);
             }
         }
         least
@@ -845,13 +873,26 @@ impl ArmOracle {
     /// shape, or two links' inner balls overlapping. `true` only where [`Self::collides`]'
     /// exact test finds a collision too.
     fn surely_collides_at(&self, poses: &[Isometry3<f64>], balls: &[Option<Ball>]) -> bool {
+        self.surely_collides_with(poses, balls, true)
+    }
+
+    /// [`Self::surely_collides_at`], the self pairs too or not (`self_pairs`): a straight
+    /// motion between configurations found free rarely turns a link into another, and its
+    /// proof finds that anyway, so its moments skip the pairs' inner balls.
+    fn surely_collides_with(
+        &self,
+        poses: &[Isometry3<f64>],
+        balls: &[Option<Ball>],
+        self_pairs: bool,
+    ) -> bool {
         PlacedBalls::with(&self.inner, poses, |placed| {
             for (l, ball) in balls.iter().enumerate() {
                 let Some(ball) = ball else { continue };
                 if self.inner[l].is_empty() {
                     continue;
                 }
-                for ((_, ob), solid) in self.environment.iter().zip(&self.solids) {
+                for &i in &self.reachable[l] {
+                    let (ob, solid) = (&self.environment[i as usize].1, &self.solids[i as usize]);
                     // the link's own ball holds its inner balls: if it misses the true shape,
                     // so do they (one placement instead of one per inner ball)
                     let near =
@@ -864,21 +905,50 @@ impl ArmOracle {
                     }
                 }
             }
-            self.arm.self_pairs.iter().any(|&(a, b)| {
-                if self.inner[a].is_empty() || self.inner[b].is_empty() {
-                    return false;
-                }
-                if !matches!((&balls[a], &balls[b]), (Some(x), Some(y)) if x.meets(y)) {
-                    return false;
-                }
-                let (ra, rb) = (placed.of(a), placed.of(b));
-                placed.balls[ra].iter().any(|(ca, ra)| {
-                    placed.balls[rb.clone()]
-                        .iter()
-                        .any(|(cb, rb)| (ca - cb).norm_squared() < (ra + rb) * (ra + rb))
-                })
-            })
+            self_pairs
+                && self
+                    .arm
+                    .self_pairs
+                    .iter()
+                    .any(|&(a, b)| self.inner_balls_meet(placed, balls, a, b))
         })
+    }
+
+    /// Whether links `a` and `b`'s inner balls overlap (the sure test of a self pair).
+    fn inner_balls_meet(
+        &self,
+        placed: &mut PlacedBalls,
+        balls: &[Option<Ball>],
+        a: usize,
+        b: usize,
+    ) -> bool {
+        if self.inner[a].is_empty() || self.inner[b].is_empty() {
+            return false;
+        }
+        let (Some(ball_a), Some(around)) = (&balls[a], &balls[b]) else {
+            return false;
+        };
+        if !ball_a.meets(around) {
+            return false;
+        }
+        // only a's inner balls that reach into b's ball can meet b's inner balls
+        let reaching = |(ca, r): &(Point3<f64>, f64)| {
+            let reach = r + around.radius;
+            (ca.coords - around.centre).norm_squared() <= reach * reach
+        };
+        let ra = placed.of(a);
+        if !placed.balls[ra.clone()].iter().any(reaching) {
+            return false;
+        }
+        let rb = placed.of(b);
+        placed.balls[ra]
+            .iter()
+            .filter(|x| reaching(x))
+            .any(|(ca, ra)| {
+                placed.balls[rb.clone()]
+                    .iter()
+                    .any(|(cb, rb)| (ca - cb).norm_squared() < (ra + rb) * (ra + rb))
+            })
     }
 
     /// What both ways of answering a joint move share: input checks, the distal links, and the
