@@ -750,13 +750,7 @@ impl ArmOracle {
         for x in ca {
             let px = pose_a * x.centre;
             for y in cb {
-                let d2 = (px - pose_b * y.centre).norm_squared();
-                // no root where the ball pair cannot come closer than the least so far
-                let beat = least + x.radius + y.radius;
-                if beat > 0.0 && d2 >= beat * beat {
-                    continue;
-                }
-                least = least.min(d2.sqrt() - x.radius - y.radius);
+                least = least.min((px - pose_b * y.centre).norm() - x.radius - y.radius);
             }
         }
         least
@@ -877,8 +871,8 @@ impl ArmOracle {
     }
 
     /// [`Self::surely_collides_at`], the self pairs too or not (`self_pairs`): a straight
-    /// motion between configurations found free rarely turns a link into another, and its
-    /// proof finds that anyway, so its moments skip the pairs' inner balls.
+    /// motion between free configurations rarely brings one link into another, and its proof
+    /// finds that anyway, so its moments skip the pairs' inner balls.
     fn surely_collides_with(
         &self,
         poses: &[Isometry3<f64>],

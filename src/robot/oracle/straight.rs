@@ -100,20 +100,25 @@ struct Pieces {
 }
 
 impl Pieces {
+    /// The links (one entry per link in every piece's run of the buffers).
+    fn links(&self) -> usize {
+        self.grow.len()
+    }
+
     /// Link `l`'s grown ball in piece `p`.
     fn ball(&self, p: usize, l: usize) -> Option<&Ball> {
-        self.balls[p * self.grow.len() + l].as_ref()
+        self.balls[p * self.links() + l].as_ref()
     }
 
     /// Link `l`'s pose at the middle of piece `p`.
     fn pose(&self, p: usize, l: usize) -> &Isometry3<f64> {
-        &self.poses[p * self.grow.len() + l]
+        &self.poses[p * self.links() + l]
     }
 
     /// Per link, a ball holding its balls of every piece (`None`: no geometry): a pair whose
     /// balls miss each other meets in no piece.
     fn held(&self) -> Vec<Option<Ball>> {
-        (0..self.grow.len())
+        (0..self.links())
             .map(|l| {
                 let first = self.ball(0, l)?;
                 let last = self.ball(self.n - 1, l)?;
