@@ -516,9 +516,10 @@ impl Speed {
 
 /// Whether two bodies stay more than `margin` apart for all `t` in `range` while `at(t)` places
 /// them (world poses of `a` and of `b`) and says how fast they may approach each other from
-/// there ([`Speed`]; `fastest` bounds the rate over the whole motion): separating planes
-/// from both ends in turn, each proving the pair apart until the bodies could have crossed
-/// its gap (a multi-joint motion, [`super::oracle`]'s straight motions). A plane proves both
+/// there ([`Speed`]; `fastest` bounds the rate over the whole motion): a separating plane at
+/// the middle, then planes from both ends of what it leaves in turn, each proving the pair
+/// apart until the bodies could have crossed its gap (a multi-joint motion,
+/// [`super::oracle`]'s straight motions). A plane proves both
 /// ways from its moment, so each front places its next plane ahead by the radius it last
 /// proved (twice the reach per plane while the gap stays alike; where it falls short, what it
 /// proved is joined once the front gets there). `false` when a plane cannot be found (the
@@ -542,18 +543,70 @@ pub(crate) fn apart_along(
         fastest,
         margin,
     };
+    // a plane at the middle proves twice as far as one at an end: the fronts prove what it
+    // leaves on either side (if it finds no plane, they prove the whole range)
+    let middle = (range.lo + range.hi) / 2.0;
+    let mut first = None;
+    let s = planes_of.step(at, middle, (range.hi - range.lo) / 2.0, &mut first);
+    let mut planes = 1;
+    if s <= 0.0 {
+        return fronts(
+            &mut planes_of,
+            at,
+            range,
+            [None, None],
+            &mut planes,
+            max_steps,
+        );
+    }
+    let below = Interval {
+        lo: range.lo,
+        hi: middle - s,
+    };
+    let above = Interval {
+        lo: middle + s,
+        hi: range.hi,
+    };
+    (below.lo >= below.hi
+        || fronts(
+            &mut planes_of,
+            at,
+            below,
+            [None, first],
+            &mut planes,
+            max_steps,
+        ))
+        && (above.lo >= above.hi
+            || fronts(
+                &mut planes_of,
+                at,
+                above,
+                [first, None],
+                &mut planes,
+                max_steps,
+            ))
+}
+
+/// [`apart_along`]'s separating planes from both ends of `range` in turn (`dir`: the fronts'
+/// first directions; `planes`: the planes sought so far, at most `max_steps`).
+fn fronts(
+    planes_of: &mut Separation<'_>,
+    at: &mut dyn FnMut(f64) -> (Isometry3<f64>, Isometry3<f64>, Speed),
+    range: Interval,
+    mut dir: [Option<Vector3<f64>>; 2],
+    planes: &mut usize,
+    max_steps: usize,
+) -> bool {
     let (mut lo, mut hi) = (range.lo, range.hi);
     // per front (0: from `lo` up, 1: from `hi` down): the last plane's direction, the last
     // radius proved, and a stretch proved ahead of it by a look that fell short
-    let mut dir = [None, None];
     let mut radius = [0.0f64; 2];
     let mut island: [Option<Interval>; 2] = [None, None];
     let mut round = 0.0;
     let mut probes = 0u32;
     let mut from_probe = None;
-    let mut planes = 0;
     let mut side = 0;
-    while planes < max_steps {
+    while *planes < max_steps {
         let rest = hi - lo;
         let before = rest;
         // a plane proves both ways from its moment: one placed ahead of the front by the last
@@ -562,7 +615,7 @@ pub(crate) fn apart_along(
         let mut moved = false;
         if ahead > 0.0 && ahead < rest {
             let t = if side == 0 { lo + ahead } else { hi - ahead };
-            planes += 1;
+            *planes += 1;
             let s = planes_of.step(at, t, (rest - ahead).max(ahead), &mut dir[side]);
             if s <= 0.0 {
                 return false;
@@ -583,8 +636,12 @@ pub(crate) fn apart_along(
             }
         }
         if !moved && lo < hi {
-            planes += 1;
+            *planes += 1;
             let t = if side == 0 { lo } else { hi };
+            // the far front starts from the near front's plane: nearby moments, alike planes
+            if dir[side].is_none() {
+                dir[side] = dir[side ^ 1];
+            }
             let s = planes_of.step(at, t, rest, &mut dir[side]);
             if s <= 0.0 {
                 return false;

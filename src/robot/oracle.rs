@@ -880,7 +880,9 @@ impl ArmOracle {
         self_pairs: bool,
     ) -> bool {
         PlacedBalls::with(&self.inner, poses, |placed| {
-            for (l, ball) in balls.iter().enumerate() {
+            // the links far from the root first: where a moment collides it is mostly the hand
+            // or a finger that is in an obstacle (planning instructions: -2.4 %)
+            for (l, ball) in balls.iter().enumerate().rev() {
                 let Some(ball) = ball else { continue };
                 if self.inner[l].is_empty() {
                     continue;

@@ -26,7 +26,9 @@
 //!
 //! Every link–obstacle and non-exempt link–link pair whose balls, grown by the motion's bound,
 //! meet, and whose outer sphere covers ([`crate::robot::cover`]), grown alike, come near, is
-//! proved apart from both ends plane after plane, or the motion is not certified. The pairs
+//! proved apart plane after plane, or the motion is not certified. Two links are grown by how
+//! far they may move relative to each other, by the joints between them only: the wrist's
+//! links, always close, mostly turn little one against the other. The pairs
 //! whose covers come closest go first: a motion that is not free mostly fails there, before
 //! the others are proved apart for nothing. Near
 //! contact the planes' steps shrink and the proof gives up: a motion it does not prove is
@@ -60,7 +62,8 @@ const MAX_PIECES: usize = 32;
 const SURE_SAMPLES: usize = 8;
 
 /// A proof stops once the deadline watched on this thread has passed
-/// ([`crate::deadline::watching`]), before each pair's window of at most [`MAX_PLANES`] planes:
+/// ([`crate::deadline::watching`]), as it starts and before each pair's window of at most
+/// [`MAX_PLANES`] planes:
 /// a query's time is a promise, and an interrupted proof is an error, never a "not proved"
 /// that would be kept as the motion's answer.
 fn interrupted() -> Result<(), RobotError> {
@@ -135,13 +138,21 @@ impl Pieces {
             .collect()
     }
 
-    /// The runs of consecutive pieces in which `near(piece)` holds (how close the pair's covers
-    /// come there, less how far the links may move in half a piece), as ranges of `t` with the
-    /// closest they come in each run.
-    fn runs(&self, near: &dyn Fn(usize) -> Option<f64>) -> Vec<(Interval, f64)> {
+    /// The runs of consecutive pieces in which `look(piece)` finds the pair near, as ranges of
+    /// `t` with the closest its covers come in each run (less how far the links may move in
+    /// half a piece); pieces a look finds apart ahead of it are not looked at.
+    fn runs(&self, look: &dyn Fn(usize) -> Look) -> Vec<(Interval, f64)> {
         let n = self.n;
         let mut out: Vec<(Interval, f64)> = Vec::new();
-        for (p, closest) in (0..n).filter_map(|p| near(p).map(|c| (p, c))) {
+        let mut p = 0;
+        while p < n {
+            let closest = match look(p) {
+                Look::Near(closest) => closest,
+                Look::Apart(ahead) => {
+                    p = p.saturating_add(ahead).saturating_add(1);
+                    continue;
+                }
+            };
             let (lo, hi) = (p as f64 / n as f64, (p + 1) as f64 / n as f64);
             match out.last_mut() {
                 Some((last, c)) if last.hi == lo => {
@@ -150,8 +161,38 @@ impl Pieces {
                 }
                 _ => out.push((Interval { lo, hi }, closest)),
             }
+            p += 1;
         }
         out
+    }
+}
+
+/// What a pair's look at one piece found.
+enum Look {
+    /// The pair may come near there: how close its covers come, less how far its links may
+    /// move in half a piece.
+    Near(f64),
+    /// Apart there, and in this many pieces after it.
+    Apart(usize),
+}
+
+impl Look {
+    /// The look at a piece where the pair's covers are `d` apart, its links' points moving at
+    /// most `grow` relative to each other in half a piece: near within `margin`; else apart in
+    /// the pieces after it too while the points, `d` apart at this piece's middle and coming
+    /// at most `2 grow` nearer from piece to piece, stay more than `margin` apart.
+    fn at(d: f64, grow: f64, margin: f64) -> Look {
+        let closest = d - grow;
+        // (a NaN is near: nothing is skipped on it)
+        if closest.is_nan() || closest <= margin {
+            return Look::Near(closest);
+        }
+        let ahead = (closest - margin) / (2.0 * grow) * (1.0 - 1e-9);
+        Look::Apart(if ahead < usize::MAX as f64 {
+            ahead as usize
+        } else {
+            usize::MAX
+        })
     }
 }
 
@@ -351,8 +392,9 @@ impl ArmOracle {
         poses: &mut [Isometry3<f64>],
         counts: &mut CallCounts,
     ) -> Result<bool, RobotError> {
+        interrupted()?;
         let held = pieces.held();
-        let mut tasks = self.self_pair_tasks(pieces, &held);
+        let mut tasks = self.self_pair_tasks(motion, pieces, &held);
         tasks.extend(self.environment_tasks(pieces, &held));
         tasks.sort_by(|x, y| x.closest.total_cmp(&y.closest));
         for task in tasks {
@@ -373,8 +415,14 @@ impl ArmOracle {
     }
 
     /// The self pairs' stretches to prove: where their grown balls meet and their covers'
-    /// balls, grown alike, come near.
-    fn self_pair_tasks(&self, pieces: &Pieces, held: &[Option<Ball>]) -> Vec<Task> {
+    /// balls, grown by how far the links may move relative to each other in half a piece,
+    /// come near.
+    fn self_pair_tasks(
+        &self,
+        motion: &Straight,
+        pieces: &Pieces,
+        held: &[Option<Ball>],
+    ) -> Vec<Task> {
         let mut tasks = Vec::new();
         for &(a, b) in &self.arm.self_pairs {
             if !matches!((&held[a], &held[b]), (Some(x), Some(y)) if x.meets(y)) {
@@ -384,13 +432,16 @@ impl ArmOracle {
                 .pair_oracles
                 .get(&(a, b))
                 .map_or(0.0, |o| o.tolerance() * CLEARANCE_PER_TOLERANCE);
+            // only the joints between the links move one relative to the other
+            let relative = motion.speed(a, Some(b)) + motion.speed(b, Some(a));
+            let grow = relative / (2 * pieces.n) as f64;
             let near = |p: usize| match (pieces.ball(p, a), pieces.ball(p, b)) {
-                (Some(ba), Some(bb)) if ba.meets(bb) => {
-                    let grow = pieces.grow[a] + pieces.grow[b];
-                    let d = self.cover_to_link(a, pieces.pose(p, a), b, pieces.pose(p, b)) - grow;
-                    (d <= margin).then_some(d)
-                }
-                _ => None,
+                (Some(ba), Some(bb)) if ba.meets(bb) => Look::at(
+                    self.cover_to_link(a, pieces.pose(p, a), b, pieces.pose(p, b)),
+                    grow,
+                    margin,
+                ),
+                _ => Look::Apart(0),
             };
             tasks.extend(
                 pieces
@@ -468,13 +519,12 @@ impl ArmOracle {
             let margin = self.env_oracles[l]
                 .as_ref()
                 .map_or(0.0, |o| o.tolerance() * CLEARANCE_PER_TOLERANCE);
-            let near = |p: usize| {
-                let b = pieces.ball(p, l)?;
-                if !b.meets(ob) || (self.culling && !self.env_boxes[i].meets_ball(b)) {
-                    return None;
+            let near = |p: usize| match pieces.ball(p, l) {
+                Some(b) if b.meets(ob) && (!self.culling || self.env_boxes[i].meets_ball(b)) => {
+                    let d = self.cover_to_obstacle(l, pieces.pose(p, l), i);
+                    Look::at(d, pieces.grow[l], margin)
                 }
-                let d = self.cover_to_obstacle(l, pieces.pose(p, l), i) - pieces.grow[l];
-                (d <= margin).then_some(d)
+                _ => Look::Apart(0),
             };
             tasks.extend(
                 pieces
