@@ -15,7 +15,7 @@ use viaroad::local::{path_length, LocalSpec};
 use viaroad::oracle::CallCounts;
 use viaroad::roadmap::tree::TreeParams;
 use viaroad::roadmap::{Budget, LearnParams, Learner, QueryOptions, QueryPlanner};
-use viaroad::robot::ArmChecker;
+use viaroad::robot::{ArmChecker, PathReport};
 use viaroad::scene::{Robot, Scene};
 
 fn box_scene() -> Scene {
@@ -23,8 +23,14 @@ fn box_scene() -> Scene {
         .unwrap()
 }
 
-#[test]
-fn a_straight_motion_proved_free_is_free_under_the_independent_checker() {
+/// `count` straight motions of the box scene, from free samples to free `target(index, q0,
+/// rng)`: every one the oracle proves free must pass the independent checker. How many it
+/// proved, and the checker's report of each one it refused.
+fn proofs_under_the_checker(
+    seed: u64,
+    count: usize,
+    target: impl Fn(usize, &Scene, &[f64], &mut ChaCha8Rng) -> Vec<f64>,
+) -> (usize, Vec<PathReport>) {
     let scene = box_scene();
     let Robot::Arm(a) = &scene.robot else {
         panic!("not an arm scene")
@@ -32,80 +38,20 @@ fn a_straight_motion_proved_free_is_free_under_the_independent_checker() {
     let oracle = a.arm_oracle();
     let checker = ArmChecker::new(&a.arm, &a.objects).unwrap();
     let step = 0.001 * checker.arm().group.max_extent();
-    let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let (mut proved, mut refused, mut blocked_refused) = (0, 0, 0);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (mut proved, mut refused) = (0, Vec::new());
     let mut counts = CallCounts::default();
     // free and within the checker's joint limits
     let free = |q: &[f64]| {
         let at = [q.to_vec(), q.to_vec()];
         checker.check_path(&at, step).unwrap().valid
     };
-    while proved + refused < 240 {
+    while proved + refused.len() < count {
         let q0 = scene.space.sample_uniform(&mut rng);
         if !free(&q0) {
             continue;
         }
-        // motions of every length: a few hundredths of a radian to across the space
-        let reach = [0.05, 0.2, 0.8, 3.0][(proved + refused) % 4];
-        let q1 = common::arms::near(&scene, &q0, reach, &mut rng);
-        if !free(&q1) {
-            continue;
-        }
-        let path = [q0.clone(), q1.clone()];
-        let report = checker.check_path(&path, step).unwrap();
-        let valid = report.valid;
-        if oracle.straight_free(&q0, &q1, &mut counts).unwrap() {
-            assert!(
-                valid,
-                "proved free, the checker refuses it: {path:?} {report:?}"
-            );
-            proved += 1;
-        } else {
-            refused += 1;
-            blocked_refused += usize::from(!valid);
-        }
-    }
-    assert!(proved >= 40, "only {proved} of 240 motions proved free");
-    assert!(
-        blocked_refused >= 10,
-        "only {blocked_refused} blocked motions met"
-    );
-    assert_eq!(counts.segment_calls, 240);
-}
-
-/// Motions of the wrist alone bring the hand and the last links against the fifth link: a
-/// self pair's proof grows its covers only by how far the joints between the two links move
-/// them, so it meets near contacts here. Every motion proved free is free under the checker,
-/// and self collisions are met and refused.
-#[test]
-fn a_wrist_motion_proved_free_keeps_the_hand_off_the_forearm() {
-    let scene = box_scene();
-    let Robot::Arm(a) = &scene.robot else {
-        panic!("not an arm scene")
-    };
-    let oracle = a.arm_oracle();
-    let checker = ArmChecker::new(&a.arm, &a.objects).unwrap();
-    let step = 0.001 * checker.arm().group.max_extent();
-    let mut rng = ChaCha8Rng::seed_from_u64(11);
-    let (lo, hi) = (scene.space.lower(), scene.space.upper());
-    let (mut proved, mut refused, mut self_blocked) = (0, 0, 0);
-    let mut counts = CallCounts::default();
-    let free = |q: &[f64]| {
-        checker
-            .check_path(&[q.to_vec(), q.to_vec()], step)
-            .unwrap()
-            .valid
-    };
-    while proved + refused < 160 {
-        let q0 = scene.space.sample_uniform(&mut rng);
-        if !free(&q0) {
-            continue;
-        }
-        // the last three joints anywhere in their ranges, the others as they are
-        let mut q1 = q0.clone();
-        for i in 4..7 {
-            q1[i] = rng.random_range(lo[i]..=hi[i]);
-        }
+        let q1 = target(proved + refused.len(), &scene, &q0, &mut rng);
         if !free(&q1) {
             continue;
         }
@@ -118,16 +64,48 @@ fn a_wrist_motion_proved_free_keeps_the_hand_off_the_forearm() {
             );
             proved += 1;
         } else {
-            refused += 1;
-            let own = |name: &str| name.starts_with("panda_");
-            self_blocked += usize::from(
-                report
-                    .first_invalid
-                    .as_ref()
-                    .is_some_and(|(_, _, c)| c.iter().any(|c| own(&c.a) && own(&c.b))),
-            );
+            refused.push(report);
         }
     }
+    assert_eq!(counts.segment_calls, count as u64);
+    (proved, refused)
+}
+
+#[test]
+fn a_straight_motion_proved_free_is_free_under_the_independent_checker() {
+    // motions of every length: a few hundredths of a radian to across the space
+    let (proved, refused) = proofs_under_the_checker(7, 240, |i, scene, q0, rng| {
+        common::arms::near(scene, q0, [0.05, 0.2, 0.8, 3.0][i % 4], rng)
+    });
+    let blocked_refused = refused.iter().filter(|r| !r.valid).count();
+    assert!(proved >= 40, "only {proved} of 240 motions proved free");
+    assert!(
+        blocked_refused >= 10,
+        "only {blocked_refused} blocked motions met"
+    );
+}
+
+/// Motions of the wrist alone bring the hand and the last links against the fifth link: a
+/// self pair's proof grows its covers only by how far the joints between the two links move
+/// them, so it meets near contacts here. Every motion proved free is free under the checker,
+/// and self collisions are met and refused.
+#[test]
+fn a_wrist_motion_proved_free_keeps_the_hand_off_the_forearm() {
+    // the last three joints anywhere in their ranges, the others as they are
+    let (proved, refused) = proofs_under_the_checker(11, 160, |_, scene, q0, rng| {
+        let (lo, hi) = (scene.space.lower(), scene.space.upper());
+        let mut q1 = q0.to_vec();
+        for i in 4..7 {
+            q1[i] = rng.random_range(lo[i]..=hi[i]);
+        }
+        q1
+    });
+    let own = |name: &str| name.starts_with("panda_");
+    let self_blocked = refused
+        .iter()
+        .filter_map(|r| r.first_invalid.as_ref())
+        .filter(|(_, _, c)| c.iter().any(|c| own(&c.a) && own(&c.b)))
+        .count();
     assert!(
         proved >= 30,
         "only {proved} of 160 wrist motions proved free"
