@@ -19,7 +19,7 @@
 
 use super::shapes::Primitive;
 use crate::geometry::TriMesh;
-use nalgebra::{Isometry3, Point3, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point3, Vector3};
 
 /// Grid points per axis of a link's box where inner balls are looked for.
 pub const GRID: usize = 10;
@@ -182,7 +182,11 @@ fn closest_on_triangle(
 /// primitive (world to primitive frame). Cones and meshes have none.
 #[derive(Clone, Copy, Debug)]
 pub struct Solid {
-    to_local: Isometry3<f64>,
+    /// World to primitive frame as a matrix and a shift: the sure test maps hundreds of
+    /// thousands of centres per query, and a matrix does it in half the flops of a
+    /// quaternion.
+    turn: Matrix3<f64>,
+    shift: Vector3<f64>,
     shape: Primitive,
 }
 
@@ -193,25 +197,29 @@ impl Solid {
             shape,
             Primitive::Box { .. } | Primitive::Cylinder { .. } | Primitive::Sphere { .. }
         )
-        .then(|| Solid {
-            to_local: pose.inverse(),
-            shape: *shape,
+        .then(|| {
+            let to_local = pose.inverse();
+            Solid {
+                turn: to_local.rotation.to_rotation_matrix().into_inner(),
+                shift: to_local.translation.vector,
+                shape: *shape,
+            }
         })
     }
 
     /// Whether the ball reaches into the true shape: its centre is closer than its radius.
     pub fn meets(&self, centre: &Point3<f64>, radius: f64) -> bool {
-        let p = self.to_local * centre;
+        let p = self.turn * centre.coords + self.shift;
         let d2 = match self.shape {
             Primitive::Box { size } => (0..3)
                 .map(|i| (p[i].abs() - size[i] / 2.0).max(0.0).powi(2))
                 .sum(),
             Primitive::Cylinder { radius: r, length } => {
-                let radial = (p.x.hypot(p.y) - r).max(0.0);
+                let radial = ((p.x * p.x + p.y * p.y).sqrt() - r).max(0.0);
                 let axial = (p.z.abs() - length / 2.0).max(0.0);
                 radial * radial + axial * axial
             }
-            Primitive::Sphere { radius: r } => (p.coords.norm() - r).max(0.0).powi(2),
+            Primitive::Sphere { radius: r } => (p.norm() - r).max(0.0).powi(2),
             Primitive::Cone { .. } => return false,
         };
         d2 < radius * radius

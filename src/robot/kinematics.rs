@@ -8,7 +8,7 @@
 use super::srdf::{GroupSpec, Srdf};
 use super::urdf::{JointKind, Urdf};
 use super::RobotError;
-use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use nalgebra::{Isometry3, Quaternion, Translation3, Unit, UnitQuaternion, Vector3};
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -32,6 +32,8 @@ pub struct Model {
     /// Per link: how many joints of [`Self::order`] place it and every link above it (a
     /// prefix of the order: depth first, the joints above a link come before its own).
     pub order_prefix: Vec<usize>,
+    /// Per joint of [`Self::order`], how it places its child link.
+    placements: Vec<Placement>,
     link_index: HashMap<String, usize>,
     joint_index: HashMap<String, usize>,
 }
@@ -47,6 +49,119 @@ pub struct Group {
     pub lower: Vec<f64>,
     /// Upper bound per group joint (continuous joints: π).
     pub upper: Vec<f64>,
+}
+
+/// How one joint of [`Model::order`] places its child link, resolved once: forward kinematics
+/// runs at every moment a sure test or a proof looks at, thousands of times per arm query, so
+/// the joint's kind, where its value comes from and which products are by an identity are not
+/// looked up per call.
+#[derive(Clone, Debug)]
+struct Placement {
+    parent: usize,
+    child: usize,
+    origin: Isometry3<f64>,
+    /// Whether the origin rotates or shifts: the products by an identity are skipped (they
+    /// would give the same bits).
+    origin_turns: bool,
+    origin_shifts: bool,
+    value: Value,
+    motion: Motion,
+}
+
+/// Where a joint's value comes from.
+#[derive(Clone, Copy, Debug)]
+enum Value {
+    Own(usize),
+    /// `multiplier · master + offset`; a fixed master (`None`) stays at 0.
+    Mimic {
+        master: Option<usize>,
+        multiplier: f64,
+        offset: f64,
+    },
+}
+
+/// What a joint's value does to its child.
+#[derive(Clone, Copy, Debug)]
+enum Motion {
+    Fixed,
+    /// A rotation about `±z` (this sign), as most arms' joints are: its quaternion is
+    /// `(cos, 0, 0, ±sin)` of the half angle, and the product skips the zero terms (the same
+    /// bits as the full product).
+    TurnZ(f64),
+    Turn(Unit<Vector3<f64>>),
+    Slide(Vector3<f64>),
+}
+
+impl Placement {
+    fn new(urdf: &Urdf, k: usize, (parent, child): (usize, usize), mimic: Option<usize>) -> Self {
+        let j = &urdf.joints[k];
+        let value = match (mimic, &j.mimic) {
+            (Some(m), Some(mimic)) => Value::Mimic {
+                master: urdf.joints[m].kind.is_movable().then_some(m),
+                multiplier: mimic.multiplier,
+                offset: mimic.offset,
+            },
+            _ => Value::Own(k),
+        };
+        let axis = j.axis.into_inner();
+        let motion = match j.kind {
+            JointKind::Revolute { .. } | JointKind::Continuous => {
+                if axis.x == 0.0 && axis.y == 0.0 && axis.z.abs() == 1.0 {
+                    Motion::TurnZ(axis.z)
+                } else {
+                    Motion::Turn(j.axis)
+                }
+            }
+            JointKind::Prismatic { .. } => Motion::Slide(axis),
+            JointKind::Fixed => Motion::Fixed,
+        };
+        Placement {
+            parent,
+            child,
+            origin: j.origin,
+            origin_turns: j.origin.rotation != UnitQuaternion::identity(),
+            origin_shifts: j.origin.translation.vector != Vector3::zeros(),
+            value,
+            motion,
+        }
+    }
+
+    /// The child's pose, `parent · origin · motion(value)`.
+    fn place(&self, parent: &Isometry3<f64>, values: &[f64]) -> Isometry3<f64> {
+        let mut shift = parent.translation.vector;
+        if self.origin_shifts {
+            shift += parent.rotation * self.origin.translation.vector;
+        }
+        let mut turn = parent.rotation;
+        if self.origin_turns {
+            turn *= self.origin.rotation;
+        }
+        let value = || match self.value {
+            Value::Own(k) => values[k],
+            Value::Mimic {
+                master,
+                multiplier,
+                offset,
+            } => multiplier * master.map_or(0.0, |m| values[m]) + offset,
+        };
+        match self.motion {
+            Motion::Fixed => {}
+            Motion::TurnZ(sign) => {
+                let (s, c) = (value() / 2.0).sin_cos();
+                let z = sign * s;
+                let a = turn.quaternion();
+                turn = Unit::new_unchecked(Quaternion::new(
+                    a.w * c - a.k * z,
+                    a.i * c + a.j * z,
+                    a.j * c - a.i * z,
+                    a.w * z + a.k * c,
+                ));
+            }
+            Motion::Turn(axis) => turn *= UnitQuaternion::from_axis_angle(&axis, value()),
+            Motion::Slide(axis) => shift += turn * (axis * value()),
+        }
+        Isometry3::from_parts(Translation3::from(shift), turn)
+    }
 }
 
 impl Model {
@@ -137,6 +252,10 @@ impl Model {
         for (at, &k) in order.iter().enumerate() {
             order_prefix[joint_links[k].1] = at + 1;
         }
+        let placements = order
+            .iter()
+            .map(|&k| Placement::new(&urdf, k, joint_links[k], mimic_master[k]))
+            .collect();
         Ok(Model {
             urdf,
             root,
@@ -145,6 +264,7 @@ impl Model {
             order,
             mimic_master,
             order_prefix,
+            placements,
             link_index,
             joint_index,
         })
@@ -206,41 +326,8 @@ impl Model {
         joints: usize,
     ) {
         poses[self.root] = *base;
-        for &k in &self.order[..joints.min(self.order.len())] {
-            let (p, c) = self.joint_links[k];
-            let value = match (self.mimic_master[k], &self.urdf.joints[k].mimic) {
-                // the master's own value (a fixed master stays at 0)
-                (Some(m), Some(mimic)) => {
-                    let master = if self.urdf.joints[m].kind.is_movable() {
-                        values[m]
-                    } else {
-                        0.0
-                    };
-                    mimic.multiplier * master + mimic.offset
-                }
-                _ => values[k],
-            };
-            poses[c] = self.joint_child(k, &poses[p], value);
-        }
-    }
-
-    /// The pose of joint `k`'s child link from its parent's, `parent · origin · motion(value)`,
-    /// without the products by an identity (the same bits as the full products).
-    fn joint_child(&self, k: usize, parent: &Isometry3<f64>, value: f64) -> Isometry3<f64> {
-        let j = &self.urdf.joints[k];
-        let frame = parent * j.origin;
-        match j.kind {
-            JointKind::Revolute { .. } | JointKind::Continuous => Isometry3::from_parts(
-                frame.translation,
-                frame.rotation * UnitQuaternion::from_axis_angle(&j.axis, value),
-            ),
-            JointKind::Prismatic { .. } => Isometry3::from_parts(
-                Translation3::from(
-                    frame.translation.vector + frame.rotation * (j.axis.into_inner() * value),
-                ),
-                frame.rotation,
-            ),
-            JointKind::Fixed => frame,
+        for step in &self.placements[..joints.min(self.placements.len())] {
+            poses[step.child] = step.place(&poses[step.parent], values);
         }
     }
 
@@ -530,6 +617,66 @@ mod tests {
                     assert_eq!(prefix[k], all[k], "link {k} above {l}");
                     above = m.parent_joint[k].map(|j| m.joint_links[j].0);
                 }
+            }
+        }
+    }
+
+    /// The prepared placements give the bits of the full products `parent · origin ·
+    /// motion(value)`, for turns about `±z` and other axes, slides, fixed joints and a mimic.
+    #[test]
+    fn placements_give_the_bits_of_the_full_products() {
+        use rand::{Rng, SeedableRng};
+        let varied = model(
+            r#"<robot name="varied">
+            <link name="a"/><link name="b"/><link name="c"/><link name="d"/><link name="e"/>
+            <joint name="down" type="continuous"><parent link="a"/><child link="b"/>
+              <origin xyz="0.1 0 0.2" rpy="0.3 0 0"/><axis xyz="0 0 -1"/></joint>
+            <joint name="tilted" type="revolute"><parent link="b"/><child link="c"/>
+              <origin xyz="0 0.4 0"/><axis xyz="1 1 0"/><limit lower="-2" upper="2"/></joint>
+            <joint name="slide" type="prismatic"><parent link="c"/><child link="d"/>
+              <origin rpy="0 1.2 0"/><axis xyz="0 1 0"/><limit lower="0" upper="1"/></joint>
+            <joint name="follow" type="revolute"><parent link="d"/><child link="e"/>
+              <axis xyz="0 0 1"/><limit lower="-2" upper="2"/><mimic joint="down" multiplier="-0.5" offset="0.1"/></joint>
+            </robot>"#,
+        )
+        .unwrap();
+        let panda = crate::robot::arm::tests::panda().model;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for m in [&varied, &panda] {
+            for _ in 0..50 {
+                let values: Vec<f64> = (0..m.urdf.joints.len())
+                    .map(|_| rng.random_range(-3.0..3.0))
+                    .collect();
+                let base = Isometry3::translation(0.3, 0.1, -0.2);
+                let poses = m.link_poses(&base, &values);
+                let mut full = vec![Isometry3::identity(); m.urdf.links.len()];
+                full[m.root] = base;
+                for &k in &m.order {
+                    let (p, c) = m.joint_links[k];
+                    let j = &m.urdf.joints[k];
+                    let value = match (m.mimic_master[k], &j.mimic) {
+                        (Some(master), Some(mimic)) => {
+                            mimic.multiplier * values[master] + mimic.offset
+                        }
+                        _ => values[k],
+                    };
+                    let frame = full[p] * j.origin;
+                    full[c] = match j.kind {
+                        JointKind::Prismatic { .. } => Isometry3::from_parts(
+                            Translation3::from(
+                                frame.translation.vector
+                                    + frame.rotation * (j.axis.into_inner() * value),
+                            ),
+                            frame.rotation,
+                        ),
+                        JointKind::Fixed => frame,
+                        _ => Isometry3::from_parts(
+                            frame.translation,
+                            frame.rotation * UnitQuaternion::from_axis_angle(&j.axis, value),
+                        ),
+                    };
+                }
+                assert_eq!(poses, full);
             }
         }
     }

@@ -279,9 +279,6 @@ pub struct ArmOracle {
     culling: bool,
     /// Per link: balls inside its polytopes, in the link frame ([`super::inner`]).
     inner: Vec<Vec<InnerBall>>,
-    /// Per environment polytope: the true shape it stands for, where the sure test
-    /// ([`super::inner`]) can measure it.
-    solids: Vec<Option<Solid>>,
     /// Whether [`Self::collides`] tries the sure test first ([`ArmOracle::with_sure_test`]).
     sure_test: bool,
     /// Per environment polytope: its box in its own frame, with the map from the world into
@@ -303,6 +300,11 @@ pub struct ArmOracle {
     /// Per link, the environment polytopes it can meet in some configuration
     /// ([`reach::reachable_obstacles`]).
     reachable: Vec<Vec<u32>>,
+    /// Per link with inner balls, the obstacles of [`Self::reachable`] whose true shape the
+    /// sure test ([`super::inner`]) can measure, each with its ball, side by side: the sure test walks these lists whole at
+    /// every free moment a motion is asked at, and the polytopes they would be read beside
+    /// are large.
+    sure_obstacles: Vec<Vec<(Ball, Solid)>>,
 }
 
 /// The sure test's inner balls in the world, each link's placed when first asked for (most
@@ -464,6 +466,28 @@ fn place_objects(arm: &Arm, objects: &[CollisionObject]) -> Result<PlacedObjects
     Ok((environment, solids, env_boxes, outers))
 }
 
+/// [`ArmOracle::sure_obstacles`]: per link with inner balls, the obstacles in its reach whose
+/// true shape the sure test can measure, with their balls.
+fn sure_obstacles(
+    reachable: &[Vec<u32>],
+    inner: &[Vec<InnerBall>],
+    environment: &[(TriMesh, Ball)],
+    solids: &[Option<Solid>],
+) -> Vec<Vec<(Ball, Solid)>> {
+    reachable
+        .iter()
+        .zip(inner)
+        .map(|(near, inner)| {
+            if inner.is_empty() {
+                return Vec::new();
+            }
+            near.iter()
+                .filter_map(|&i| Some((environment[i as usize].1, solids[i as usize]?)))
+                .collect()
+        })
+        .collect()
+}
+
 /// [`place_objects`]' answer: the polytopes with their balls, the exact solids, the boxes and
 /// the outer shapes, one of each per part.
 type PlacedObjects = (
@@ -612,12 +636,13 @@ impl ArmOracle {
                 .map(|(_, b)| (b.centre, b.radius))
                 .collect::<Vec<_>>(),
         );
+        let sure_obstacles = sure_obstacles(&reachable, &inner, &environment, &solids);
         Ok(ArmOracle {
             arm: arm.clone(),
             reach,
             reachable,
+            sure_obstacles,
             inner,
-            solids,
             sure_test: true,
             env_boxes,
             covers,
@@ -884,16 +909,10 @@ impl ArmOracle {
             // or a finger that is in an obstacle (planning instructions: -2.4 %)
             for (l, ball) in balls.iter().enumerate().rev() {
                 let Some(ball) = ball else { continue };
-                if self.inner[l].is_empty() {
-                    continue;
-                }
-                for &i in &self.reachable[l] {
-                    let (ob, solid) = (&self.environment[i as usize].1, &self.solids[i as usize]);
+                for (ob, solid) in &self.sure_obstacles[l] {
                     // the link's own ball holds its inner balls: if it misses the true shape,
                     // so do they (one placement instead of one per inner ball)
-                    let near =
-                        |s: &&Solid| ball.meets(ob) && s.meets(&ball.centre.into(), ball.radius);
-                    if let Some(solid) = solid.as_ref().filter(near) {
+                    if ball.meets(ob) && solid.meets(&ball.centre.into(), ball.radius) {
                         let mine = placed.of(l);
                         if placed.balls[mine].iter().any(|(c, r)| solid.meets(c, *r)) {
                             return true;
