@@ -295,7 +295,7 @@ pub fn straight_corners(space: &Space, path: &[Config], piece: f64) -> Vec<Confi
 
 /// Whether consecutive corners `a`, `z` of a path are joined by one straight motion of
 /// several joints ([`path_pieces`]).
-fn goes_straight(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool {
+pub(crate) fn goes_straight(space: &Space, groups: &[Group], a: &[f64], z: &[f64]) -> bool {
     space.straight_group().is_some()
         && groups
             .iter()
