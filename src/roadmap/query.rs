@@ -45,6 +45,8 @@ use std::time::{Duration, Instant};
 
 pub mod keep;
 mod race;
+#[cfg(test)]
+mod tests;
 
 /// A query that may grow the roadmap spends at most 1/`ATTACH_SHARE` of its time attaching
 /// start and goal with the roadmap's local method; the rest is the growing's.
@@ -74,7 +76,8 @@ pub struct QueryOptions {
     /// Nearest nodes considered for attaching each of start and goal.
     pub attach_candidates: usize,
     /// Of those, for a via-point roadmap, the nearest this many (default: all) are first tried
-    /// with the direct path alone (a yes/no call per DOF group it changes, stopping at the first blocked one),
+    /// with the direct path alone (a yes/no call per DOF group it changes, stopping at the first
+    /// blocked one; in an arm's space the straight motion, [`Self::straight_shortcuts`]),
     /// before any is tried with the local method: a free straight motion to the
     /// second-nearest node is cheaper than a search to the nearest that fails (OMPL.app's
     /// Home, query 17: 268 calls failing for the nearest node, 2 for the next; the 50 Home
@@ -176,8 +179,9 @@ pub struct QueryOptions {
     /// In an arm's space, try straight motions of several joints at once where conservative
     /// advancement proves them free ([`crate::robot::ArmOracle::straight_free`],
     /// [`crate::space::Space::straight_group`]), not only staircases of single-joint moves:
-    /// start to goal before the roadmap, each end to its nearest nodes before their direct
-    /// staircase, the trees' extends ([`TreeParams::straight`], which this turns off too), and
+    /// start to goal before the roadmap and each end to its nearest nodes, in place of their
+    /// direct staircase (the local method's search still follows where they fail), the trees'
+    /// extends ([`TreeParams::straight`], which this turns off too), and
     /// between corners when shortening. The answer then moves several joints
     /// per pair of corners where it cuts across (every pair of corners is one straight motion,
     /// [`crate::local::path_pieces`]). On by default; no effect in other spaces (or with
@@ -982,10 +986,8 @@ impl<'a> QueryPlanner<'a> {
     /// and a yes/no question stops at the first collision it finds where the intervals sweep
     /// the whole motion (an arm's long turn through clutter: 1.3 against 17 ms on average,
     /// README § Robot arms). The deadline and the call budget are checked before each piece.
-    /// Where the straight motion of several joints is asked and not proved, the staircase is
-    /// not tried: between an arm's start and goal in clutter it mostly collides, and its exact
-    /// sweeps cost most of a query the roadmap answers after all (the roadmap's method from
-    /// start to goal still runs where the roadmap cannot join them).
+    /// Where the straight motion of several joints is asked, it is the direct path
+    /// ([`Self::straight_or_blocked`]).
     fn direct_check(
         &self,
         a: &[f64],
@@ -993,17 +995,10 @@ impl<'a> QueryPlanner<'a> {
         result: &mut QueryResult,
         deadline: &Deadline,
     ) -> Result<Connection, QueryError> {
-        if let Some(c) = self.straight_connection(a, z, result, deadline)? {
+        if let Some(c) = self.straight_or_blocked(a, z, result, deadline)? {
             return Ok(c);
         }
         let space = self.space();
-        if self.options.straight_shortcuts
-            && crate::local::goes_straight(space, &self.groups, a, z)
-            && !deadline.expired()
-            && self.calls_left(result) != Some(0)
-        {
-            return Ok(Connection::from_corners(a, z, None, CallCounts::default()));
-        }
         let mut corners = Vec::new();
         let pieces = direct_pieces(space, &self.groups, 0, a, z);
         if surely_blocked(self.oracle, &pieces) {
@@ -1027,6 +1022,29 @@ impl<'a> QueryPlanner<'a> {
             Some(corners),
             CallCounts::default(),
         ))
+    }
+
+    /// [`Self::straight_connection`], and where the straight motion was asked and not proved,
+    /// a blocked connection: the single-joint staircase is not swept then. Between an arm's
+    /// distant configurations in clutter it mostly collides, and its exact sweeps cost most of
+    /// a query the roadmap answers after all (the bookshelf_thin workcell's p50: a third); the
+    /// roadmap's method still searches where the direct paths do not join. `None` where the
+    /// straight motion is not asked (the staircase is the direct path) or time or calls ran out.
+    fn straight_or_blocked(
+        &self,
+        a: &[f64],
+        z: &[f64],
+        result: &mut QueryResult,
+        deadline: &Deadline,
+    ) -> Result<Option<Connection>, QueryError> {
+        if let Some(c) = self.straight_connection(a, z, result, deadline)? {
+            return Ok(Some(c));
+        }
+        let asked = self.options.straight_shortcuts
+            && crate::local::goes_straight(self.space(), &self.groups, a, z)
+            && !deadline.expired()
+            && self.calls_left(result) != Some(0);
+        Ok(asked.then(|| Connection::from_corners(a, z, None, CallCounts::default())))
     }
 
     /// The straight motion of several joints from `a` to `z`, where shortcuts take them
@@ -1091,7 +1109,8 @@ impl<'a> QueryPlanner<'a> {
 
     /// Attaches start and goal to their `k` nearest nodes, alternating sides, one node per
     /// component and side (components already attached on a side are skipped): first the
-    /// nearest `direct` by the direct path alone ([`QueryOptions::attach_direct_candidates`]),
+    /// nearest `direct` by the direct path alone ([`QueryOptions::attach_direct_candidates`];
+    /// an arm's straight motion where it is asked, [`Self::straight_or_blocked`]),
     /// then all `k` with `method`. Returns the indices of a start and a goal attachment in one
     /// component, if any.
     fn attach(
@@ -1115,7 +1134,7 @@ impl<'a> QueryPlanner<'a> {
         if direct > 0 {
             let space = self.space();
             let mut straight = |a: &[f64], z: &[f64], result: &mut QueryResult| {
-                if let Some(c) = self.straight_connection(a, z, result, deadline)? {
+                if let Some(c) = self.straight_or_blocked(a, z, result, deadline)? {
                     return Ok(c);
                 }
                 let c = direct_connection(space, self.oracle, &self.groups, a, z)?;

@@ -1,0 +1,54 @@
+//! The direct paths of an arm's queries.
+
+use super::*;
+use crate::roadmap::{Budget, LearnParams, Learner};
+use crate::scene::Scene;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+/// Where an arm's straight motion between two free configurations is asked and not proved, the
+/// direct path is that one call: the single-joint staircase, whose corners the sure test does
+/// not refuse, is not swept (its exact sweeps cost most of a query the roadmap answers).
+#[test]
+fn an_arm_direct_path_not_proved_straight_costs_one_call() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-cage-1.toml");
+    let scene = Scene::load(&path).unwrap();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(5), 1, &mut |_| {})
+        .unwrap();
+    let planner = QueryPlanner::new(&learnt.roadmap, oracle.as_ref()).unwrap();
+    let space = planner.space();
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut free = || loop {
+        let q = space.sample_uniform(&mut rng);
+        if oracle.is_free(&q, &mut CallCounts::default()) {
+            return q;
+        }
+    };
+    let (mut blocked, mut straight) = (0, 0);
+    for _ in 0..300 {
+        let (a, z) = (free(), free());
+        let pieces = direct_pieces(space, &planner.groups, 0, &a, &z);
+        if surely_blocked(oracle.as_ref(), &pieces) {
+            continue;
+        }
+        let mut result = QueryResult::unanswered(a.clone(), z.clone(), CallCounts::default());
+        let c = planner
+            .direct_check(&a, &z, &mut result, &Deadline::none())
+            .unwrap();
+        assert_eq!(result.counts.intersect_calls(), 1, "{a:?} → {z:?}");
+        if c.is_connected() {
+            assert_eq!(c.path, vec![a.clone(), z.clone()], "one straight motion");
+            straight += 1;
+        } else {
+            blocked += 1;
+        }
+    }
+    assert!(
+        blocked >= 20,
+        "{blocked} not proved straight (and {straight} proved)"
+    );
+}
