@@ -1024,12 +1024,14 @@ impl<'a> QueryPlanner<'a> {
         ))
     }
 
-    /// [`Self::straight_connection`], and where the straight motion was asked and not proved,
-    /// a blocked connection: the single-joint staircase is not swept then. Between an arm's
-    /// distant configurations in clutter it mostly collides, and its exact sweeps cost most of
-    /// a query the roadmap answers after all (the bookshelf_thin workcell's p50: a third); the
-    /// roadmap's method still searches where the direct paths do not join. `None` where the
-    /// straight motion is not asked (the staircase is the direct path) or time or calls ran out.
+    /// The straight motion of several joints from `a` to `z` as the direct path, where shortcuts
+    /// take them ([`QueryOptions::straight_shortcuts`]): one call, the connection if it is
+    /// proved free (no staircase to shorten after it), else blocked. The single-joint staircase
+    /// is not swept then: between an arm's distant configurations in clutter it mostly
+    /// collides, and its exact sweeps cost most of a query the roadmap answers after all (the
+    /// bookshelf_thin workcell's p50: a third); the roadmap's method still searches where the
+    /// direct paths do not join. `None` where the straight motion is not asked (the staircase
+    /// is the direct path) or time or calls ran out.
     fn straight_or_blocked(
         &self,
         a: &[f64],
@@ -1037,41 +1039,18 @@ impl<'a> QueryPlanner<'a> {
         result: &mut QueryResult,
         deadline: &Deadline,
     ) -> Result<Option<Connection>, QueryError> {
-        if let Some(c) = self.straight_connection(a, z, result, deadline)? {
-            return Ok(Some(c));
-        }
-        let asked = self.options.straight_shortcuts
-            && crate::local::goes_straight(self.space(), &self.groups, a, z)
-            && !deadline.expired()
-            && self.calls_left(result) != Some(0);
-        Ok(asked.then(|| Connection::from_corners(a, z, None, CallCounts::default())))
-    }
-
-    /// The straight motion of several joints from `a` to `z`, where shortcuts take them
-    /// ([`QueryOptions::straight_shortcuts`]) and it is proved free: one call, and no
-    /// staircase to shorten after it. `None` where it is not asked or not proved.
-    fn straight_connection(
-        &self,
-        a: &[f64],
-        z: &[f64],
-        result: &mut QueryResult,
-        deadline: &Deadline,
-    ) -> Result<Option<Connection>, QueryError> {
+        let (space, groups) = (self.space(), &self.groups);
         if !self.options.straight_shortcuts
             || deadline.expired()
             || self.calls_left(result) == Some(0)
+            || !crate::local::goes_straight(space, groups, a, z)
         {
             return Ok(None);
         }
-        let (space, groups) = (self.space(), &self.groups);
-        Ok(straight_connection(
-            space,
-            self.oracle,
-            groups,
-            a,
-            z,
-            &mut result.counts,
-        )?)
+        let proved = straight_connection(space, self.oracle, groups, a, z, &mut result.counts)?;
+        Ok(Some(proved.unwrap_or_else(|| {
+            Connection::from_corners(a, z, None, CallCounts::default())
+        })))
     }
 
     /// The intersect calls the query may still spend ([`QueryOptions::max_calls`]; `None`: no
