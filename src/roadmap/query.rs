@@ -735,6 +735,16 @@ impl<'a> QueryPlanner<'a> {
             &mut result,
             &attaching,
         )?;
+        // where the quick try asked an arm's straight motion and it was not proved, the
+        // staircase from start to goal only now, for the queries the roadmap cannot join: in
+        // clutter it mostly collides, and its exact sweeps are dear (bookshelf_tall: one request
+        // answered by it in 16 calls, otherwise by the trees in 150)
+        if meeting.is_none() && self.quick_try_was_straight(&start, &goal) {
+            let c = self.staircase_check(&start, &goal, &mut result, &deadline)?;
+            if let Some(path) = result.take_direct(c) {
+                return self.finish(result, path, &shortening);
+            }
+        }
         // only where the roadmap cannot join the two ends, the local method from start to goal:
         // across a large scene it mostly fails, and tried first it cost most of a query's time
         // (Home, 32 803 nodes: 25–60 ms of a 30–60 ms answer)
@@ -980,6 +990,16 @@ impl<'a> QueryPlanner<'a> {
         Ok((c, retry))
     }
 
+    /// Whether the quick try from `start` to `goal` was [`Self::direct_check`]'s straight motion
+    /// of an arm alone ([`Self::straight_or_blocked`]), its staircase left for later.
+    fn quick_try_was_straight(&self, start: &[f64], goal: &[f64]) -> bool {
+        self.options.try_direct
+            && self.quick.is_some()
+            && self.options.direct_calls == 0
+            && self.options.straight_shortcuts
+            && crate::local::goes_straight(self.space(), &self.groups, start, goal)
+    }
+
     /// The direct path from `a` to `z` in the roadmap method's groups, one yes/no question per
     /// piece (what the via-point planner at depth 0 decides, in the same order and with the
     /// same corners): at depth 0 the collision intervals of a blocked piece are never used,
@@ -998,9 +1018,20 @@ impl<'a> QueryPlanner<'a> {
         if let Some(c) = self.straight_or_blocked(a, z, result, deadline)? {
             return Ok(c);
         }
-        let space = self.space();
+        self.staircase_check(a, z, result, deadline)
+    }
+
+    /// The single-joint staircase from `a` to `z`, a yes/no call per piece after the sure test
+    /// of its corners ([`Self::direct_check`] without the straight motion).
+    fn staircase_check(
+        &self,
+        a: &[f64],
+        z: &[f64],
+        result: &mut QueryResult,
+        deadline: &Deadline,
+    ) -> Result<Connection, QueryError> {
         let mut corners = Vec::new();
-        let pieces = direct_pieces(space, &self.groups, 0, a, z);
+        let pieces = direct_pieces(self.space(), &self.groups, 0, a, z);
         if surely_blocked(self.oracle, &pieces) {
             return Ok(Connection::from_corners(a, z, None, CallCounts::default()));
         }
