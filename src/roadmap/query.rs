@@ -701,12 +701,13 @@ impl<'a> QueryPlanner<'a> {
         let mut result = QueryResult::unanswered(start.clone(), goal.clone(), counts);
         // a quick try first (the direct path, or a budgeted via-point search)
         let mut retry_direct = self.options.try_direct;
+        let mut staircase_left = false;
         if self.options.try_direct {
-            let (quick, retry) = self.quick_try(&start, &goal, &mut result, &deadline)?;
+            let (quick, retry, left) = self.quick_try(&start, &goal, &mut result, &deadline)?;
             if let Some(path) = result.take_direct(quick) {
                 return self.finish(result, path, &shortening);
             }
-            retry_direct = retry;
+            (retry_direct, staircase_left) = (retry, left);
         }
         // attach both ends, alternating, one node per component and side
         let mut ends = (Vec::new(), Vec::new());
@@ -739,8 +740,8 @@ impl<'a> QueryPlanner<'a> {
         // staircase from start to goal only now, for the queries the roadmap cannot join: in
         // clutter it mostly collides, and its exact sweeps are dear (bookshelf_tall: one request
         // answered by it in 16 calls, otherwise by the trees in 150)
-        if meeting.is_none() && self.quick_try_was_straight(&start, &goal) {
-            let c = self.staircase_check(&start, &goal, &mut result, &deadline)?;
+        if meeting.is_none() && staircase_left {
+            let c = self.direct_check(&start, &goal, &mut result, &deadline)?;
             if let Some(path) = result.take_direct(c) {
                 return self.finish(result, path, &shortening);
             }
@@ -969,35 +970,35 @@ impl<'a> QueryPlanner<'a> {
     }
 
     /// The quick try from start to goal before the roadmap: for a via-point roadmap the direct
-    /// path ([`Self::direct_check`]) or the planner limited to [`QueryOptions::direct_calls`];
+    /// path ([`Self::direct_check`]; an arm's straight motion where it is asked,
+    /// [`Self::straight_or_blocked`]) or the planner limited to [`QueryOptions::direct_calls`];
     /// any other roadmap's method is such a check already. With it, whether the roadmap's
     /// method from start to goal may still succeed where the roadmap cannot join them: not
     /// where the quick try was that method, or a search that ran out of alternatives before
-    /// any budget or depth limit.
+    /// any budget or depth limit; and whether the staircase was left for then (an arm's
+    /// straight motion not proved).
     fn quick_try(
         &self,
         start: &[f64],
         goal: &[f64],
         result: &mut QueryResult,
         deadline: &Deadline,
-    ) -> Result<(Connection, bool), QueryError> {
+    ) -> Result<(Connection, bool, bool), QueryError> {
         if self.quick.is_some() && self.options.direct_calls == 0 {
-            return Ok((self.direct_check(start, goal, result, deadline)?, true));
+            if let Some(c) = self.straight_or_blocked(start, goal, result, deadline)? {
+                let left = !c.is_connected();
+                return Ok((c, true, left));
+            }
+            return Ok((
+                self.direct_check(start, goal, result, deadline)?,
+                true,
+                false,
+            ));
         }
         let method = self.quick.as_deref().unwrap_or(self.local.as_ref());
         let c = self.attempt(method, (start, goal), result, deadline)?;
         let retry = self.quick.is_some() && c.outcome != Outcome::Blocked;
-        Ok((c, retry))
-    }
-
-    /// Whether the quick try from `start` to `goal` was [`Self::direct_check`]'s straight motion
-    /// of an arm alone ([`Self::straight_or_blocked`]), its staircase left for later.
-    fn quick_try_was_straight(&self, start: &[f64], goal: &[f64]) -> bool {
-        self.options.try_direct
-            && self.quick.is_some()
-            && self.options.direct_calls == 0
-            && self.options.straight_shortcuts
-            && crate::local::goes_straight(self.space(), &self.groups, start, goal)
+        Ok((c, retry, false))
     }
 
     /// The direct path from `a` to `z` in the roadmap method's groups, one yes/no question per
@@ -1006,24 +1007,7 @@ impl<'a> QueryPlanner<'a> {
     /// and a yes/no question stops at the first collision it finds where the intervals sweep
     /// the whole motion (an arm's long turn through clutter: 1.3 against 17 ms on average,
     /// README § Robot arms). The deadline and the call budget are checked before each piece.
-    /// Where the straight motion of several joints is asked, it is the direct path
-    /// ([`Self::straight_or_blocked`]).
     fn direct_check(
-        &self,
-        a: &[f64],
-        z: &[f64],
-        result: &mut QueryResult,
-        deadline: &Deadline,
-    ) -> Result<Connection, QueryError> {
-        if let Some(c) = self.straight_or_blocked(a, z, result, deadline)? {
-            return Ok(c);
-        }
-        self.staircase_check(a, z, result, deadline)
-    }
-
-    /// The single-joint staircase from `a` to `z`, a yes/no call per piece after the sure test
-    /// of its corners ([`Self::direct_check`] without the straight motion).
-    fn staircase_check(
         &self,
         a: &[f64],
         z: &[f64],

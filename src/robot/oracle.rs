@@ -301,9 +301,9 @@ pub struct ArmOracle {
     /// ([`reach::reachable_obstacles`]).
     reachable: Vec<Vec<u32>>,
     /// Per link with inner balls, the obstacles of [`Self::reachable`] whose true shape the
-    /// sure test ([`super::inner`]) can measure, each with its ball, side by side: the sure test walks these lists whole at
-    /// every free moment a motion is asked at, and the polytopes they would be read beside
-    /// are large.
+    /// sure test ([`super::inner`]) can measure, each with its ball, side by side: the sure
+    /// test walks these lists whole at every free moment a motion is asked at, and the
+    /// polytopes they would be read beside are large.
     sure_obstacles: Vec<Vec<(Ball, Solid)>>,
 }
 

@@ -37,8 +37,9 @@ fn an_arm_direct_path_not_proved_straight_costs_one_call() {
         }
         let mut result = QueryResult::unanswered(a.clone(), z.clone(), CallCounts::default());
         let c = planner
-            .direct_check(&a, &z, &mut result, &Deadline::none())
-            .unwrap();
+            .straight_or_blocked(&a, &z, &mut result, &Deadline::none())
+            .unwrap()
+            .expect("the straight motion is asked");
         assert_eq!(result.counts.intersect_calls(), 1, "{a:?} → {z:?}");
         if c.is_connected() {
             assert_eq!(c.path, vec![a.clone(), z.clone()], "one straight motion");
