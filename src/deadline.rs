@@ -217,6 +217,22 @@ pub fn race<A: Send, B: Send>(
         }
         alone = Some(a);
     }
+    race_after(deadline, alone, first, first_won, second, second_won)
+}
+
+/// [`race`] after a head start the caller ran itself (`alone`, one that did not answer; `None`:
+/// no head start): a first side whose head start is a cheaper search of its own (a roadmap's
+/// direct paths before its local method's searches) rather than the same search cut short.
+/// In turn on the caller's thread the second side then runs at once, as after
+/// [`race`]'s head start.
+pub fn race_after<A: Send, B: Send>(
+    deadline: &Deadline,
+    mut alone: Option<A>,
+    first: impl Fn(&Deadline, &Deadline) -> A + Sync,
+    first_won: impl Fn(&A) -> bool + Sync,
+    second: impl FnOnce(&Deadline) -> B + Send,
+    second_won: impl FnOnce(&B) -> bool + Send,
+) -> Raced<A, B> {
     if deadline.remaining().is_none() {
         // nothing can starve: each side runs to its own budget wherever it runs
         let (a, b) = rayon::join(|| first(deadline, deadline), || second(deadline));

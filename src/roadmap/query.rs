@@ -167,12 +167,16 @@ pub struct QueryOptions {
     /// that keeps them ([`Roadmap::with_kept`]). Off by default: trees can hold 10⁵ nodes, and
     /// a batch holds every answer until it ends.
     pub return_trees: bool,
-    /// With [`Self::trees`]: ask the roadmap alone for this head start, then, unless it
-    /// answered, ask it again beside the trees out of it on the rayon pool, the first to
-    /// answer stopping the other ([`crate::deadline::race`]), rather than growing the trees
-    /// only after attaching failed. In a workcell whose goals the roadmap rarely reaches (the
-    /// Panda's cage) attaching costs tens of milliseconds before the trees start: query p50
-    /// 92 → 17 ms with 2 ms; the head start keeps the quick answers off the pool.
+    /// With [`Self::trees`]: ask the roadmap's direct paths alone for at most this head start
+    /// (the quick try, attaching by direct paths, the staircase from start to goal), then,
+    /// unless they answered, the roadmap's whole search beside the trees out of it on the
+    /// rayon pool, the first to answer stopping the other ([`crate::deadline::race_after`]),
+    /// rather than growing the trees only after attaching failed. In a workcell whose goals
+    /// the roadmap rarely reaches (the Panda's cage) attaching costs tens of milliseconds
+    /// before the trees start: query p50 92 → 17 ms with 2 ms; the head start keeps the quick
+    /// answers off the pool, and where the direct paths fail it ends there: the local
+    /// method's searches, whole-range sweeps on an arm, cost a millisecond before trees that
+    /// mostly answer first.
     /// The trees' path is shortened by greedy shortcut passes
     /// ([`super::tree::shortcut_passes`]). `None` (the default): in turn.
     pub race: Option<Duration>,
@@ -502,6 +506,20 @@ pub struct QueryPlanner<'a> {
     landmarks: OnceLock<Landmarks>,
 }
 
+/// How far a query's search goes where the roadmap cannot join the ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stages {
+    /// The direct paths alone: the quick try, attaching by direct paths, the staircase from
+    /// start to goal. What answers most of a trained workcell's queries in a fraction of a
+    /// millisecond, and a race's head start ([`QueryOptions::race`]): the local method's
+    /// searches that follow sweep whole joint ranges on an arm (about 0.5 ms a call), and
+    /// where the direct paths fail the trees mostly answer first.
+    Direct,
+    /// Every stage: the local method's attaching, its search from start to goal, the deeper
+    /// search, the trees or the growing.
+    All,
+}
+
 /// What the deeper search of [`QueryPlanner::escalate`] found.
 enum Escalated {
     /// A direct path from start to goal.
@@ -681,17 +699,19 @@ impl<'a> QueryPlanner<'a> {
         finding: &Deadline,
         outer: &Deadline,
     ) -> Result<QueryResult, QueryError> {
-        self.search(start, goal, (finding, outer), self.options.trees.as_ref())
+        let trees = self.options.trees.as_ref();
+        self.search(start, goal, (finding, outer), trees, Stages::All)
     }
 
     /// [`Self::query_finding_within`] with the trees it grows in turn where the roadmap cannot
-    /// join the ends (`None` beside a race's trees).
+    /// join the ends (`None` beside a race's trees), through `stages`.
     fn search(
         &self,
         start: &[f64],
         goal: &[f64],
         (finding, outer): (&Deadline, &Deadline),
         trees: Option<&TreeParams>,
+        stages: Stages,
     ) -> Result<QueryResult, QueryError> {
         let deadline = finding.within(self.options.time);
         let shortening = outer.within(self.options.time);
@@ -731,6 +751,7 @@ impl<'a> QueryPlanner<'a> {
         let mut meeting = self.attach(
             local,
             (k, direct),
+            stages,
             ends_q,
             &mut ends,
             &mut result,
@@ -745,6 +766,10 @@ impl<'a> QueryPlanner<'a> {
             if let Some(path) = result.take_direct(c) {
                 return self.finish(result, path, &shortening);
             }
+        }
+        if meeting.is_none() && stages == Stages::Direct {
+            result.outcome = unjoined(&deadline, self.calls_left(&result), &ends);
+            return Ok(result);
         }
         // only where the roadmap cannot join the two ends, the local method from start to goal:
         // across a large scene it mostly fails, and tried first it cost most of a query's time
@@ -809,7 +834,15 @@ impl<'a> QueryPlanner<'a> {
             }
         }
         // the direct paths were tried when attaching with the roadmap's method
-        let meeting = self.attach(deep, (k, 0), (start, goal), ends, result, deadline)?;
+        let meeting = self.attach(
+            deep,
+            (k, 0),
+            Stages::All,
+            (start, goal),
+            ends,
+            result,
+            deadline,
+        )?;
         Ok(Escalated::Attached(meeting))
     }
 
@@ -1105,12 +1138,14 @@ impl<'a> QueryPlanner<'a> {
     /// component and side (components already attached on a side are skipped): first the
     /// nearest `direct` by the direct path alone ([`QueryOptions::attach_direct_candidates`];
     /// an arm's straight motion where it is asked, [`Self::straight_or_blocked`]),
-    /// then all `k` with `method`. Returns the indices of a start and a goal attachment in one
-    /// component, if any.
+    /// then all `k` with `method` (not in the [`Stages::Direct`] of a method that searches).
+    /// Returns the indices of a start and a goal attachment in one component, if any.
+    #[allow(clippy::too_many_arguments)]
     fn attach(
         &self,
         method: &dyn LocalMethod,
         (k, direct): (usize, usize),
+        stages: Stages,
         ends: (&[f64], &[f64]),
         attached: &mut (Vec<Attached>, Vec<Attached>),
         result: &mut QueryResult,
@@ -1147,6 +1182,9 @@ impl<'a> QueryPlanner<'a> {
             if met.is_some() {
                 return Ok(met);
             }
+        }
+        if searches && stages == Stages::Direct {
+            return Ok(None);
         }
         let mut local = |a: &[f64], z: &[f64], result: &mut QueryResult| {
             self.attempt(method, (a, z), result, deadline)

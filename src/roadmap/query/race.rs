@@ -2,8 +2,8 @@
 
 #[cfg(doc)]
 use super::QueryOptions;
-use super::{query_seed, Endpoint, QueryError, QueryOutcome, QueryPlanner, QueryResult};
-use crate::deadline::{race, Deadline, Raced};
+use super::{query_seed, Endpoint, QueryError, QueryOutcome, QueryPlanner, QueryResult, Stages};
+use crate::deadline::{race_after, Deadline, Raced};
 use crate::oracle::CallCounts;
 use crate::roadmap::rooted::RoadmapTrees;
 use crate::roadmap::tree::{shortcut_passes, TreeParams, TreeStop, SHORTCUT_WINDOW};
@@ -16,9 +16,9 @@ fn answered(a: &Result<QueryResult, QueryError>) -> bool {
 }
 
 impl QueryPlanner<'_> {
-    /// The roadmap's search alone for `head_start`, then beside the trees `tree` out of the
-    /// roadmap ([`RoadmapTrees`]), until `outer` or the query's time ends; the answer carries
-    /// the oracle work of both sides.
+    /// The roadmap's direct paths alone for at most `head_start`, then its whole search beside
+    /// the trees `tree` out of the roadmap ([`RoadmapTrees`]), until `outer` or the query's time
+    /// ends; the answer carries the oracle work of both sides.
     pub(super) fn racing(
         &self,
         start: &[f64],
@@ -33,14 +33,26 @@ impl QueryPlanner<'_> {
         let start = self.check_endpoint(Endpoint::Start, start, &mut checks)?;
         let goal = self.check_endpoint(Endpoint::Goal, goal, &mut checks)?;
         let deadline = outer.within(self.options.time);
+        // the head start asks the direct paths alone: where they fail, the local method's
+        // searches run beside the trees (or after them, in turn), not before
+        let alone = if head_start.is_zero() {
+            None
+        } else {
+            let finding = deadline.within(Some(head_start));
+            let head = self.search(&start, &goal, (&finding, &deadline), None, Stages::Direct);
+            if answered(&head) || deadline.expired() {
+                return head;
+            }
+            Some(head)
+        };
         let Raced {
             first,
             head_start,
             second,
-        } = race(
+        } = race_after(
             &deadline,
-            head_start,
-            |search, whole| self.search(&start, &goal, (search, whole), None),
+            alone,
+            |search, whole| self.search(&start, &goal, (search, whole), None, Stages::All),
             answered,
             |d| self.trees_beside(&start, &goal, tree, d),
             answered,

@@ -1,4 +1,4 @@
-//! The direct paths of an arm's queries.
+//! The direct paths of queries: an arm's, and those a race's head start asks alone.
 
 use super::*;
 use crate::roadmap::{Budget, LearnParams, Learner};
@@ -52,4 +52,57 @@ fn an_arm_direct_path_not_proved_straight_costs_one_call() {
         blocked >= 20,
         "{blocked} not proved straight (and {straight} proved)"
     );
+}
+
+/// A race's head start asks the direct paths alone ([`Stages::Direct`]): what they answer is the
+/// whole search's answer, and where they do not, the whole search goes on with the local
+/// method's searches, which answer some of those queries (a sparse roadmap among discs: half of
+/// the sixteen each way).
+#[test]
+fn the_direct_stages_answer_as_the_whole_search_or_leave_it_the_rest() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/discs-cluttered.toml");
+    let scene = Scene::load(&path).unwrap();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(12), 1, &mut |_| {})
+        .unwrap();
+    let options = QueryOptions {
+        time: Some(std::time::Duration::from_millis(300)),
+        ..QueryOptions::default()
+    };
+    let planner = QueryPlanner::new(&learnt.roadmap, oracle.as_ref())
+        .unwrap()
+        .with_options(options);
+    let space = planner.space();
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut free = || loop {
+        let q = space.sample_uniform(&mut rng);
+        if oracle.is_free(&q, &mut CallCounts::default()) {
+            return q;
+        }
+    };
+    let none = Deadline::none();
+    let (mut direct, mut searched) = (0, 0);
+    for _ in 0..16 {
+        let (a, z) = (free(), free());
+        let ask = |stages| {
+            planner
+                .search(&a, &z, (&none, &none), None, stages)
+                .unwrap()
+        };
+        let (d, all) = (ask(Stages::Direct), ask(Stages::All));
+        if d.is_solved() {
+            assert_eq!(d.path, all.path, "{a:?} → {z:?}");
+            direct += 1;
+        } else {
+            assert!(
+                d.counts.intersect_calls() <= all.counts.intersect_calls(),
+                "{a:?} → {z:?}"
+            );
+            searched += usize::from(all.is_solved());
+        }
+    }
+    assert!(direct > 0, "no query answered by the direct paths");
+    assert!(searched > 0, "no query left to the local method's searches");
 }
