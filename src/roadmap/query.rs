@@ -956,15 +956,10 @@ impl<'a> QueryPlanner<'a> {
         shortening: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let seed = query_seed(self.roadmap.header().seed, &result);
-        // staircases only where the straight motions are off
-        let params = &TreeParams {
-            straight: params.straight && self.options.straight_shortcuts,
-            ..params.clone()
-        };
         let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups).connect(
             &result.start,
             &result.goal,
-            params,
+            &self.tree_params(params),
             seed,
             deadline,
         )?;
@@ -1000,6 +995,15 @@ impl<'a> QueryPlanner<'a> {
         answer.raw_length = path_length(self.space(), &self.groups, &raw);
         answer.raw_path = raw;
         Ok(answer)
+    }
+
+    /// The trees' parameters as this query grows them: staircases only where the straight
+    /// motions are off ([`QueryOptions::straight_shortcuts`]).
+    fn tree_params(&self, params: &TreeParams) -> TreeParams {
+        TreeParams {
+            straight: params.straight && self.options.straight_shortcuts,
+            ..params.clone()
+        }
     }
 
     /// The quick try from start to goal before the roadmap: for a via-point roadmap the direct
