@@ -24,8 +24,8 @@ use crate::local::{
 };
 use crate::oracle::{CallCounts, CollisionOracle, OracleError};
 use crate::roadmap::tree::{
-    rrt_connect, shortcut_passes, stream_seed, Prefix, Rooted, Stairs, TreeError, TreeOutcome,
-    TreeParams, SHORTCUT_WINDOW,
+    rrt_connect, shortcut_passes, stream_seed, Domain, Prefix, Rooted, Stairs, TreeError,
+    TreeOutcome, TreeParams, SHORTCUT_WINDOW,
 };
 use crate::scene::Scene;
 use crate::space::{Config, Group};
@@ -101,6 +101,7 @@ impl Default for Portfolio {
                 stairs: Stairs::Whole,
                 balance: true,
                 staircase: false,
+                domain: Some(Domain::ARM),
                 ..TreeParams::default()
             }),
             trees_first: Some(0.2),
@@ -367,9 +368,12 @@ pub fn tree_stage(
     whole: &Deadline,
 ) -> Result<TreeStage, TreeError> {
     let growing = Instant::now();
-    // staircases only where the straight motions are off
+    // staircases only where the straight motions are off; domains where they were measured,
+    // in an arm's joints
+    let joints = matches!(p.scene.space.kind(), crate::space::SpaceKind::Joints { .. });
     let tree = &TreeParams {
         straight: tree.straight && p.straight,
+        domain: tree.domain.filter(|_| joints),
         ..tree.clone()
     };
     let found = rrt_connect(

@@ -283,3 +283,105 @@ fn a_straight_proof_stops_at_a_watched_deadline() {
     );
     assert!(oracle.straight_free(&q.start, &near, &mut counts).unwrap());
 }
+
+#[test]
+fn dynamic_domains_keep_tree_paths_certified_and_draw_samples_again_without_calls() {
+    // the cage's query by the arm's trees alone (`TreeParams::for_space`: proved straight
+    // extends, dynamic domains), seeds 1–6, against the same trees without domains: every raw
+    // path passes the independent checker, a seed gives the same path twice, and the samples a
+    // domain draws again cost no calls (fewer calls over the seeds)
+    use viaroad::roadmap::tree::{rrt_connect, TreeOutcome};
+    let scene =
+        Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-cage-1.toml"))
+            .unwrap();
+    let oracle = scene.oracle();
+    let groups = scene.space.groups(false);
+    let q = &scene.checked_queries().unwrap()[0];
+    let arm = TreeParams {
+        max_nodes: Some(20_000),
+        ..TreeParams::for_space(&scene.space)
+    };
+    assert!(arm.domain.is_some(), "an arm's trees sample in domains");
+    let grow = |params: &TreeParams, seed: u64| -> TreeOutcome {
+        let found = rrt_connect(
+            &scene.space,
+            oracle.as_ref(),
+            &groups,
+            &q.start,
+            &q.goal,
+            params,
+            seed,
+            &viaroad::deadline::Deadline::none(),
+        )
+        .unwrap();
+        certify(&scene, found.path.as_ref().expect("the trees connect"));
+        found
+    };
+    let everywhere = TreeParams {
+        domain: None,
+        ..arm.clone()
+    };
+    let (mut with, mut without) = (0, 0);
+    for seed in 1..=6 {
+        let a = grow(&arm, seed);
+        assert_eq!(a.path, grow(&arm, seed).path, "seed {seed}");
+        with += a.counts.intersect_calls();
+        without += grow(&everywhere, seed).counts.intersect_calls();
+    }
+    assert!(
+        with < without,
+        "{with} calls with domains, {without} without"
+    );
+}
+
+#[test]
+fn arm_trees_out_of_a_roadmap_attach_by_proved_straight_motions() {
+    // trees out of a sparse roadmap of the box scene, as an arm's queries grow them (no
+    // staircases): the path passes the independent checker and every edge of several joints,
+    // the ends' attachments among them, is a straight motion the oracle proves free
+    use viaroad::roadmap::rooted::RoadmapTrees;
+    let scene = box_scene();
+    let Robot::Arm(a) = &scene.robot else {
+        panic!("not an arm scene")
+    };
+    let arm_oracle = a.arm_oracle();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(&LearnParams::default(), &Budget::nodes(30), 1, &mut |_| {})
+        .unwrap();
+    let groups = method.groups(&scene.space);
+    let q = &scene.checked_queries().unwrap()[0];
+    let params = TreeParams {
+        max_nodes: Some(20_000),
+        ..TreeParams::for_space(&scene.space)
+    };
+    let found = RoadmapTrees::new(&learnt.roadmap, oracle.as_ref(), &groups)
+        .connect(
+            &q.start,
+            &q.goal,
+            &params,
+            1,
+            &viaroad::deadline::Deadline::none(),
+        )
+        .unwrap();
+    let path = found.path.expect("the trees connect");
+    certify(&scene, &path);
+    let mut counts = CallCounts::default();
+    let (first, last) = (&path[..2], &path[path.len() - 2..]);
+    let mut several = 0;
+    for w in path.windows(2) {
+        let moved = w[0].iter().zip(&w[1]).filter(|(x, y)| x != y).count();
+        several += usize::from(moved > 1);
+        assert!(
+            moved <= 1 || arm_oracle.straight_free(&w[0], &w[1], &mut counts).unwrap(),
+            "an edge of several joints is not a proved straight motion: {w:?}"
+        );
+    }
+    let straight = |w: &[Vec<f64>]| w[0].iter().zip(&w[1]).filter(|(x, y)| x != y).count() > 1;
+    assert!(several > 0, "no straight edge on the path");
+    assert!(
+        straight(first) || straight(last),
+        "neither end attached or grew by a straight motion"
+    );
+}

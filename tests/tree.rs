@@ -717,7 +717,7 @@ fn whole_stairs_find_checked_paths_deterministically() {
 /// grew one).
 #[test]
 fn invalid_parameters_are_refused_with_their_own_error() {
-    use viaroad::roadmap::tree::{rrt_connect, TreeError};
+    use viaroad::roadmap::tree::{rrt_connect, Domain, TreeError};
     let s = scene("scenes/discs-cluttered.toml");
     let oracle = s.oracle();
     let groups = s.space.groups(false);
@@ -750,6 +750,33 @@ fn invalid_parameters_are_refused_with_their_own_error() {
                 ..params(500)
             },
             "restarts",
+        ),
+        (
+            TreeParams {
+                domain: Domain::with_radius(f64::NAN),
+                ..params(500)
+            },
+            "domain radii",
+        ),
+        (
+            TreeParams {
+                domain: Some(Domain {
+                    least: 5.0,
+                    ..Domain::ARM
+                }),
+                ..params(500)
+            },
+            "domain radii",
+        ),
+        (
+            TreeParams {
+                domain: Some(Domain {
+                    alpha: 1.0,
+                    ..Domain::ARM
+                }),
+                ..params(500)
+            },
+            "domain alpha",
         ),
     ] {
         let e = rrt_connect(

@@ -266,6 +266,11 @@ pub struct MbmArgs {
     /// streams, on the rayon pool (`RAYON_NUM_THREADS`); the first to connect answers. 1: one.
     #[arg(long, value_name = "N", default_value_t = 1, help_heading = "Tuning")]
     pub tree_streams: usize,
+    /// `--planner tree`: dynamic-domain sampling, a node's radius after its first failed
+    /// extend, in extends (`--tree-range`): a sample farther from its nearest node than that is
+    /// drawn again without a call (as VAMP's RRT-Connect: 4). 0: off
+    #[arg(long, value_name = "EXTENDS", default_value_t = viaroad::roadmap::tree::Domain::ARM.radius, help_heading = "Tuning")]
+    pub tree_domain: f64,
     /// `--planner tree`: run the via-point planner (`--direct-calls`) and the trees at once on
     /// the rayon pool, the first to connect answering, instead of one after the other; in
     /// workcell mode, the roadmap's query and the trees. With a value, the via-point planner
@@ -423,6 +428,7 @@ fn mbm_options(
             restart: a.tree_restart,
             streams: a.tree_streams,
             staircase: a.tree_staircase,
+            domain: viaroad::roadmap::tree::Domain::with_radius(a.tree_domain),
             ..viaroad::roadmap::tree::TreeParams::default()
         },
         race,

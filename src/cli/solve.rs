@@ -226,9 +226,9 @@ fn run_roadmap(a: SolveArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The trees' parameters `a` asks for.
-fn tree_params(a: &SolveArgs) -> viaroad::roadmap::tree::TreeParams {
-    use viaroad::roadmap::tree::{Stairs, TreeParams};
+/// The trees' parameters `a` asks for in `space`.
+fn tree_params(a: &SolveArgs, space: &viaroad::space::Space) -> viaroad::roadmap::tree::TreeParams {
+    use viaroad::roadmap::tree::{Domain, Stairs, TreeParams};
     // centring and coarse extends need partial stairs
     let stairs = a
         .tree_stairs
@@ -251,6 +251,10 @@ fn tree_params(a: &SolveArgs) -> viaroad::roadmap::tree::TreeParams {
         stairs,
         straight: !a.no_straight,
         staircase: true,
+        domain: match a.tree_domain {
+            Some(radius) => Domain::with_radius(radius),
+            None => TreeParams::for_space(space).domain,
+        },
     }
 }
 
@@ -258,7 +262,7 @@ fn tree_params(a: &SolveArgs) -> viaroad::roadmap::tree::TreeParams {
 fn run_tree(a: SolveArgs) -> anyhow::Result<()> {
     use viaroad::roadmap::tree::{rrt_connect, shortcut};
     let scene = Scene::load(&a.scene)?;
-    let params = tree_params(&a);
+    let params = tree_params(&a, &scene.space);
     params.validate().map_err(anyhow::Error::msg)?;
     // checked before the path files are prepared (which removes those of earlier runs)
     let SingleQuery {

@@ -89,6 +89,17 @@ pub struct SolveArgs {
         help_heading = "Tuning"
     )]
     pub tree_range: f64,
+    /// Dynamic-domain sampling of `--tree`: a node's radius after its first failed extend, in
+    /// extends (`--tree-range`); a sample farther from its nearest node than that is drawn
+    /// again without a call. 0: off. Default: 4 for arms (as VAMP's RRT-Connect), off for
+    /// other robots
+    #[arg(
+        long,
+        value_name = "EXTENDS",
+        requires = "tree",
+        help_heading = "Tuning"
+    )]
+    pub tree_domain: Option<f64>,
     /// Longest stair of a `--tree` extend (one position move, then one turn), as a share of
     /// the extent: shorter stairs follow coupled motions more closely, for more calls.
     #[arg(

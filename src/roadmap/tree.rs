@@ -204,6 +204,65 @@ pub struct TreeParams {
     /// one straight proof, and a blocked extend costs a single call instead of its stairs'
     /// single-joint sweeps. The arm portfolio's trees run so ([`crate::portfolio::Portfolio`]).
     pub staircase: bool,
+    /// Dynamic-domain sampling ([`Domain`]; `None`, the default: every sample extends). On for
+    /// arms ([`Self::for_space`]), as in VAMP's RRT-Connect.
+    pub domain: Option<Domain>,
+}
+
+/// Dynamic-domain sampling (Yershova, Jaillet, Siméon, LaValle 2005; adaptive radii as in
+/// Jaillet, Yershova, LaValle, Siméon 2005, and VAMP's RRT-Connect): a node whose extend
+/// failed gets a radius, and a sample farther from its nearest node than that node's radius is
+/// drawn again without a call. A node against an obstacle stops sending extends towards the far
+/// side of the space, and a tree trapped in a pocket (a goal in a shelf) spends its calls on
+/// samples about it. Radii are in extends ([`TreeParams::range`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Domain {
+    /// A node's radius after its first failed extend.
+    pub radius: f64,
+    /// The least radius: each later failure shrinks it by `alpha`, each success grows it.
+    pub least: f64,
+    /// The share a radius shrinks by on a failure and grows by on a success.
+    pub alpha: f64,
+}
+
+impl Domain {
+    /// VAMP's radii for the Panda, whose extend is 1 rad (ours: 1.04): 4 rad at first, at
+    /// least 1, α = 10⁻⁴. Over the 700 Panda problems (one thread, 5 s each) the arm portfolio's
+    /// calls fell from 325 to 182 per problem and the cage's median time by 28 %.
+    pub const ARM: Domain = Domain {
+        radius: 4.0,
+        least: 1.0,
+        alpha: 1e-4,
+    };
+
+    /// [`Self::ARM`] with a first radius of `radius` extends (its least radius no larger);
+    /// `None` for 0: no domains.
+    pub fn with_radius(radius: f64) -> Option<Domain> {
+        (radius != 0.0).then(|| Domain {
+            radius,
+            least: Domain::ARM.least.min(radius),
+            ..Domain::ARM
+        })
+    }
+
+    /// Checks the radii are positive and finite, the least at most the first, and `alpha` in
+    /// [0, 1).
+    pub fn validate(&self) -> Result<(), String> {
+        let Domain {
+            radius,
+            least,
+            alpha,
+        } = *self;
+        if !(least.is_finite() && least > 0.0 && radius.is_finite() && radius >= least) {
+            return Err(format!(
+                "tree domain radii must be finite with 0 < least ≤ radius, got {least} and {radius}"
+            ));
+        }
+        if !(0.0..1.0).contains(&alpha) {
+            return Err(format!("tree domain alpha must be in [0, 1), got {alpha}"));
+        }
+        Ok(())
+    }
 }
 
 impl Default for TreeParams {
@@ -222,6 +281,7 @@ impl Default for TreeParams {
             streams: 1,
             straight: true,
             staircase: true,
+            domain: None,
         }
     }
 }
@@ -240,6 +300,7 @@ impl TreeParams {
                 Prefix::Intervals
             },
             staircase: !joints,
+            domain: joints.then_some(Domain::ARM),
             ..TreeParams::default()
         }
     }
@@ -262,6 +323,9 @@ impl TreeParams {
         }
         if self.stairs == Stairs::Whole && self.centre > 0 {
             return Err("tree centring needs prefix or slide stairs, not whole ones".into());
+        }
+        if let Some(d) = &self.domain {
+            d.validate()?;
         }
         if self.stairs == Stairs::Whole && self.coarse {
             return Err("a coarse first try needs prefix or slide stairs, not whole ones".into());
@@ -426,6 +490,8 @@ impl Rooted {
 struct Tree {
     base: Rooted,
     nn: NearestNeighbours,
+    /// Dynamic-domain radii by node ([`Domain`]; a node beyond the end has none yet).
+    radius: Vec<f64>,
 }
 
 impl Tree {
@@ -436,7 +502,35 @@ impl Tree {
         }
         let mut base = root.clone();
         base.given = root.node_count();
-        Tree { base, nn }
+        Tree {
+            base,
+            nn,
+            radius: Vec::new(),
+        }
+    }
+
+    /// Node `i`'s dynamic-domain radius (infinite until an extend from it failed).
+    fn radius(&self, i: u32) -> f64 {
+        self.radius
+            .get(i as usize)
+            .copied()
+            .unwrap_or(f64::INFINITY)
+    }
+
+    /// After an extend from node `i`: a failure gives it `domain`'s radius or shrinks the one it
+    /// has, a success grows a radius it has.
+    fn adapt_radius(&mut self, i: u32, domain: &Domain, range: f64, extended: bool) {
+        let r = self.radius(i);
+        let next = match (extended, r.is_finite()) {
+            (false, false) => domain.radius * range,
+            (false, true) => (r * (1.0 - domain.alpha)).max(domain.least * range),
+            (true, true) => r * (1.0 + domain.alpha),
+            (true, false) => return,
+        };
+        if self.radius.len() <= i as usize {
+            self.radius.resize(i as usize + 1, f64::INFINITY);
+        }
+        self.radius[i as usize] = next;
     }
 
     /// Nodes grown (the end counts as one, given nodes do not).
@@ -564,8 +658,13 @@ impl Grower<'_> {
     /// `target`, at most `range` far, in `stairs` stairs (0: `target` is that node).
     fn step(&self, tree: &Tree, target: &[f64]) -> Step {
         let near = tree.nearest(target);
+        let d = self.space.distance(tree.node(near), target);
+        self.step_from(tree, near, d, target)
+    }
+
+    /// [`Self::step`] from node `near`, `d` away from `target`.
+    fn step_from(&self, tree: &Tree, near: u32, d: f64, target: &[f64]) -> Step {
         let from = tree.node(near).clone();
-        let d = self.space.distance(&from, target);
         let range = self.params.range * self.space.extent();
         let full = d <= range;
         let aim = if full {
@@ -590,8 +689,13 @@ impl Grower<'_> {
 
     /// Extends `tree` from its node nearest to `target` towards it, at most `range` far.
     fn extend(&mut self, tree: &mut Tree, target: &[f64]) -> Result<Extend, OracleError> {
-        self.extends += 1;
         let step = self.step(tree, target);
+        self.extend_step(tree, step)
+    }
+
+    /// [`Self::extend`] along a planned `step`.
+    fn extend_step(&mut self, tree: &mut Tree, step: Step) -> Result<Extend, OracleError> {
+        self.extends += 1;
         if step.stairs == 0 {
             return Ok(Extend::Reached(step.near));
         }
@@ -1099,6 +1203,8 @@ fn grow_once(
         if max_nodes.is_some_and(|m| trees[0].grown() + trees[1].grown() >= m) {
             return Ok(finish(trees, &g, None, TreeStop::NodeBudget));
         }
+        // the ends are aimed at whatever the domains say; samples only within them
+        let domain = params.domain.filter(|_| target.is_none());
         let q_rand = target
             .take()
             .unwrap_or_else(|| space.sample_uniform(&mut rng));
@@ -1108,9 +1214,21 @@ fn grow_once(
         } else {
             (&mut second[0], &mut first[0])
         };
-        let new = match g.extend(ta, &q_rand)? {
-            Extend::Trapped => None,
-            Extend::Advanced(n) | Extend::Reached(n) => Some(n),
+        let near = ta.nearest(&q_rand);
+        let d = space.distance(ta.node(near), &q_rand);
+        let new = if domain.is_some() && d > ta.radius(near) {
+            // outside the nearest node's domain: drawn again, no call
+            None
+        } else {
+            let step = g.step_from(ta, near, d, &q_rand);
+            let new = match g.extend_step(ta, step)? {
+                Extend::Trapped => None,
+                Extend::Advanced(n) | Extend::Reached(n) => Some(n),
+            };
+            if let Some(domain) = &domain {
+                ta.adapt_radius(near, domain, params.range * space.extent(), new.is_some());
+            }
+            new
         };
         if let Some(n) = new {
             let q_new = ta.node(n).clone();
@@ -1258,5 +1376,43 @@ pub fn shortcut_passes(
             }
             Err(e) => return (short, Some(e)),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A node gets its domain at its first failed extend, each later failure shrinks it down to
+    /// the least radius, a success grows a radius it has and leaves a node without one alone.
+    #[test]
+    fn a_failed_extend_gives_its_node_a_domain_that_shrinks_to_the_least() {
+        let space = Space::joints(vec![0.0; 2], vec![1.0; 2], &[false; 2]).unwrap();
+        let mut tree = Tree::new(&space, &Rooted::at(&[0.5, 0.5]));
+        let d = Domain {
+            radius: 4.0,
+            least: 1.0,
+            alpha: 0.5,
+        };
+        let range = 0.1;
+        assert_eq!(tree.radius(0), f64::INFINITY);
+        tree.adapt_radius(0, &d, range, true);
+        assert_eq!(tree.radius(0), f64::INFINITY, "a success gives no domain");
+        tree.adapt_radius(0, &d, range, false);
+        assert!((tree.radius(0) - 0.4).abs() < 1e-12);
+        tree.adapt_radius(0, &d, range, false);
+        assert!((tree.radius(0) - 0.2).abs() < 1e-12);
+        tree.adapt_radius(0, &d, range, true);
+        assert!((tree.radius(0) - 0.3).abs() < 1e-12);
+        for _ in 0..10 {
+            tree.adapt_radius(0, &d, range, false);
+        }
+        assert!(
+            (tree.radius(0) - 0.1).abs() < 1e-12,
+            "never below the least"
+        );
+        // a node added later has none until its own extend fails
+        let n = tree.add(vec![0.6, 0.5], 0);
+        assert_eq!(tree.radius(n), f64::INFINITY);
     }
 }
