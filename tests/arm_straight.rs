@@ -215,38 +215,13 @@ fn tree_extends_go_straight_where_proved_and_the_tree_path_is_certified() {
     );
 }
 
-#[test]
-fn without_staircases_every_tree_edge_is_one_proved_straight_motion() {
-    // the box's query by the two trees alone, an extend whose straight motion is not proved
-    // given up (`TreeParams::staircase` off, as the arm portfolio's trees): the raw path passes
-    // the independent checker, and each of its edges is one straight motion the oracle proves
-    // free (no staircase corners between the extends' ends)
-    let scene = box_scene();
+/// Asserts that every edge of `path` that moves several joints is a straight motion the
+/// scene's arm oracle proves free; how many such edges there are.
+fn straight_edges_are_proved(scene: &Scene, path: &[Vec<f64>]) -> usize {
     let Robot::Arm(a) = &scene.robot else {
         panic!("not an arm scene")
     };
     let arm_oracle = a.arm_oracle();
-    let oracle = scene.oracle();
-    let groups = scene.space.groups(false);
-    let q = &scene.checked_queries().unwrap()[0];
-    let params = TreeParams {
-        max_nodes: Some(20_000),
-        staircase: false,
-        ..TreeParams::for_space(&scene.space)
-    };
-    let found = viaroad::roadmap::tree::rrt_connect(
-        &scene.space,
-        oracle.as_ref(),
-        &groups,
-        &q.start,
-        &q.goal,
-        &params,
-        1,
-        &viaroad::deadline::Deadline::none(),
-    )
-    .unwrap();
-    let path = found.path.expect("the trees connect");
-    certify(&scene, &path);
     let mut counts = CallCounts::default();
     let mut several = 0;
     for w in path.windows(2) {
@@ -257,7 +232,28 @@ fn without_staircases_every_tree_edge_is_one_proved_straight_motion() {
             "an edge of several joints is not a proved straight motion: {w:?}"
         );
     }
-    assert!(several > 0, "no straight edge on the path");
+    several
+}
+
+#[test]
+fn without_staircases_every_tree_edge_is_one_proved_straight_motion() {
+    // the box's query by the two trees alone, an extend whose straight motion is not proved
+    // given up (`TreeParams::staircase` off, as the arm portfolio's trees): the raw path passes
+    // the independent checker, and each of its edges is one straight motion the oracle proves
+    // free (no staircase corners between the extends' ends)
+    let scene = box_scene();
+    let params = TreeParams {
+        max_nodes: Some(20_000),
+        staircase: false,
+        ..TreeParams::for_space(&scene.space)
+    };
+    let found = common::tree::grow(&scene, &params, 1);
+    let path = found.path.expect("the trees connect");
+    certify(&scene, &path);
+    assert!(
+        straight_edges_are_proved(&scene, &path) > 0,
+        "no straight edge on the path"
+    );
 }
 
 #[test]
@@ -290,30 +286,17 @@ fn dynamic_domains_keep_tree_paths_certified_and_draw_samples_again_without_call
     // extends, dynamic domains), seeds 1–6, against the same trees without domains: every raw
     // path passes the independent checker, a seed gives the same path twice, and the samples a
     // domain draws again cost no calls (fewer calls over the seeds)
-    use viaroad::roadmap::tree::{rrt_connect, TreeOutcome};
+    use viaroad::roadmap::tree::TreeOutcome;
     let scene =
         Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-cage-1.toml"))
             .unwrap();
-    let oracle = scene.oracle();
-    let groups = scene.space.groups(false);
-    let q = &scene.checked_queries().unwrap()[0];
     let arm = TreeParams {
         max_nodes: Some(20_000),
         ..TreeParams::for_space(&scene.space)
     };
     assert!(arm.domain.is_some(), "an arm's trees sample in domains");
     let grow = |params: &TreeParams, seed: u64| -> TreeOutcome {
-        let found = rrt_connect(
-            &scene.space,
-            oracle.as_ref(),
-            &groups,
-            &q.start,
-            &q.goal,
-            params,
-            seed,
-            &viaroad::deadline::Deadline::none(),
-        )
-        .unwrap();
+        let found = common::tree::grow(&scene, params, seed);
         certify(&scene, found.path.as_ref().expect("the trees connect"));
         found
     };
@@ -341,10 +324,6 @@ fn arm_trees_out_of_a_roadmap_attach_by_proved_straight_motions() {
     // the ends' attachments among them, is a straight motion the oracle proves free
     use viaroad::roadmap::rooted::RoadmapTrees;
     let scene = box_scene();
-    let Robot::Arm(a) = &scene.robot else {
-        panic!("not an arm scene")
-    };
-    let arm_oracle = a.arm_oracle();
     let oracle = scene.oracle();
     let method = LocalSpec::roadmap_default().build();
     let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
@@ -367,19 +346,12 @@ fn arm_trees_out_of_a_roadmap_attach_by_proved_straight_motions() {
         .unwrap();
     let path = found.path.expect("the trees connect");
     certify(&scene, &path);
-    let mut counts = CallCounts::default();
     let (first, last) = (&path[..2], &path[path.len() - 2..]);
-    let mut several = 0;
-    for w in path.windows(2) {
-        let moved = w[0].iter().zip(&w[1]).filter(|(x, y)| x != y).count();
-        several += usize::from(moved > 1);
-        assert!(
-            moved <= 1 || arm_oracle.straight_free(&w[0], &w[1], &mut counts).unwrap(),
-            "an edge of several joints is not a proved straight motion: {w:?}"
-        );
-    }
+    assert!(
+        straight_edges_are_proved(&scene, &path) > 0,
+        "no straight edge on the path"
+    );
     let straight = |w: &[Vec<f64>]| w[0].iter().zip(&w[1]).filter(|(x, y)| x != y).count() > 1;
-    assert!(several > 0, "no straight edge on the path");
     assert!(
         straight(first) || straight(last),
         "neither end attached or grew by a straight motion"

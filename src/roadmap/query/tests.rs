@@ -6,20 +6,32 @@ use crate::scene::Scene;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
+/// The scene at `rel` (from the crate's folder) and a roadmap of it learnt to `nodes` nodes
+/// (seed 1) with the roadmap's default local method.
+fn scene_and_roadmap(rel: &str, nodes: usize) -> (Scene, Roadmap) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(rel);
+    let scene = Scene::load(&path).unwrap();
+    let oracle = scene.oracle();
+    let method = LocalSpec::roadmap_default().build();
+    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
+        .learn(
+            &LearnParams::default(),
+            &Budget::nodes(nodes),
+            1,
+            &mut |_| {},
+        )
+        .unwrap();
+    (scene, learnt.roadmap)
+}
+
 /// Where an arm's straight motion between two free configurations is asked and not proved, the
 /// direct path is that one call: the single-joint staircase, whose corners the sure test does
 /// not refuse, is not swept (its exact sweeps cost most of a query the roadmap answers).
 #[test]
 fn an_arm_direct_path_not_proved_straight_costs_one_call() {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/arms/panda-cage-1.toml");
-    let scene = Scene::load(&path).unwrap();
+    let (scene, roadmap) = scene_and_roadmap("scenes/arms/panda-cage-1.toml", 5);
     let oracle = scene.oracle();
-    let method = LocalSpec::roadmap_default().build();
-    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
-        .learn(&LearnParams::default(), &Budget::nodes(5), 1, &mut |_| {})
-        .unwrap();
-    let planner = QueryPlanner::new(&learnt.roadmap, oracle.as_ref()).unwrap();
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref()).unwrap();
     let space = planner.space();
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let mut free = || loop {
@@ -60,18 +72,13 @@ fn an_arm_direct_path_not_proved_straight_costs_one_call() {
 /// the sixteen each way).
 #[test]
 fn the_direct_stages_answer_as_the_whole_search_or_leave_it_the_rest() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/discs-cluttered.toml");
-    let scene = Scene::load(&path).unwrap();
+    let (scene, roadmap) = scene_and_roadmap("scenes/discs-cluttered.toml", 12);
     let oracle = scene.oracle();
-    let method = LocalSpec::roadmap_default().build();
-    let learnt = Learner::for_scene(&scene, oracle.as_ref(), method.as_ref())
-        .learn(&LearnParams::default(), &Budget::nodes(12), 1, &mut |_| {})
-        .unwrap();
     let options = QueryOptions {
         time: Some(std::time::Duration::from_millis(300)),
         ..QueryOptions::default()
     };
-    let planner = QueryPlanner::new(&learnt.roadmap, oracle.as_ref())
+    let planner = QueryPlanner::new(&roadmap, oracle.as_ref())
         .unwrap()
         .with_options(options);
     let space = planner.space();
