@@ -167,16 +167,16 @@ pub struct QueryOptions {
     /// that keeps them ([`Roadmap::with_kept`]). Off by default: trees can hold 10⁵ nodes, and
     /// a batch holds every answer until it ends.
     pub return_trees: bool,
-    /// With [`Self::trees`]: ask the roadmap's direct paths alone for at most this head start
-    /// (the quick try, attaching by direct paths, the staircase from start to goal), then,
-    /// unless they answered, the roadmap's whole search beside the trees out of it on the
-    /// rayon pool, the first to answer stopping the other ([`crate::deadline::race_after`]),
-    /// rather than growing the trees only after attaching failed. In a workcell whose goals
-    /// the roadmap rarely reaches (the Panda's cage) attaching costs tens of milliseconds
-    /// before the trees start: query p50 92 → 17 ms with 2 ms; the head start keeps the quick
-    /// answers off the pool, and where the direct paths fail it ends there: the local
-    /// method's searches, whole-range sweeps on an arm, cost a millisecond before trees that
-    /// mostly answer first.
+    /// With [`Self::trees`]: ask the roadmap alone for at most this head start, then, unless it
+    /// answered, its whole search beside the trees out of it on the rayon pool, the first to
+    /// answer stopping the other ([`crate::deadline::race_after`]), rather than growing the
+    /// trees only after attaching failed. In a workcell whose goals the roadmap rarely reaches
+    /// (the Panda's cage) attaching costs tens of milliseconds before the trees start: query
+    /// p50 92 → 17 ms with 2 ms; the head start keeps the quick answers off the pool. An arm's
+    /// head start asks the direct paths alone (the quick try, attaching by direct paths, the
+    /// staircase from start to goal) and ends where they fail: the local method's searches,
+    /// whole-range sweeps on an arm, cost a millisecond before trees that mostly answer
+    /// first.
     /// The trees' path is shortened by greedy shortcut passes
     /// ([`super::tree::shortcut_passes`]). `None` (the default): in turn.
     pub race: Option<Duration>,
@@ -511,9 +511,9 @@ pub struct QueryPlanner<'a> {
 enum Stages {
     /// The direct paths alone: the quick try, attaching by direct paths, the staircase from
     /// start to goal. What answers most of a trained workcell's queries in a fraction of a
-    /// millisecond, and a race's head start ([`QueryOptions::race`]): the local method's
-    /// searches that follow sweep whole joint ranges on an arm (about 0.5 ms a call), and
-    /// where the direct paths fail the trees mostly answer first.
+    /// millisecond, and an arm's race's head start ([`QueryOptions::race`]): the local
+    /// method's searches that follow sweep whole joint ranges on an arm (about 0.5 ms a call),
+    /// and where the direct paths fail the trees mostly answer first.
     Direct,
     /// Every stage: the local method's attaching, its search from start to goal, the deeper
     /// search, the trees or the growing.

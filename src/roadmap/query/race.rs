@@ -16,9 +16,10 @@ fn answered(a: &Result<QueryResult, QueryError>) -> bool {
 }
 
 impl QueryPlanner<'_> {
-    /// The roadmap's direct paths alone for at most `head_start`, then its whole search beside
-    /// the trees `tree` out of the roadmap ([`RoadmapTrees`]), until `outer` or the query's time
-    /// ends; the answer carries the oracle work of both sides.
+    /// The roadmap's direct paths alone for at most `head_start` (an arm's; elsewhere its whole
+    /// search), then its whole search beside the trees `tree` out of the roadmap
+    /// ([`RoadmapTrees`]), until `outer` or the query's time ends; the answer carries the oracle
+    /// work of both sides.
     pub(super) fn racing(
         &self,
         start: &[f64],
@@ -33,13 +34,16 @@ impl QueryPlanner<'_> {
         let start = self.check_endpoint(Endpoint::Start, start, &mut checks)?;
         let goal = self.check_endpoint(Endpoint::Goal, goal, &mut checks)?;
         let deadline = outer.within(self.options.time);
-        // the head start asks the direct paths alone: where they fail, the local method's
-        // searches run beside the trees (or after them, in turn), not before
+        // an arm's head start asks the direct paths alone: where they fail, the local method's
+        // searches (whole-range sweeps) run beside the trees (or after them, in turn), not
+        // before; elsewhere they are quick, and the head start is the whole search cut short
+        let joints = matches!(self.space().kind(), crate::space::SpaceKind::Joints { .. });
+        let head_stages = if joints { Stages::Direct } else { Stages::All };
         let alone = if head_start.is_zero() {
             None
         } else {
             let finding = deadline.within(Some(head_start));
-            let head = self.search(&start, &goal, (&finding, &deadline), None, Stages::Direct);
+            let head = self.search(&start, &goal, (&finding, &deadline), None, head_stages);
             if answered(&head) || deadline.expired() {
                 return head;
             }
