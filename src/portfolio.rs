@@ -370,10 +370,9 @@ pub fn tree_stage(
     let growing = Instant::now();
     // staircases only where the straight motions are off; domains where they were measured,
     // in an arm's joints
-    let joints = matches!(p.scene.space.kind(), crate::space::SpaceKind::Joints { .. });
     let tree = &TreeParams {
         straight: tree.straight && p.straight,
-        domain: tree.domain.filter(|_| joints),
+        domain: tree.domain.filter(|_| p.scene.space.is_joints()),
         ..tree.clone()
     };
     let found = rrt_connect(

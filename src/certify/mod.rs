@@ -251,7 +251,7 @@ impl<'a> Certifier<'a> {
                 message: e.to_string(),
             })?;
             let mut q = q.clone();
-            if !matches!(space.kind(), SpaceKind::Joints { .. }) {
+            if !space.is_joints() {
                 space.normalize(&mut q);
             }
             clamped.push(q);

@@ -35,7 +35,7 @@ pub fn run(a: ProbeArgs) -> anyhow::Result<()> {
         scene.space.normalize(q);
     }
     let motion = scene.space.direct_motion(&from, &to).with_context(|| {
-        if matches!(scene.space.kind(), viaroad::space::SpaceKind::Joints { .. }) {
+        if scene.space.is_joints() {
             "--from and --to differ in more than one joint: an arm's straight motion moves one \
              joint (CHS §1.5)"
         } else {

@@ -344,7 +344,7 @@ impl Trees {
     /// any: the trees' defaults (whole stairs, the smaller tree extending; as `bench mbm
     /// --planner tree`), first-hit prefixes for arms.
     pub fn params(self, space: &viaroad::space::Space) -> Option<TreeParams> {
-        let joints = matches!(space.kind(), viaroad::space::SpaceKind::Joints { .. });
+        let joints = space.is_joints();
         let on = match self {
             Trees::Auto => joints,
             Trees::On => true,

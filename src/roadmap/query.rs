@@ -205,7 +205,7 @@ impl QueryOptions {
     /// [`Self::DEFAULT_HEAD_START`]); other spaces keep them as they are (a grown copy of
     /// the roadmap).
     pub fn with_arm_trees(mut self, space: &crate::space::Space) -> Self {
-        if matches!(space.kind(), crate::space::SpaceKind::Joints { .. }) {
+        if space.is_joints() {
             self.trees = Some(TreeParams::for_space(space));
             self.race = Some(Self::DEFAULT_HEAD_START);
         }

@@ -293,7 +293,7 @@ impl TreeParams {
     /// arm's extends are proved straight motions or given up ([`Self::staircase`] off), as
     /// the arm portfolio's trees, so that queries on a roadmap grow the same trees.
     pub fn for_space(space: &Space) -> TreeParams {
-        let joints = matches!(space.kind(), crate::space::SpaceKind::Joints { .. });
+        let joints = space.is_joints();
         TreeParams {
             prefix: if joints {
                 Prefix::FirstHit

@@ -367,6 +367,12 @@ impl Space {
         groups
     }
 
+    /// Whether this is an arm's joint space: what decides the arm's defaults (trees out of the
+    /// roadmap, their racing head start, dynamic domains, first-hit prefixes).
+    pub fn is_joints(&self) -> bool {
+        matches!(self.kind, SpaceKind::Joints { .. })
+    }
+
     /// One group of every joint of a joint space without continuous joints: its direct path
     /// is the straight motion of all joints at once, which an arm's oracle only certifies free
     /// or not ([`crate::robot::ArmOracle::straight_free`]) — what shortcuts across a staircase

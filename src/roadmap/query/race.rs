@@ -37,8 +37,11 @@ impl QueryPlanner<'_> {
         // an arm's head start asks the direct paths alone: where they fail, the local method's
         // searches (whole-range sweeps) run beside the trees (or after them, in turn), not
         // before; elsewhere they are quick, and the head start is the whole search cut short
-        let joints = matches!(self.space().kind(), crate::space::SpaceKind::Joints { .. });
-        let head_stages = if joints { Stages::Direct } else { Stages::All };
+        let head_stages = if self.space().is_joints() {
+            Stages::Direct
+        } else {
+            Stages::All
+        };
         let alone = if head_start.is_zero() {
             None
         } else {
