@@ -66,6 +66,43 @@ proptest! {
         let got = tree.nearest(&q, k, radius);
         let want = brute_force(&points, &ids, &q, k, radius);
         prop_assert_eq!(got, want);
+        // the single nearest, by distance then id
+        let one = tree.nearest_one(&q);
+        let want_one = points
+            .iter()
+            .zip(&ids)
+            .map(|(p, &id)| {
+                let d2: f64 = p.iter().zip(&q).map(|(a, b)| (a - b) * (a - b)).sum();
+                (d2.sqrt(), id)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        prop_assert_eq!(one, want_one);
+    }
+
+    /// An arm's joint space without continuous joints is its own embedding: the index is
+    /// exact there as in R^n, and the single nearest node is the brute force's, ties by id
+    /// (coordinates on a grid make ties common).
+    #[test]
+    fn joint_space_index_is_exact(
+        points in prop::collection::vec(prop::collection::vec((0i32..5).prop_map(|v| v as f64 * 0.25), 7), 1..150),
+        q in prop::collection::vec(0.0f64..1.0, 7),
+        k in 1usize..12,
+    ) {
+        let space = Space::joints(vec![0.0; 7], vec![1.0; 7], &[false; 7]).unwrap();
+        prop_assert!(space.embedding_is_identity());
+        let mut nn = NearestNeighbours::new(&space);
+        for (i, p) in points.iter().enumerate() {
+            nn.insert(i as u32, p);
+        }
+        let mut want: Vec<(u32, f64)> = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (i as u32, space.distance(&q, p)))
+            .collect();
+        want.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        prop_assert_eq!(nn.nearest_one(&q, |i| &points[i as usize]), Some(want[0]));
+        want.truncate(k);
+        prop_assert_eq!(nn.nearest(&q, k, None, |i| &points[i as usize]), want);
     }
 
     /// In R^n the index is exact: the k nearest nodes by the space's distance, ties by id.
@@ -172,6 +209,29 @@ fn rigid_k_nearest_are_exact() {
             want.truncate(k);
             assert_eq!(got, want, "{:?}, k = {k}, radius {radius:?}", space.kind());
         }
+    }
+}
+
+/// A joint space with a continuous joint is not its own embedding (the joint enters as a
+/// point on the circle): the single nearest node still comes out as the brute force's.
+#[test]
+fn continuous_joints_nearest_one_is_exact() {
+    let space = Space::joints(vec![-1.0; 3], vec![1.0; 3], &[false, true, false]).unwrap();
+    assert!(!space.embedding_is_identity());
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let pts: Vec<Vec<f64>> = (0..400).map(|_| space.sample_uniform(&mut rng)).collect();
+    let mut nn = NearestNeighbours::new(&space);
+    for (i, p) in pts.iter().enumerate() {
+        nn.insert(i as u32, p);
+    }
+    for _ in 0..200 {
+        let q = space.sample_uniform(&mut rng);
+        let want = pts
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (i as u32, space.distance(&q, p)))
+            .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+        assert_eq!(nn.nearest_one(&q, |i| &pts[i as usize]), want);
     }
 }
 

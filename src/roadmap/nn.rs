@@ -255,6 +255,28 @@ impl KdTree {
         out.into_iter().map(|c| (c.dist2.sqrt(), c.id)).collect()
     }
 
+    /// The point nearest to `q` as `(distance, id)`, ties by id (`None` for an empty tree):
+    /// [`Self::nearest`]'s first for `k = 1` without its heap and vectors, for a tree's extend,
+    /// which asks one nearest node per sample (and a dynamic domain's sample drawn again asks
+    /// one more). Points are compared by the distance itself, not its square, as
+    /// [`NearestNeighbours`] ranks nodes, so that two squares rounding to one distance fall to
+    /// the id there too.
+    pub fn nearest_one(&self, q: &[f64]) -> Option<(f64, u32)> {
+        let mut best: Option<(f64, u32)> = None;
+        self.search(q, f64::INFINITY, |items| {
+            for &i in items {
+                let c = (self.dist2(q, i).sqrt(), self.ids[i as usize]);
+                if best.is_none_or(|b| c.0 < b.0 || (c.0 == b.0 && c.1 < b.1)) {
+                    best = Some(c);
+                }
+            }
+            // cells whose square reaches the best distance's (widened by a hair for the
+            // rounding of the root) may still hold a tie
+            best.map_or(f64::INFINITY, |(d, _)| d * d * (1.0 + 1e-12))
+        });
+        best
+    }
+
     /// Every point within Euclidean distance `r` of `q` (inclusive), as `(distance, id)` in
     /// no particular order.
     pub fn within(&self, q: &[f64], r: f64) -> Vec<(f64, u32)> {
@@ -280,6 +302,10 @@ pub struct NearestNeighbours {
     tree: KdTree,
     /// Points per node (2 for SE(3)).
     per_node: usize,
+    /// Whether a configuration is its own embedding and the space's distance the Euclidean
+    /// one ([`Space::embedding_is_identity`]): the tree's nearest are then the space's, and
+    /// need neither more candidates nor a second search.
+    identity: bool,
 }
 
 impl NearestNeighbours {
@@ -293,6 +319,7 @@ impl NearestNeighbours {
             space: space.clone(),
             tree: KdTree::new(space.embedding_dim()),
             per_node,
+            identity: space.embedding_is_identity(),
         }
     }
 
@@ -327,7 +354,7 @@ impl NearestNeighbours {
         if k == 0 {
             return Vec::new();
         }
-        let exact = matches!(self.space.kind(), SpaceKind::Euclidean(_));
+        let exact = self.identity;
         // distinct nodes wanted from the tree before re-ranking
         let wanted = if exact { k } else { (2 * k).max(k + 8) };
         let max_dist = radius.unwrap_or(f64::INFINITY);
@@ -359,6 +386,23 @@ impl NearestNeighbours {
         }
         found.truncate(k);
         found
+    }
+
+    /// The node nearest to `q` by [`Space::distance`] and that distance (ties by id; `None`
+    /// while the index is empty): [`Self::nearest`] with `k = 1` and no radius, and in spaces
+    /// whose configurations are their own embeddings (R^n, an arm without continuous joints)
+    /// one search of the tree without allocating.
+    pub fn nearest_one<'c>(
+        &self,
+        q: &[f64],
+        config: impl Fn(u32) -> &'c [f64],
+    ) -> Option<(u32, f64)> {
+        if self.identity {
+            let (_, id) = self.tree.nearest_one(q)?;
+            // the space's own distance, as the ranked search reports it
+            return Some((id, self.space.distance(q, config(id))));
+        }
+        self.nearest(q, 1, None, config).first().copied()
     }
 
     /// Distinct nodes among tree `points`, by the space's distance from `q` within `max_dist`,

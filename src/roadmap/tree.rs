@@ -556,9 +556,8 @@ impl Tree {
 
     fn nearest(&self, q: &[f64]) -> u32 {
         self.nn
-            .nearest(q, 1, None, |id| self.node(id))
-            .first()
-            .map_or(0, |&(id, _)| id)
+            .nearest_one(q, |id| self.node(id))
+            .map_or(0, |(id, _)| id)
     }
 }
 

@@ -684,6 +684,17 @@ impl Space {
         }
     }
 
+    /// Whether [`embeddings`](Self::embeddings) is the configuration itself and
+    /// [`distance`](Self::distance) the Euclidean distance of configurations: R^n, and a joint
+    /// space without continuous joints. A nearest-neighbour index over embeddings is then
+    /// exact as it stands.
+    pub fn embedding_is_identity(&self) -> bool {
+        matches!(
+            self.kind,
+            SpaceKind::Euclidean(_) | SpaceKind::Joints { continuous: 0, .. }
+        )
+    }
+
     /// Length of the vectors [`embeddings`](Self::embeddings) returns.
     pub fn embedding_dim(&self) -> usize {
         match self.kind {
