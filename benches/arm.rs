@@ -28,6 +28,12 @@
 //!   quarter of them collide), each asked once (the oracle remembers a link's answer per
 //!   pose), the mean time of those that collide and of those that do not; shortening's
 //!   corner tests are mostly of the first kind;
+//! - `ARM_MOVES=straight`: the straight motions of several joints one bookshelf_tall workcell
+//!   query asked after its roadmap could not join the goal (`data/bookshelf_tall_straight.txt`:
+//!   the goal's direct tries, the trees out of the roadmap, the shortcuts; a goal in a pocket
+//!   under a board), each proved `ARM_ROUNDS` times (default 20): µs per motion for those
+//!   proved free and the others, for `perf record` (the same motions are the criterion
+//!   bench's `oracle/straight_bookshelf`);
 //! - `ARM_MOVES=shared|unshared|free|first|rebuilt`: the 64 moves once with that variant and
 //!   nothing else, for `valgrind --tool=callgrind` (instruction counts repeat whatever the
 //!   load): `ARM_MOVES=shared valgrind --tool=callgrind target/release/deps/arm-*`.
@@ -48,6 +54,9 @@ const BATCH: usize = 16;
 const MOVES: usize = 64;
 
 type Move = (Vec<f64>, usize, f64);
+
+/// A straight motion of several joints: its two ends.
+type Straight = (Vec<f64>, Vec<f64>);
 
 /// The shipped Panda in the first scene of MotionBenchMaker family `family`, and the scene.
 fn panda_in(family: &str) -> (Arm, PlanningScene) {
@@ -234,6 +243,70 @@ fn states() {
     }
 }
 
+/// The recorded straight motions of a bookshelf_tall query (`ARM_MOVES=straight`), and the
+/// Panda's oracle in that family's first scene.
+fn straight_motions() -> (ArmOracle, Vec<Straight>) {
+    let (arm, scene) = panda_in("bookshelf_tall");
+    let oracle = ArmOracle::new(&arm, &scene.objects).unwrap();
+    let file =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/data/bookshelf_tall_straight.txt");
+    let parse = |s: &str| -> Vec<f64> { s.split(',').map(|v| v.trim().parse().unwrap()).collect() };
+    let motions = std::fs::read_to_string(file)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.split_once(';'))
+        .map(|(a, b)| (parse(a), parse(b)))
+        .collect();
+    (oracle, motions)
+}
+
+/// `ARM_MOVES=straight`: µs per recorded straight motion, by verdict.
+fn straight() {
+    let (oracle, motions) = straight_motions();
+    let rounds: usize = std::env::var("ARM_ROUNDS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(20);
+    // [not proved, proved free]: seconds, motions
+    let mut t = [(0.0, 0usize); 2];
+    // not proved quickly (the sure test) and after the planes began: seconds, motions
+    let mut slow = [(0.0, 0usize); 2];
+    let mut counts = CallCounts::default();
+    for _ in 0..rounds {
+        for (q0, q1) in &motions {
+            let start = std::time::Instant::now();
+            let free = oracle.straight_free(q0, q1, &mut counts).unwrap();
+            let e = start.elapsed().as_secs_f64();
+            t[usize::from(free)].0 += e;
+            t[usize::from(free)].1 += 1;
+            if !free {
+                let k = usize::from(e > 8e-6);
+                slow[k].0 += e;
+                slow[k].1 += 1;
+            }
+        }
+    }
+    for (name, (secs, n)) in ["not proved", "proved free"].iter().zip(t) {
+        println!(
+            "{name:<12} {:>5} motions, {:.2} µs each",
+            n / rounds,
+            secs * 1e6 / n.max(1) as f64
+        );
+    }
+    for (name, (secs, n)) in ["  in < 8 µs", "  in > 8 µs"].iter().zip(slow) {
+        println!(
+            "{name:<12} {:>5} motions, {:.2} µs each",
+            n / rounds,
+            secs * 1e6 / n.max(1) as f64
+        );
+    }
+    let all = (t[0].0 + t[1].0) * 1e6 / rounds as f64;
+    println!(
+        "all          {:>5} motions, {all:.0} µs per round",
+        motions.len()
+    );
+}
+
 /// `ARM_MOVES=<variant>`: the moves once, for callgrind.
 fn once(variant: &str) {
     let (_, oracle, _, moves) = setup(MOVES);
@@ -338,6 +411,15 @@ fn bench(c: &mut Criterion) {
             }
         })
     });
+    let (shelf, motions) = straight_motions();
+    group.bench_function("oracle/straight_bookshelf", |b| {
+        b.iter(|| {
+            let mut counts = CallCounts::default();
+            for (q0, q1) in &motions {
+                black_box(shelf.straight_free(q0, q1, &mut counts).unwrap());
+            }
+        })
+    });
     group.finish();
 }
 
@@ -347,6 +429,7 @@ fn main() {
     match std::env::var("ARM_MOVES").as_deref() {
         Ok("table") => table(),
         Ok("states") => states(),
+        Ok("straight") => straight(),
         Ok(v) => once(v),
         Err(_) => {
             benches();

@@ -279,6 +279,10 @@ pub struct ArmOracle {
     culling: bool,
     /// Per link: balls inside its polytopes, in the link frame ([`super::inner`]).
     inner: Vec<Vec<InnerBall>>,
+    /// Per environment part, its true shape where the sure test can measure it: a straight
+    /// motion's proof asks it where a link's cover reaches deep into the part
+    /// ([`Self::surely_meets_obstacle`]).
+    solids: Vec<Option<Solid>>,
     /// Whether [`Self::collides`] tries the sure test first ([`ArmOracle::with_sure_test`]).
     sure_test: bool,
     /// Per environment polytope: its box in its own frame, with the map from the world into
@@ -638,6 +642,7 @@ impl ArmOracle {
         );
         let sure_obstacles = sure_obstacles(&reachable, &inner, &environment, &solids);
         Ok(ArmOracle {
+            solids,
             arm: arm.clone(),
             reach,
             reachable,
@@ -747,6 +752,18 @@ impl ArmOracle {
     /// from a ball of the link's cover to the obstacle's outer shape ([`super::cover`]); 0
     /// with the covers off or without a cover.
     fn cover_to_obstacle(&self, l: usize, pose: &Isometry3<f64>, i: usize) -> f64 {
+        self.placed_cover_to_obstacle(l, |_, b| pose * b.centre, i)
+    }
+
+    /// [`Self::cover_to_obstacle`] with the cover's balls' world centres given by `centre`
+    /// (ball index, ball): a straight motion's pieces place each link's cover once, for every
+    /// obstacle and link they ask it against ([`straight`]).
+    fn placed_cover_to_obstacle(
+        &self,
+        l: usize,
+        centre: impl Fn(usize, &CoverBall) -> Point3<f64>,
+        i: usize,
+    ) -> f64 {
         let balls = &self.covers[l];
         if !self.use_covers || balls.is_empty() {
             return 0.0;
@@ -754,7 +771,8 @@ impl ArmOracle {
         let outer = &self.outers[i];
         balls
             .iter()
-            .map(|b| outer.distance(&(pose * b.centre)) - b.radius)
+            .enumerate()
+            .map(|(k, b)| outer.distance(&centre(k, b)) - b.radius)
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -767,15 +785,27 @@ impl ArmOracle {
         b: usize,
         pose_b: &Isometry3<f64>,
     ) -> f64 {
+        self.placed_cover_to_link(a, |_, x| pose_a * x.centre, b, |_, y| pose_b * y.centre)
+    }
+
+    /// [`Self::cover_to_link`] with the covers' balls' world centres given by `centre_a` and
+    /// `centre_b` (ball index, ball), as [`Self::placed_cover_to_obstacle`].
+    fn placed_cover_to_link(
+        &self,
+        a: usize,
+        centre_a: impl Fn(usize, &CoverBall) -> Point3<f64>,
+        b: usize,
+        centre_b: impl Fn(usize, &CoverBall) -> Point3<f64>,
+    ) -> f64 {
         let (ca, cb) = (&self.covers[a], &self.covers[b]);
         if !self.use_covers || ca.is_empty() || cb.is_empty() {
             return 0.0;
         }
         let mut least = f64::INFINITY;
-        for x in ca {
-            let px = pose_a * x.centre;
-            for y in cb {
-                least = least.min((px - pose_b * y.centre).norm() - x.radius - y.radius);
+        for (i, x) in ca.iter().enumerate() {
+            let px = centre_a(i, x);
+            for (j, y) in cb.iter().enumerate() {
+                least = least.min((px - centre_b(j, y)).norm() - x.radius - y.radius);
             }
         }
         least
@@ -927,6 +957,18 @@ impl ArmOracle {
                     .iter()
                     .any(|&(a, b)| self.inner_balls_meet(placed, balls, a, b))
         })
+    }
+
+    /// Whether link `l` at `pose` surely reaches into environment part `i`: one of its inner
+    /// balls meets the part's true shape (the sure test of one pair: a collision found, never
+    /// a guess; `false` where the part has no such shape).
+    fn surely_meets_obstacle(&self, l: usize, pose: &Isometry3<f64>, i: usize) -> bool {
+        let Some(solid) = &self.solids[i] else {
+            return false;
+        };
+        self.inner[l]
+            .iter()
+            .any(|b| solid.meets(&(pose * b.centre), b.radius))
     }
 
     /// Whether links `a` and `b`'s inner balls overlap (the sure test of a self pair).

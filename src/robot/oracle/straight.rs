@@ -40,7 +40,7 @@ use crate::oracle::CallCounts;
 use crate::robot::clearance::{self, Speed};
 use crate::robot::urdf::JointKind;
 use crate::robot::RobotError;
-use nalgebra::Isometry3;
+use nalgebra::{Isometry3, Point3};
 
 /// Separating planes sought per pair and window, from both ends together, before a motion is
 /// given up as not proved. A pair that passes close to an obstacle needs many: in the Panda's
@@ -51,6 +51,13 @@ const MAX_PLANES: usize = 128;
 /// How far a link's points may move in half a piece of time at most, where the pieces are
 /// few enough ([`MAX_PIECES`]).
 const PIECE_GROWTH: f64 = 0.1;
+
+/// How deep (m) a link's cover must reach into an obstacle's outer shape at a moment of a
+/// motion for the proof to test the link's hull against the obstacle's there before any plane
+/// ([`ArmOracle::environment_tasks`]): most motions it finds colliding past a shelf's boards
+/// end there, at a fifth of the work (a bookshelf_tall query's 421 straight motions, the 17
+/// not proved after the sure test: 37 → 26 µs each, the 24 proved 1 µs dearer).
+const DEEP_COVER: f64 = 0.05;
 
 /// Pieces of time a motion is cut into at most.
 const MAX_PIECES: usize = 32;
@@ -100,6 +107,18 @@ struct Pieces {
     poses: Vec<Isometry3<f64>>,
     /// Per link, how far its points may move in half a piece.
     grow: Vec<f64>,
+    /// Each link's cover placed at each piece's pose, on first use ([`Self::place_cover`]).
+    covers: CoverCache,
+}
+
+/// World centres of links' cover balls at pieces' poses, placed when a pair first asks for
+/// them: a link near a shelf is asked against each board and each link near it, piece by
+/// piece, and its balls are placed once for all of them.
+struct CoverCache {
+    /// Per piece and link (`p * links + l`), where its centres start in `centres`
+    /// (`u32::MAX`: not placed yet).
+    at: std::cell::RefCell<Vec<u32>>,
+    centres: std::cell::RefCell<Vec<Point3<f64>>>,
 }
 
 impl Pieces {
@@ -116,6 +135,30 @@ impl Pieces {
     /// Link `l`'s pose at the middle of piece `p`.
     fn pose(&self, p: usize, l: usize) -> &Isometry3<f64> {
         &self.poses[p * self.links() + l]
+    }
+
+    /// Where link `l`'s cover balls' world centres in piece `p` lie in
+    /// [`Self::centres`], placed at the piece's pose the first time.
+    fn place_cover(&self, o: &ArmOracle, p: usize, l: usize) -> std::ops::Range<usize> {
+        let slot = p * self.links() + l;
+        let balls = o.covers[l].len();
+        let known = self.covers.at.borrow()[slot];
+        let start = if known == u32::MAX {
+            let mut centres = self.covers.centres.borrow_mut();
+            let start = centres.len();
+            let pose = self.pose(p, l);
+            centres.extend(o.covers[l].iter().map(|b| pose * b.centre));
+            self.covers.at.borrow_mut()[slot] = start as u32;
+            start
+        } else {
+            known as usize
+        };
+        start..start + balls
+    }
+
+    /// The cover balls' centres placed so far ([`Self::place_cover`]).
+    fn centres(&self) -> std::cell::Ref<'_, Vec<Point3<f64>>> {
+        self.covers.centres.borrow()
     }
 
     /// Per link, a ball holding its balls of every piece (`None`: no geometry): a pair whose
@@ -140,10 +183,11 @@ impl Pieces {
 
     /// The runs of consecutive pieces in which `look(piece)` finds the pair near, as ranges of
     /// `t` with the closest its covers come in each run (less how far the links may move in
-    /// half a piece); pieces a look finds apart ahead of it are not looked at.
-    fn runs(&self, look: &dyn Fn(usize) -> Look) -> Vec<(Interval, f64)> {
+    /// half a piece) and the piece where they do; pieces a look finds apart ahead of it are not
+    /// looked at.
+    fn runs(&self, look: &dyn Fn(usize) -> Look) -> Vec<Run> {
         let n = self.n;
-        let mut out: Vec<(Interval, f64)> = Vec::new();
+        let mut out: Vec<Run> = Vec::new();
         let mut p = 0;
         while p < n {
             let closest = match look(p) {
@@ -155,16 +199,33 @@ impl Pieces {
             };
             let (lo, hi) = (p as f64 / n as f64, (p + 1) as f64 / n as f64);
             match out.last_mut() {
-                Some((last, c)) if last.hi == lo => {
-                    last.hi = hi;
-                    *c = c.min(closest);
+                Some(run) if run.window.hi == lo => {
+                    run.window.hi = hi;
+                    // the least, as `f64::min` takes it (a NaN gives way to a number)
+                    if closest < run.closest || run.closest.is_nan() {
+                        (run.closest, run.deepest) = (closest, p);
+                    }
                 }
-                _ => out.push((Interval { lo, hi }, closest)),
+                _ => out.push(Run {
+                    window: Interval { lo, hi },
+                    closest,
+                    deepest: p,
+                }),
             }
             p += 1;
         }
         out
     }
+}
+
+/// A run of pieces in which a pair may come near ([`Pieces::runs`]).
+struct Run {
+    window: Interval,
+    /// How close the pair's covers come in the run, less how far the links may move in half a
+    /// piece.
+    closest: f64,
+    /// The piece where they come closest.
+    deepest: usize,
 }
 
 /// What a pair's look at one piece found.
@@ -299,6 +360,10 @@ impl Straight<'_> {
             balls,
             poses: at,
             grow,
+            covers: CoverCache {
+                at: std::cell::RefCell::new(vec![u32::MAX; n * links]),
+                centres: std::cell::RefCell::new(Vec::new()),
+            },
         }
     }
 
@@ -394,8 +459,10 @@ impl ArmOracle {
     ) -> Result<bool, RobotError> {
         interrupted()?;
         let held = pieces.held();
-        let mut tasks = self.self_pair_tasks(motion, pieces, &held);
-        tasks.extend(self.environment_tasks(pieces, &held));
+        let Some(mut tasks) = self.environment_tasks(pieces, &held) else {
+            return Ok(false);
+        };
+        tasks.extend(self.self_pair_tasks(motion, pieces, &held));
         tasks.sort_by(|x, y| x.closest.total_cmp(&y.closest));
         for task in tasks {
             interrupted()?;
@@ -436,23 +503,23 @@ impl ArmOracle {
             let relative = motion.speed(a, Some(b)) + motion.speed(b, Some(a));
             let grow = relative / (2 * pieces.n) as f64;
             let near = |p: usize| match (pieces.ball(p, a), pieces.ball(p, b)) {
-                (Some(ba), Some(bb)) if ba.meets(bb) => Look::at(
-                    self.cover_to_link(a, pieces.pose(p, a), b, pieces.pose(p, b)),
-                    grow,
-                    margin,
-                ),
+                (Some(ba), Some(bb)) if ba.meets(bb) => {
+                    let (ra, rb) = (
+                        pieces.place_cover(self, p, a),
+                        pieces.place_cover(self, p, b),
+                    );
+                    let c = pieces.centres();
+                    let (ca, cb) = (&c[ra], &c[rb]);
+                    let d = self.placed_cover_to_link(a, |i, _| ca[i], b, |j, _| cb[j]);
+                    Look::at(d, grow, margin)
+                }
                 _ => Look::Apart(0),
             };
-            tasks.extend(
-                pieces
-                    .runs(&near)
-                    .into_iter()
-                    .map(|(window, closest)| Task {
-                        pair: TaskPair::Links(a, b),
-                        window,
-                        closest,
-                    }),
-            );
+            tasks.extend(pieces.runs(&near).into_iter().map(|r| Task {
+                pair: TaskPair::Links(a, b),
+                window: r.window,
+                closest: r.closest,
+            }));
         }
         tasks
     }
@@ -505,7 +572,8 @@ impl ArmOracle {
 
     /// The link–obstacle stretches to prove: where the link's grown ball meets the obstacle's
     /// ball and box, and its cover's balls, grown alike, come near the obstacle's outer shape.
-    fn environment_tasks(&self, pieces: &Pieces, held: &[Option<Ball>]) -> Vec<Task> {
+    /// `None` where the sure test finds a link in an obstacle at a moment of the motion.
+    fn environment_tasks(&self, pieces: &Pieces, held: &[Option<Ball>]) -> Option<Vec<Task>> {
         let mut tasks = Vec::new();
         let links = (0..held.len()).filter(|&l| held[l].is_some());
         let reachable = |l: usize| self.reachable[l].iter().map(move |&i| (l, i as usize));
@@ -521,23 +589,36 @@ impl ArmOracle {
                 .map_or(0.0, |o| o.tolerance() * CLEARANCE_PER_TOLERANCE);
             let near = |p: usize| match pieces.ball(p, l) {
                 Some(b) if b.meets(ob) && (!self.culling || self.env_boxes[i].meets_ball(b)) => {
-                    let d = self.cover_to_obstacle(l, pieces.pose(p, l), i);
+                    let r = pieces.place_cover(self, p, l);
+                    let c = &pieces.centres()[r];
+                    let d = self.placed_cover_to_obstacle(l, |k, _| c[k], i);
                     Look::at(d, pieces.grow[l], margin)
                 }
                 _ => Look::Apart(0),
             };
-            tasks.extend(
-                pieces
-                    .runs(&near)
-                    .into_iter()
-                    .map(|(window, closest)| Task {
-                        pair: TaskPair::Obstacle(l, i),
-                        window,
-                        closest,
-                    }),
-            );
+            for r in pieces.runs(&near) {
+                // a cover in the part: the sure test at its deepest moment, and deeper the
+                // hulls, find most collisions the proof would creep up to plane by plane (a
+                // pair within the margin at a moment of its window is never proved apart)
+                if r.closest < 0.0
+                    && self.sure_test
+                    && self.surely_meets_obstacle(l, pieces.pose(r.deepest, l), i)
+                {
+                    return None;
+                }
+                if r.closest < -DEEP_COVER
+                    && self.hulls_meet(l, pieces.pose(r.deepest, l), i, margin)
+                {
+                    return None;
+                }
+                tasks.push(Task {
+                    pair: TaskPair::Obstacle(l, i),
+                    window: r.window,
+                    closest: r.closest,
+                });
+            }
         }
-        tasks
+        Some(tasks)
     }
 
     /// Whether link `l` is proved apart from environment polytope `i` by separating planes
@@ -574,6 +655,16 @@ impl ArmOracle {
             (poses[l], Isometry3::identity(), speed)
         };
         clearance::apart_along(cl, ce, &mut at, w, fastest, margin, MAX_PLANES)
+    }
+
+    /// Whether link `l` at `pose` and environment part `i` are not shown more than `margin`
+    /// apart by their hulls: no separating plane can pass there, so no motion through that
+    /// moment is proved.
+    fn hulls_meet(&self, l: usize, pose: &Isometry3<f64>, i: usize, margin: f64) -> bool {
+        match (l_cloud(&self.link_clouds, l), self.env_clouds[i].as_ref()) {
+            (Some(cl), Some(ce)) => !clearance::apart(cl, pose, ce, &Isometry3::identity(), margin),
+            _ => false,
+        }
     }
 
     /// Per link, a bound on how far any point of the link (of any of its collision shapes:
