@@ -173,8 +173,8 @@ pub struct QueryOptions {
     /// trees only after attaching failed. In a workcell whose goals the roadmap rarely reaches
     /// (the Panda's cage) attaching costs tens of milliseconds before the trees start: query
     /// p50 92 → 17 ms with 2 ms; the head start keeps the quick answers off the pool. An arm's
-    /// head start asks the direct paths alone (the quick try, attaching by direct paths, the
-    /// staircase from start to goal) and ends where they fail: the local method's searches,
+    /// head start asks the direct paths alone (the quick try, attaching by direct paths) and
+    /// ends where they fail: the staircase from start to goal and the local method's searches,
     /// whole-range sweeps on an arm, cost a millisecond before trees that mostly answer
     /// first.
     /// The trees' path is shortened by greedy shortcut passes
@@ -509,9 +509,9 @@ pub struct QueryPlanner<'a> {
 /// How far a query's search goes where the roadmap cannot join the ends.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Stages {
-    /// The direct paths alone: the quick try, attaching by direct paths, the staircase from
-    /// start to goal. What answers most of a trained workcell's queries in a fraction of a
-    /// millisecond, and an arm's race's head start ([`QueryOptions::race`]): the local
+    /// The direct paths alone: the quick try and attaching by direct paths. What answers most
+    /// of a trained workcell's queries in a fraction of a millisecond, and an arm's race's
+    /// head start ([`QueryOptions::race`]): the staircase from start to goal and the local
     /// method's searches that follow sweep whole joint ranges on an arm (about 0.5 ms a call),
     /// and where the direct paths fail the trees mostly answer first.
     Direct,
@@ -758,10 +758,11 @@ impl<'a> QueryPlanner<'a> {
             &attaching,
         )?;
         // where the quick try asked an arm's straight motion and it was not proved, the
-        // staircase from start to goal only now, for the queries the roadmap cannot join: in
-        // clutter it mostly collides, and its exact sweeps are dear (bookshelf_tall: one request
-        // answered by it in 16 calls, otherwise by the trees in 150)
-        if meeting.is_none() && staircase_left {
+        // staircase from start to goal only now, for the queries the roadmap cannot join, and
+        // not in a race's head start: in clutter it mostly collides, and its exact sweeps are
+        // dear (a bookshelf_tall workcell: one request answered by it in 16 calls, two others
+        // spent 0.3 ms on it before their trees)
+        if meeting.is_none() && staircase_left && stages == Stages::All {
             let c = self.direct_check(&start, &goal, &mut result, &deadline)?;
             if let Some(path) = result.take_direct(c) {
                 return self.finish(result, path, &shortening);
