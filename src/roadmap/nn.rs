@@ -335,6 +335,11 @@ impl NearestNeighbours {
 
     /// Adds node `id` at configuration `q`.
     pub fn insert(&mut self, id: u32, q: &[f64]) {
+        if self.identity {
+            // a tree out of a roadmap indexes its whole component as a query begins
+            self.tree.insert(q, id);
+            return;
+        }
         for e in self.space.embeddings(q) {
             self.tree.insert(&e, id);
         }
@@ -361,7 +366,13 @@ impl NearestNeighbours {
         // The tree holds both antipodes of an SE(3) node, so one embedding of `q` suffices;
         // the radius is widened by a hair so that rounding cannot drop a node at distance
         // exactly `radius` before the exact filter below.
-        let embedded = &self.space.embeddings(q)[0];
+        let embeddings;
+        let embedded = if self.identity {
+            q
+        } else {
+            embeddings = self.space.embeddings(q);
+            &embeddings[0][..]
+        };
         let widen = |r: f64| r * (1.0 + 1e-9) + 1e-12;
         let tree_radius = widen(max_dist);
         let points = self
