@@ -799,3 +799,62 @@ fn invalid_parameters_are_refused_with_their_own_error() {
     // and the valid ones still grow
     assert!(grow(&s, &params(500), 1).nodes.iter().sum::<usize>() > 2);
 }
+
+/// Consecutive pieces of one straight motion (as `straight_corners_of_motions` cuts an arm's
+/// extends) are walked along the path, not asked again: a shortcut across them costs no call
+/// and leaves the corners as they are; named as motions of their own, the same corners are
+/// asked.
+#[test]
+fn a_shortcut_along_one_motion_is_walked_without_a_call() {
+    use rand::SeedableRng;
+    use viaroad::local::KnownPieces;
+    use viaroad::roadmap::tree::shortcut_known;
+    let s = scene("scenes/discs-cluttered.toml");
+    let oracle = s.oracle();
+    let groups = s.space.groups(false);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    // four corners 0.01 apart along x, the whole run free
+    let path: Vec<Config> = loop {
+        let q = free_sample(&s, oracle.as_ref(), &mut rng, &mut CallCounts::default());
+        let path: Vec<Config> = (0..4).map(|k| vec![q[0] + 0.01 * k as f64, q[1]]).collect();
+        if s.space.in_bounds(&path[3]) {
+            let all = s.space.group_motion(&path[0], &path[3], &groups[0]);
+            if viaroad::oracle::CountedOracle::check_motion(
+                oracle.as_ref(),
+                &all,
+                &mut CallCounts::default(),
+            )
+            .unwrap()
+            {
+                break path;
+            }
+        }
+    };
+    for (motions, asked) in [(vec![0, 0, 0], false), (vec![0, 1, 2], true)] {
+        let mut known = KnownPieces::new();
+        known.certify_path(&s.space, &groups, &path);
+        let (mut m, mut counts) = (motions.clone(), CallCounts::default());
+        let short = shortcut_known(
+            &s.space,
+            oracle.as_ref(),
+            &groups,
+            &path,
+            &mut m,
+            16,
+            &mut known,
+            &mut counts,
+            &Deadline::none(),
+        )
+        .unwrap();
+        assert_eq!(counts.intersect_calls() > 0, asked, "motions {motions:?}");
+        assert_eq!(m.len(), short.len() - 1);
+        if !asked {
+            assert_eq!((short.as_slice(), m), (path.as_slice(), motions));
+        }
+        assert_eq!((short.first(), short.last()), (path.first(), path.last()));
+        Checker::for_scene(&s)
+            .unwrap()
+            .check_path(&short)
+            .unwrap_or_else(|e| panic!("the shortcut path collides: {e}"));
+    }
+}

@@ -274,12 +274,25 @@ pub fn straight_connection(
 /// none of them longer than `piece` (in the space's distance): points of a motion proved free,
 /// for shortening to start and end shortcuts at. Other segments are kept as they are.
 pub fn straight_corners(space: &Space, path: &[Config], piece: f64) -> Vec<Config> {
+    straight_corners_of_motions(space, path, piece).0
+}
+
+/// [`straight_corners`], and for each of the result's segments the index of the segment of
+/// `path` it lies on: consecutive segments of one motion of `path` are pieces of one straight
+/// motion, and a shortcut across them only walks it again.
+pub fn straight_corners_of_motions(
+    space: &Space,
+    path: &[Config],
+    piece: f64,
+) -> (Vec<Config>, Vec<u32>) {
+    let motions = || (0..path.len().saturating_sub(1) as u32).collect();
     let Some(whole) = space.straight_group() else {
-        return path.to_vec();
+        return (path.to_vec(), motions());
     };
     let mut out = Vec::with_capacity(path.len());
+    let mut of = Vec::with_capacity(path.len());
     out.extend(path.first().cloned());
-    for w in path.windows(2) {
+    for (m, w) in path.windows(2).enumerate() {
         let moving = w[0].iter().zip(&w[1]).filter(|(a, b)| a != b).count();
         if moving > 1 && piece > 0.0 {
             let pieces = (space.group_length(&w[0], &w[1], &whole) / piece).ceil();
@@ -287,10 +300,12 @@ pub fn straight_corners(space: &Space, path: &[Config], piece: f64) -> Vec<Confi
             out.extend(
                 (1..pieces).map(|i| space.interpolate(&w[0], &w[1], i as f64 / pieces as f64)),
             );
+            of.extend(std::iter::repeat_n(m as u32, pieces - 1));
         }
         out.push(w[1].clone());
+        of.push(m as u32);
     }
-    out
+    (out, of)
 }
 
 /// Whether consecutive corners `a`, `z` of a path are joined by one straight motion of

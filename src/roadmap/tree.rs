@@ -1286,20 +1286,35 @@ pub fn shortcut(
 ) -> Result<Vec<Config>, OracleError> {
     let mut known = KnownPieces::new();
     known.certify_path(space, groups, path);
+    let mut motions = (0..path.len().saturating_sub(1) as u32).collect();
     shortcut_known(
-        space, oracle, groups, path, window, &mut known, counts, deadline,
+        space,
+        oracle,
+        groups,
+        path,
+        &mut motions,
+        window,
+        &mut known,
+        counts,
+        deadline,
     )
 }
 
 /// [`shortcut`] with the pieces and corners known so far ([`KnownPieces`]: `path`'s own pieces
 /// certified by the caller): the same answer, and a pair's piece or corner asked before, in this
-/// pass or an earlier one, costs no call.
+/// pass or an earlier one, costs no call. `motions[k]` names the motion segment `k` of `path`
+/// is a piece of (equal for consecutive pieces of one straight motion, as
+/// [`crate::local::straight_corners_of_motions`] cut them): a shortcut across pieces of one
+/// motion would only walk it again, and is taken along the path itself without a call (a
+/// goal's last extend past a shelf's board cost 0.1 ms to prove again). Updated to the
+/// result's segments (a shortcut's its own).
 #[allow(clippy::too_many_arguments)]
 pub fn shortcut_known(
     space: &Space,
     oracle: &dyn CollisionOracle,
     groups: &[Group],
     path: &[Config],
+    motions: &mut Vec<u32>,
     window: usize,
     known: &mut KnownPieces,
     counts: &mut CallCounts,
@@ -1308,12 +1323,28 @@ pub fn shortcut_known(
     if path.len() <= 2 {
         return Ok(path.to_vec());
     }
+    debug_assert_eq!(motions.len(), path.len() - 1);
+    let mut fresh = motions.iter().max().map_or(0, |m| m + 1);
     let mut out = vec![path[0].clone()];
+    let mut out_motions = Vec::with_capacity(motions.len());
     let mut i = 0;
     while i + 1 < path.len() {
+        // the last corner on the straight motion segment `i` is a piece of
+        let along = i + motions[i..]
+            .iter()
+            .take_while(|&&m| m == motions[i])
+            .count();
         let mut jumped = None;
         if !deadline.expired() {
             for j in ((i + 2)..(i + 1 + window).min(path.len())).rev() {
+                if j <= along {
+                    // the path itself is that straight motion from `i` to `j`
+                    out.extend(path[i + 1..=j].iter().cloned());
+                    out_motions.extend_from_slice(&motions[i..j]);
+                    i = j;
+                    jumped = Some(None);
+                    break;
+                }
                 if deadline.expired() {
                     break;
                 }
@@ -1326,22 +1357,29 @@ pub fn shortcut_known(
                     Some(&mut *known),
                     counts,
                 )? {
-                    jumped = Some((j, c));
+                    jumped = Some(Some((j, c)));
                     break;
                 }
             }
         }
         match jumped {
-            Some((j, c)) => {
+            // walked along the path's own straight motion
+            Some(None) => {}
+            Some(Some((j, c))) => {
+                // the shortcut's segments: a motion of their own
+                out_motions.extend(std::iter::repeat_n(fresh, c.len()));
+                fresh += 1;
                 out.extend(c);
                 i = j;
             }
             None => {
                 out.push(path[i + 1].clone());
+                out_motions.push(motions[i]);
                 i += 1;
             }
         }
     }
+    *motions = out_motions;
     Ok(out)
 }
 
@@ -1358,14 +1396,23 @@ pub fn shortcut_passes(
     deadline: &Deadline,
 ) -> (Vec<Config>, Option<OracleError>) {
     // corners along the straight extends, for shortcuts to start and end between them
-    let path = &crate::local::straight_corners(space, path, STRAIGHT_PIECE * space.extent());
-    let mut short = path.to_vec();
+    let (path, mut motions) =
+        crate::local::straight_corners_of_motions(space, path, STRAIGHT_PIECE * space.extent());
+    let mut short = path.clone();
     // one record for all passes: a pass asks again most pairs the one before found blocked
     let mut known = KnownPieces::new();
-    known.certify_path(space, groups, path);
+    known.certify_path(space, groups, &path);
     loop {
         match shortcut_known(
-            space, oracle, groups, &short, window, &mut known, counts, deadline,
+            space,
+            oracle,
+            groups,
+            &short,
+            &mut motions,
+            window,
+            &mut known,
+            counts,
+            deadline,
         ) {
             Ok(p) => {
                 let better = p.len() < short.len();
