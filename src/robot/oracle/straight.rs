@@ -30,7 +30,10 @@
 //! far they may move relative to each other, by the joints between them only: the wrist's
 //! links, always close, mostly turn little one against the other. The pairs
 //! whose covers come closest go first: a motion that is not free mostly fails there, before
-//! the others are proved apart for nothing. Near
+//! the others are proved apart for nothing. Where a link's cover reaches into an obstacle,
+//! the sure test at the moment it reaches deepest, and deeper still the two hulls there, end
+//! most colliding motions before any plane is sought (a pair within the margin at a moment
+//! of its window is never proved apart, so the verdict is the planes'). Near
 //! contact the planes' steps shrink and the proof gives up: a motion it does not prove is
 //! treated as blocked (planners ask only the yes/no question), never as a collision found.
 
