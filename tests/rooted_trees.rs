@@ -192,3 +192,37 @@ fn queries_the_roadmap_cannot_join_answer_along_trees() {
         "the sparse roadmap leaves some pair to the trees"
     );
 }
+
+/// Trees that keep the tree an end brought along answer every query exactly as trees that
+/// build it afresh, from one start to many goals (the kept tree found again) and from
+/// changing starts (the kept one replaced): the same paths, the same calls.
+#[test]
+fn a_kept_tree_answers_as_one_built_afresh() {
+    use viaroad::roadmap::rooted::KeptTree;
+    let (scene, roadmap, groups) = scene_and_roadmap();
+    let oracle = scene.oracle();
+    let d = discs(&scene);
+    let kept = KeptTree::default();
+    let keeping = RoadmapTrees::new(&roadmap, oracle.as_ref(), &groups).keeping(&kept);
+    let afresh = RoadmapTrees::new(&roadmap, oracle.as_ref(), &groups);
+    let all = pairs(&scene, 24);
+    let start = all[0].0.clone();
+    let mut grown = 0;
+    for (i, (s, g)) in all.iter().enumerate() {
+        // the first half from one start, the rest from their own
+        let s = if i < 12 { &start } else { s };
+        let ask = |trees: &RoadmapTrees| {
+            trees
+                .connect(s, g, &params(4000), i as u64, &Deadline::none())
+                .unwrap()
+        };
+        let (a, b) = (ask(&keeping), ask(&afresh));
+        assert_eq!(a.path, b.path, "pair {i}");
+        assert_eq!(a.counts, b.counts, "pair {i}");
+        if let Some(path) = &a.path {
+            assert!(path_free(path, &d), "pair {i}: the path collides");
+        }
+        grown += usize::from(a.extends > 0);
+    }
+    assert!(grown > 0, "no pair grew trees");
+}

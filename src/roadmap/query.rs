@@ -28,7 +28,7 @@ use super::learn::{LearnError, Learner};
 use super::params::Budget;
 use super::persist::check_local_spec;
 use super::persist::RoadmapError;
-use super::rooted::RoadmapTrees;
+use super::rooted::{KeptTree, RoadmapTrees};
 use super::tree::{Rooted, TreeError, TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::{
@@ -504,6 +504,9 @@ pub struct QueryPlanner<'a> {
     shortcut_groups: Vec<Group>,
     options: QueryOptions,
     landmarks: OnceLock<Landmarks>,
+    /// The tree out of the roadmap the last query's start (or goal) brought along
+    /// ([`RoadmapTrees::keeping`]).
+    kept_tree: KeptTree,
 }
 
 /// How far a query's search goes where the roadmap cannot join the ends.
@@ -598,6 +601,7 @@ impl<'a> QueryPlanner<'a> {
             groups,
             options: options.clone(),
             landmarks: OnceLock::new(),
+            kept_tree: KeptTree::default(),
         }
         .with_options(options))
     }
@@ -934,6 +938,7 @@ impl<'a> QueryPlanner<'a> {
                 ..self.options.clone()
             },
             landmarks: OnceLock::new(),
+            kept_tree: KeptTree::default(),
         };
         let Some(nodes) = inner.astar(grown.start, grown.goal) else {
             result.outcome = QueryOutcome::Disconnected;
@@ -957,13 +962,15 @@ impl<'a> QueryPlanner<'a> {
         shortening: &Deadline,
     ) -> Result<QueryResult, QueryError> {
         let seed = query_seed(self.roadmap.header().seed, &result);
-        let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups).connect(
-            &result.start,
-            &result.goal,
-            &self.tree_params(params),
-            seed,
-            deadline,
-        )?;
+        let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups)
+            .keeping(&self.kept_tree)
+            .connect(
+                &result.start,
+                &result.goal,
+                &self.tree_params(params),
+                seed,
+                deadline,
+            )?;
         result.counts += found.counts;
         result.grown_nodes = found.nodes[0] + found.nodes[1];
         result.trees = found.trees.filter(|_| self.options.return_trees);

@@ -26,6 +26,7 @@ use petgraph::graph::NodeIndex;
 use petgraph::visit::EdgeRef;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::sync::{Arc, Mutex};
 
 /// Nearest roadmap nodes an end tries to attach to with a free direct path (the default of
 /// [`RoadmapTrees::with_candidates`]). Attaching is a yes/no call per group changed, so a few
@@ -39,7 +40,15 @@ pub struct RoadmapTrees<'a> {
     oracle: &'a dyn CollisionOracle,
     groups: &'a [Group],
     candidates: usize,
+    kept: Option<&'a KeptTree>,
 }
+
+/// The last tree an end attached to a roadmap brought along, indexed, for the next query from
+/// the same end through the same attachment ([`RoadmapTrees::keeping`]): a workcell's queries
+/// start from one home pose, and its component's tree (hundreds of nodes with the edges'
+/// corners, and their nearest-neighbour index) is the same each time.
+#[derive(Debug, Default)]
+pub struct KeptTree(Mutex<Option<(Vec<u64>, Arc<Rooted>)>>);
 
 /// How an end joined the roadmap: the corners of a free direct path to `node`, `node` last.
 struct Attachment {
@@ -60,7 +69,15 @@ impl<'a> RoadmapTrees<'a> {
             oracle,
             groups,
             candidates: ATTACH_CANDIDATES,
+            kept: None,
         }
+    }
+
+    /// Keeps the tree an end brings along in `kept` for the next query that attaches the same
+    /// end the same way (the same tree, found at once).
+    pub fn keeping(mut self, kept: &'a KeptTree) -> Self {
+        self.kept = Some(kept);
+        self
     }
 
     /// Tries the `k` nearest nodes for each end (0: the trees grow from the bare ends).
@@ -105,15 +122,15 @@ impl<'a> RoadmapTrees<'a> {
             }
         }
         let root = |end: &[f64], a: &Option<Attachment>| match a {
-            Some(a) => self.rooted(end, a).0,
-            None => Rooted::at(end),
+            Some(a) => self.rooted_kept(end, a),
+            None => Arc::new(Rooted::at(end)),
         };
         let roots = [root(start, &at_start), root(goal, &at_goal)];
         let mut out = rrt_connect_rooted(
             space,
             self.oracle,
             self.groups,
-            [&roots[0], &roots[1]],
+            [&*roots[0], &*roots[1]],
             params,
             seed,
             deadline,
@@ -157,6 +174,30 @@ impl<'a> RoadmapTrees<'a> {
             }
         }
         Ok(None)
+    }
+
+    /// [`Self::rooted`]'s tree, the kept one where the last query attached the same end the
+    /// same way ([`Self::keeping`]; the key is the bits of the end, the node and the corners).
+    fn rooted_kept(&self, end: &[f64], a: &Attachment) -> Arc<Rooted> {
+        let Some(kept) = self.kept else {
+            return Arc::new(self.rooted(end, a).0);
+        };
+        let key: Vec<u64> = std::iter::once(u64::from(a.node))
+            .chain(
+                end.iter()
+                    .chain(a.corners.iter().flatten())
+                    .map(|v| v.to_bits()),
+            )
+            .collect();
+        let mut last = kept.0.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some((k, tree)) = last.as_ref() {
+            if *k == key {
+                return Arc::clone(tree);
+            }
+        }
+        let tree = Arc::new(self.rooted(end, a).0.indexed(self.roadmap.space()));
+        *last = Some((key, Arc::clone(&tree)));
+        tree
     }
 
     /// The tree of `end`: its attachment's corners, then the attached node's component as a

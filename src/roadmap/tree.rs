@@ -39,6 +39,7 @@ use crate::roadmap::nn::NearestNeighbours;
 use crate::space::{Config, Group, GroupKind, Space};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use std::sync::Arc;
 
 /// Shortest partial stair kept, as a share of the stair length: shorter free prefixes end the
 /// extend without a node (RRT's frontier nodes would otherwise creep towards the obstacle).
@@ -391,7 +392,7 @@ pub struct TreeOutcome {
 /// with certified free corners around it already (a roadmap's component,
 /// [`super::rooted::RoadmapTrees`]), each joined to its parent by free single-group motions in
 /// the groups' order. The end is node 0.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Rooted {
     nodes: Vec<Config>,
     parent: Vec<u32>,
@@ -400,6 +401,18 @@ pub struct Rooted {
     corner: Vec<bool>,
     /// Nodes the tree began with, the end included ([`Self::given`]).
     given: usize,
+    /// The nodes' nearest-neighbour index, where it was built once for the queries that begin
+    /// from this tree ([`Self::indexed`]): a tree out of a roadmap's component copies it
+    /// instead of indexing the component's hundreds of nodes again.
+    index: Option<Arc<NearestNeighbours>>,
+}
+
+/// The same tree: the same nodes, joined the same way (an index is only how they are found).
+impl PartialEq for Rooted {
+    fn eq(&self, other: &Self) -> bool {
+        (&self.nodes, &self.parent, &self.corner, self.given)
+            == (&other.nodes, &other.parent, &other.corner, other.given)
+    }
 }
 
 impl Rooted {
@@ -410,7 +423,15 @@ impl Rooted {
             parent: vec![u32::MAX],
             corner: vec![false],
             given: 1,
+            index: None,
         }
+    }
+
+    /// The tree with its nodes indexed for nearest-neighbour queries in `space`, for trees
+    /// grown from it again and again (the same start of a workcell's queries).
+    pub fn indexed(mut self, space: &Space) -> Rooted {
+        self.index = Some(Arc::new(index_of(space, &self.nodes)));
+        self
     }
 
     /// Nodes the tree began with, the end included: nodes `0..given` were given (a roadmap's
@@ -487,6 +508,15 @@ impl Rooted {
     }
 }
 
+/// A nearest-neighbour index of `nodes`, each by its position.
+fn index_of(space: &Space, nodes: &[Config]) -> NearestNeighbours {
+    let mut nn = NearestNeighbours::new(space);
+    for (id, q) in nodes.iter().enumerate() {
+        nn.insert(id as u32, q);
+    }
+    nn
+}
+
 /// A growing tree: its nodes (a [`Rooted`]) with a nearest-neighbour index.
 struct Tree {
     base: Rooted,
@@ -497,11 +527,12 @@ struct Tree {
 
 impl Tree {
     fn new(space: &Space, root: &Rooted) -> Tree {
-        let mut nn = NearestNeighbours::new(space);
-        for (id, q) in root.nodes.iter().enumerate() {
-            nn.insert(id as u32, q);
-        }
+        let nn = match &root.index {
+            Some(index) if index.len() == root.node_count() => NearestNeighbours::clone(index),
+            _ => index_of(space, &root.nodes),
+        };
         let mut base = root.clone();
+        base.index = None;
         base.given = root.node_count();
         Tree {
             base,

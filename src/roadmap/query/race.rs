@@ -111,13 +111,9 @@ impl QueryPlanner<'_> {
         let mut result =
             QueryResult::unanswered(start.clone(), goal.clone(), CallCounts::default());
         let seed = query_seed(self.roadmap.header().seed, &result);
-        let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups).connect(
-            start,
-            goal,
-            &self.tree_params(tree),
-            seed,
-            deadline,
-        )?;
+        let found = RoadmapTrees::new(self.roadmap, self.oracle, &self.groups)
+            .keeping(&self.kept_tree)
+            .connect(start, goal, &self.tree_params(tree), seed, deadline)?;
         result.counts += found.counts;
         result.grown_nodes = found.nodes[0] + found.nodes[1];
         result.trees = found.trees.filter(|_| self.options.return_trees);
