@@ -313,12 +313,75 @@ fn dropping_corners_keeps_paths_valid_and_never_longer() {
         check(&p, &s).unwrap_or_else(|e| panic!("problem {i}: {e}"));
         assert_eq!((s.first(), s.last()), (long.first(), long.last()));
         assert!(path_length(&space, &groups, &s) <= path_length(&space, &groups, &long) + 1e-12);
-        // at most one check per inner corner, and the turning point at the goal always goes
-        assert!(counts.intersect_calls() as usize <= long.len() - 2);
+        // at most two checks per inner corner (the pass gallops and halves), and the turning
+        // point at the goal always goes
+        assert!(counts.intersect_calls() as usize <= 2 * (long.len() - 2));
         assert!(s.len() < long.len(), "problem {i}: nothing dropped");
         dropped += long.len() - s.len();
     }
     assert!(dropped > 0);
+}
+
+/// The greedy pass gallops from each kept corner: it keeps no corner that asking the corners
+/// one after another would drop (its first kept corner lies at or beyond the first one that
+/// the one-by-one pass keeps), and a path every corner of which the start sees collapses to
+/// its two ends in a number of checks logarithmic in its corners.
+#[test]
+fn dropping_corners_gallops_no_shorter_than_one_by_one() {
+    let space = DiscProblem::space();
+    let groups = space.groups(false);
+    let mut compared = 0;
+    for i in 0..40 {
+        let p = problem(9, i, SEED_RADIUS);
+        let c = solve(&p, seed_options());
+        if !c.is_connected() || c.path.len() < 3 {
+            continue;
+        }
+        let long = there_and_back(&c.path);
+        let oracle = p.oracle();
+        let counts = &mut CallCounts::default();
+        let s = drop_corners(&space, &oracle, &groups, &long, counts).unwrap();
+        check(&p, &s).unwrap_or_else(|e| panic!("problem {i}: {e}"));
+        // one by one from the start: the last corner before the first it cannot see
+        let sees = |j: usize, c: &mut CallCounts| {
+            check_direct(&space, &oracle, &groups, &long[0], &long[j], c)
+                .unwrap()
+                .is_some()
+        };
+        let one_by_one = (2..long.len())
+            .find(|&j| !sees(j, &mut CallCounts::default()))
+            .map_or(long.len() - 1, |j| j - 1);
+        let kept = long
+            .iter()
+            .rposition(|q| *q == s[1])
+            .unwrap_or_else(|| panic!("problem {i}: {:?} is no corner of the input", s[1]));
+        assert!(
+            kept >= one_by_one,
+            "problem {i}: kept {kept}, one by one {one_by_one}"
+        );
+        compared += 1;
+    }
+    assert!(compared >= 10, "only {compared} compared");
+    // no discs: every corner is seen from the start
+    let open = DiscProblem {
+        centres: vec![],
+        radius: 0.05,
+    };
+    let m = 200;
+    let zigzag: Vec<Vec<f64>> = (0..m)
+        .map(|k| {
+            let t = k as f64 / (m - 1) as f64;
+            vec![0.1 + 0.8 * t, 0.5 + if k % 2 == 0 { 0.05 } else { -0.05 }]
+        })
+        .collect();
+    let counts = &mut CallCounts::default();
+    let s = drop_corners(&space, &open.oracle(), &groups, &zigzag, counts).unwrap();
+    assert_eq!(s, vec![zigzag[0].clone(), zigzag[m - 1].clone()]);
+    assert!(
+        counts.intersect_calls() <= 10,
+        "{} checks for {m} corners",
+        counts.intersect_calls()
+    );
 }
 
 #[test]

@@ -129,8 +129,9 @@ pub enum Shortening {
     Fast,
     /// The visibility graph over every corner.
     Exact,
-    /// Greedy corner dropping alone, pass after pass (at most one check per corner and
-    /// pass): for a workcell's roadmap whose answers run along kept, already shortened ones.
+    /// Greedy corner dropping alone, pass after pass (at most two checks per corner and
+    /// pass, a few per run of corners dropped): for a workcell's roadmap whose answers run
+    /// along kept, already shortened ones.
     Greedy,
     /// No shortening.
     Off,

@@ -28,7 +28,7 @@ use super::learn::{LearnError, Learner};
 use super::params::Budget;
 use super::persist::check_local_spec;
 use super::persist::RoadmapError;
-use super::rooted::{KeptTree, RoadmapTrees};
+use super::rooted::{KeptTree, RoadmapTrees, ATTACH_CANDIDATES};
 use super::tree::{Rooted, TreeError, TreeParams, TreeStop};
 use crate::deadline::Deadline;
 use crate::local::{
@@ -97,7 +97,7 @@ pub struct QueryOptions {
     /// Shorten the path over its corners (CHS A.1).
     pub shorten: bool,
     /// Paths with more corners than this per two DOF groups first go through one greedy pass
-    /// ([`crate::local::drop_corners`], at most one check per corner) before the visibility
+    /// ([`crate::local::drop_corners`], at most two checks per corner) before the visibility
     /// graph over what is left: the full graph over a long roadmap path costs up to `m²/2`
     /// checks. `usize::MAX` shortens every path over all its corners. On OMPL.app's Home
     /// (a 32 803-node roadmap, its 50 queries) the default answered at p50 12 ms against 23 ms
@@ -173,7 +173,8 @@ pub struct QueryOptions {
     /// trees only after attaching failed. In a workcell whose goals the roadmap rarely reaches
     /// (the Panda's cage) attaching costs tens of milliseconds before the trees start: query
     /// p50 92 → 17 ms with 2 ms; the head start keeps the quick answers off the pool. An arm's
-    /// head start asks the direct paths alone (the quick try, attaching by direct paths) and
+    /// head start asks the direct paths alone (the quick try, attaching each end by direct
+    /// paths to its five nearest nodes) and
     /// ends where they fail: the staircase from start to goal and the local method's searches,
     /// whole-range sweeps on an arm, cost a millisecond before trees that mostly answer
     /// first.
@@ -512,7 +513,8 @@ pub struct QueryPlanner<'a> {
 /// How far a query's search goes where the roadmap cannot join the ends.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Stages {
-    /// The direct paths alone: the quick try and attaching by direct paths. What answers most
+    /// The direct paths alone: the quick try and attaching each end by direct paths to its
+    /// [`ATTACH_CANDIDATES`] nearest nodes. What answers most
     /// of a trained workcell's queries in a fraction of a millisecond, and an arm's race's
     /// head start ([`QueryOptions::race`]): the staircase from start to goal and the local
     /// method's searches that follow sweep whole joint ranges on an arm (about 0.5 ms a call),
@@ -1163,6 +1165,15 @@ impl<'a> QueryPlanner<'a> {
         result: &mut QueryResult,
         deadline: &Deadline,
     ) -> Result<Option<(usize, usize)>, QueryError> {
+        // a race's head start tries only the nodes the trees out of the roadmap would attach
+        // each end to first ([`ATTACH_CANDIDATES`], the answers remembered for them): in the
+        // Panda's trained workcells every end the head start attached took one of its five
+        // nearest nodes, and a goal under a shelf's board failed all thirty at 0.2–0.4 ms
+        // before its trees started
+        let k = match stages {
+            Stages::Direct => k.min(ATTACH_CANDIDATES),
+            Stages::All => k,
+        };
         let near = (
             self.roadmap.nearest(ends.0, k, None),
             self.roadmap.nearest(ends.1, k, None),
