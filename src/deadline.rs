@@ -170,8 +170,9 @@ pub struct Raced<A, B> {
     pub second: Option<B>,
 }
 
-/// How long the caller of a race waits for an idle pool thread to take the second side before
-/// it runs the sides in turn itself. Waking a sleeping rayon worker takes tens of microseconds;
+/// How long the caller of a race without a head start waits for an idle pool thread to take
+/// the second side before it runs the sides in turn itself (after a head start nothing waits:
+/// [`race_after`]). Waking a sleeping rayon worker takes tens of microseconds;
 /// a race only starts after a head start of milliseconds, so the wait costs little.
 const STEAL_WAIT: Duration = Duration::from_micros(200);
 
@@ -223,8 +224,9 @@ pub fn race<A: Send, B: Send>(
 /// [`race`] after a head start the caller ran itself (`alone`, one that did not answer; `None`:
 /// no head start): a first side whose head start is a cheaper search of its own (a roadmap's
 /// direct paths before its local method's searches) rather than the same search cut short.
-/// In turn on the caller's thread the second side then runs at once, as after
-/// [`race`]'s head start.
+/// After a head start the second side starts at once on the caller's thread and the first is
+/// offered to an idle pool thread beside it, or runs after the second where none takes it; in
+/// turn, as on one thread, that is the same order.
 pub fn race_after<A: Send, B: Send>(
     deadline: &Deadline,
     mut alone: Option<A>,
@@ -244,6 +246,14 @@ pub fn race_after<A: Send, B: Send>(
     }
     let won = Arc::new(AtomicBool::new(false));
     let racing = deadline.or_cancelled_by(won.clone());
+    if let Some(head) = alone {
+        return behind_a_head_start(
+            &racing,
+            &won,
+            head,
+            (&first, &first_won, second, second_won),
+        );
+    }
     // the second side goes to whoever takes it first: a pool thread, or the caller in turn
     let second = Mutex::new(Some((second, second_won)));
     let taken = AtomicBool::new(false);
@@ -281,6 +291,59 @@ pub fn race_after<A: Send, B: Send>(
             second: pool,
         },
         Err(raced) => raced,
+    }
+}
+
+/// The race after a head start that did not answer (`head`): the second side starts at once on
+/// the caller's thread, as it would in turn, and the first is offered to an idle pool thread
+/// beside it; where none takes it, the caller runs it after the second, unless that answered or
+/// the race's time ended (then the head start is the first side's run). Nothing waits for a
+/// thread, and the side that mostly answers after a failed head start (a roadmap's trees) starts
+/// on the thread that is running, not on one that must first wake up: on two threads the caller
+/// used to spin until a sleeping worker took the trees, and a bookshelf request's trees began
+/// that much later than on one thread.
+fn behind_a_head_start<A: Send, B: Send, F, W, S, V>(
+    racing: &Deadline,
+    won: &AtomicBool,
+    head: A,
+    (first, first_won, second, second_won): (&F, &W, S, V),
+) -> Raced<A, B>
+where
+    F: Fn(&Deadline, &Deadline) -> A + Sync,
+    W: Fn(&A) -> bool + Sync,
+    S: FnOnce(&Deadline) -> B + Send,
+    V: FnOnce(&B) -> bool + Send,
+{
+    let (b, a) = rayon::join(
+        || {
+            let b = second(racing);
+            if second_won(&b) {
+                won.store(true, Ordering::Relaxed);
+            }
+            b
+        },
+        || {
+            if racing.expired() {
+                return None;
+            }
+            let a = first(racing, racing);
+            if first_won(&a) {
+                won.store(true, Ordering::Relaxed);
+            }
+            Some(a)
+        },
+    );
+    match a {
+        Some(a) => Raced {
+            first: a,
+            head_start: Some(head),
+            second: Some(b),
+        },
+        None => Raced {
+            first: head,
+            head_start: None,
+            second: Some(b),
+        },
     }
 }
 
