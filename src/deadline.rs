@@ -615,6 +615,34 @@ mod tests {
         assert_eq!(raced.second, Some((10, true)));
     }
 
+    /// After a head start the second side starts at once on the caller's thread, whether a
+    /// worker is free or not: it never waits for a sleeping worker to take it (the first side
+    /// is the one offered to the pool), and it answers as before.
+    #[test]
+    fn after_a_head_start_the_second_side_runs_on_the_callers_thread() {
+        let two = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        for _ in 0..20 {
+            let (caller, raced) = two.install(|| {
+                let caller = rayon::current_thread_index();
+                let raced = race(
+                    &Deadline::after(Duration::from_secs(30)),
+                    Duration::from_millis(1),
+                    |d, _| count(u64::MAX, d),
+                    |a| a.1,
+                    |d| (rayon::current_thread_index(), count(1000, d)),
+                    |b| b.1 .1,
+                );
+                (caller, raced)
+            });
+            let (thread, answer) = raced.second.expect("the second side ran");
+            assert_eq!((thread, answer), (caller, (1000, true)));
+            assert!(!raced.first.1, "the first side was stopped or skipped");
+        }
+    }
+
     /// The head start ends the first side's search, not its finishing: a path found as the
     /// head start ends is still finished (shortened) within the whole deadline.
     #[test]
