@@ -229,7 +229,7 @@ pub fn race<A: Send, B: Send>(
 /// turn, as on one thread, that is the same order.
 pub fn race_after<A: Send, B: Send>(
     deadline: &Deadline,
-    mut alone: Option<A>,
+    alone: Option<A>,
     first: impl Fn(&Deadline, &Deadline) -> A + Sync,
     first_won: impl Fn(&A) -> bool + Sync,
     second: impl FnOnce(&Deadline) -> B + Send,
@@ -246,14 +246,35 @@ pub fn race_after<A: Send, B: Send>(
     }
     let won = Arc::new(AtomicBool::new(false));
     let racing = deadline.or_cancelled_by(won.clone());
-    if let Some(head) = alone {
-        return behind_a_head_start(
-            &racing,
-            &won,
-            head,
-            (&first, &first_won, second, second_won),
-        );
+    let sides = (&first, &first_won, second, second_won);
+    match alone {
+        Some(head) => behind_a_head_start(&racing, &won, head, sides),
+        None => without_a_head_start(&racing, &won, sides),
     }
+}
+
+/// `value`, the race marked `won` where `answered` says it answers: the other side stops.
+fn marking<T>(won: &AtomicBool, value: T, answered: impl FnOnce(&T) -> bool) -> T {
+    if answered(&value) {
+        won.store(true, Ordering::Relaxed);
+    }
+    value
+}
+
+/// The race with no head start: the caller runs the first side and offers the second to a pool
+/// thread, waiting up to [`STEAL_WAIT`] for one to take it; where none does, the caller runs
+/// the sides in turn ([`in_turn`]).
+fn without_a_head_start<A: Send, B: Send, F, W, S, V>(
+    racing: &Deadline,
+    won: &AtomicBool,
+    (first, first_won, second, second_won): (&F, &W, S, V),
+) -> Raced<A, B>
+where
+    F: Fn(&Deadline, &Deadline) -> A + Sync,
+    W: Fn(&A) -> bool + Sync,
+    S: FnOnce(&Deadline) -> B + Send,
+    V: FnOnce(&B) -> bool + Send,
+{
     // the second side goes to whoever takes it first: a pool thread, or the caller in turn
     let second = Mutex::new(Some((second, second_won)));
     let taken = AtomicBool::new(false);
@@ -266,28 +287,19 @@ pub fn race_after<A: Send, B: Send>(
         || {
             wait_for_a_thread(&taken);
             if let Some((second, second_won)) = take() {
-                let sides = (&first, &first_won, second, second_won);
-                return Err(in_turn(&racing, alone.take(), sides));
+                return Err(in_turn(racing, (first, first_won, second, second_won)));
             }
-            let a = first(&racing, &racing);
-            if first_won(&a) {
-                won.store(true, Ordering::Relaxed);
-            }
-            Ok(a)
+            Ok(marking(won, first(racing, racing), first_won))
         },
         || {
             let (second, second_won) = take()?;
-            let b = second(&racing);
-            if second_won(&b) {
-                won.store(true, Ordering::Relaxed);
-            }
-            Some(b)
+            Some(marking(won, second(racing), second_won))
         },
     );
     match caller {
         Ok(a) => Raced {
             first: a,
-            head_start: alone,
+            head_start: None,
             second: pool,
         },
         Err(raced) => raced,
@@ -299,9 +311,8 @@ pub fn race_after<A: Send, B: Send>(
 /// beside it; where none takes it, the caller runs it after the second, unless that answered or
 /// the race's time ended (then the head start is the first side's run). Nothing waits for a
 /// thread, and the side that mostly answers after a failed head start (a roadmap's trees) starts
-/// on the thread that is running, not on one that must first wake up: on two threads the caller
-/// used to spin until a sleeping worker took the trees, and a bookshelf request's trees began
-/// that much later than on one thread.
+/// on the thread that is running rather than on one that must first wake up (on two threads a
+/// worker's wake-up would otherwise delay a bookshelf request's trees).
 fn behind_a_head_start<A: Send, B: Send, F, W, S, V>(
     racing: &Deadline,
     won: &AtomicBool,
@@ -315,23 +326,8 @@ where
     V: FnOnce(&B) -> bool + Send,
 {
     let (b, a) = rayon::join(
-        || {
-            let b = second(racing);
-            if second_won(&b) {
-                won.store(true, Ordering::Relaxed);
-            }
-            b
-        },
-        || {
-            if racing.expired() {
-                return None;
-            }
-            let a = first(racing, racing);
-            if first_won(&a) {
-                won.store(true, Ordering::Relaxed);
-            }
-            Some(a)
-        },
+        || marking(won, second(racing), second_won),
+        || (!racing.expired()).then(|| marking(won, first(racing, racing), first_won)),
     );
     match a {
         Some(a) => Raced {
@@ -359,20 +355,18 @@ fn wait_for_a_thread(taken: &AtomicBool) {
     }
 }
 
-/// The share of a race's time the first side gets before the second when they run in turn and
-/// the first had no head start, and the most it gets: a head start of its own, short beside a
+/// The share of a race's time the first side gets before the second when they run in turn
+/// (there is no head start then), and the most it gets: a head start of its own, short beside a
 /// long budget.
 const IN_TURN_FIRST_SHARE: u32 = 16;
 const IN_TURN_FIRST_MOST: Duration = Duration::from_millis(50);
 
-/// The sides of a race in turn on the caller's thread: the first for its head start (`head`,
-/// when it already ran, else a share of the time), the second until `racing` ends or its own
-/// budget does, then, unless it answered, the first again for what is left. The second side,
-/// in a race a tree search that grows from nothing, gets the time it would have had beside the
-/// first; the first side's own search is the one the head start already tried.
+/// The sides of a race with no head start in turn on the caller's thread: the first for a
+/// share of the time, the second until `racing` ends or its own budget does, then, unless it
+/// answered, the first again for what is left. The second side, in a race a tree search that
+/// grows from nothing, gets the time it would have had beside the first.
 fn in_turn<A, B, F, W, S, V>(
     racing: &Deadline,
-    head: Option<A>,
     (first, first_won, second, second_won): (&F, &W, S, V),
 ) -> Raced<A, B>
 where
@@ -381,23 +375,17 @@ where
     S: FnOnce(&Deadline) -> B,
     V: FnOnce(&B) -> bool,
 {
-    let head = match head {
-        Some(a) => a,
-        None => {
-            let share = racing
-                .remaining()
-                .map(|t| (t / IN_TURN_FIRST_SHARE).min(IN_TURN_FIRST_MOST));
-            let a = first(&racing.within(share), racing);
-            if first_won(&a) || racing.expired() {
-                return Raced {
-                    first: a,
-                    head_start: None,
-                    second: None,
-                };
-            }
-            a
-        }
-    };
+    let share = racing
+        .remaining()
+        .map(|t| (t / IN_TURN_FIRST_SHARE).min(IN_TURN_FIRST_MOST));
+    let head = first(&racing.within(share), racing);
+    if first_won(&head) || racing.expired() {
+        return Raced {
+            first: head,
+            head_start: None,
+            second: None,
+        };
+    }
     let b = second(racing);
     if second_won(&b) || racing.expired() {
         return Raced {

@@ -296,18 +296,22 @@ fn shortening_finds_the_shortest_path_of_the_full_visibility_graph() {
     assert!(compared >= 20, "only {compared} problems compared");
 }
 
+/// The first 40 seed problems the via-point planner solves with at least three corners, with
+/// their paths walked there, back and there again: long paths with many corners to drop.
+fn there_and_back_problems() -> impl Iterator<Item = (u64, DiscProblem, Vec<Vec<f64>>)> {
+    (0..40).filter_map(|i| {
+        let p = problem(9, i, SEED_RADIUS);
+        let c = solve(&p, seed_options());
+        (c.is_connected() && c.path.len() >= 3).then(|| (i, p, there_and_back(&c.path)))
+    })
+}
+
 #[test]
 fn dropping_corners_keeps_paths_valid_and_never_longer() {
     let space = DiscProblem::space();
     let groups = space.groups(false);
     let mut dropped = 0;
-    for i in 0..40 {
-        let p = problem(9, i, SEED_RADIUS);
-        let c = solve(&p, seed_options());
-        if !c.is_connected() || c.path.len() < 3 {
-            continue;
-        }
-        let long = there_and_back(&c.path);
+    for (i, p, long) in there_and_back_problems() {
         let mut counts = CallCounts::default();
         let s = drop_corners(&space, &p.oracle(), &groups, &long, &mut counts).unwrap();
         check(&p, &s).unwrap_or_else(|e| panic!("problem {i}: {e}"));
@@ -331,13 +335,7 @@ fn dropping_corners_gallops_at_least_as_far_as_one_by_one() {
     let space = DiscProblem::space();
     let groups = space.groups(false);
     let mut compared = 0;
-    for i in 0..40 {
-        let p = problem(9, i, SEED_RADIUS);
-        let c = solve(&p, seed_options());
-        if !c.is_connected() || c.path.len() < 3 {
-            continue;
-        }
-        let long = there_and_back(&c.path);
+    for (i, p, long) in there_and_back_problems() {
         let oracle = p.oracle();
         let counts = &mut CallCounts::default();
         let s = drop_corners(&space, &oracle, &groups, &long, counts).unwrap();

@@ -1167,9 +1167,9 @@ impl<'a> QueryPlanner<'a> {
     ) -> Result<Option<(usize, usize)>, QueryError> {
         // a race's head start tries only the nodes the trees out of the roadmap would attach
         // each end to first ([`ATTACH_CANDIDATES`], the answers remembered for them): in the
-        // Panda's trained workcells every end the head start attached took one of its five
-        // nearest nodes, and a goal under a shelf's board failed all thirty at 0.2–0.4 ms
-        // before its trees started
+        // Panda's trained workcells every end the head start attaches takes one of its five
+        // nearest nodes, while a goal under a shelf's board fails every candidate, and thirty
+        // such failures cost 0.2–0.4 ms before its trees start
         let k = match stages {
             Stages::Direct => k.min(ATTACH_CANDIDATES),
             Stages::All => k,
