@@ -394,7 +394,11 @@ pub struct TreeOutcome {
 /// the groups' order. The end is node 0.
 #[derive(Clone, Debug)]
 pub struct Rooted {
-    nodes: Vec<Config>,
+    /// Every node's coordinates, node after node (one allocation to copy: a tree out of a
+    /// roadmap's component starts every query from the kept tree's hundreds of nodes).
+    coords: Vec<f64>,
+    /// Coordinates per node.
+    dim: usize,
     parent: Vec<u32>,
     /// Whether each node is a corner on the way to a grown node rather than an extend's end
     /// ([`Stairs::Whole`] indexes only the ends).
@@ -410,8 +414,19 @@ pub struct Rooted {
 /// The same tree: the same nodes, joined the same way (an index is only how they are found).
 impl PartialEq for Rooted {
     fn eq(&self, other: &Self) -> bool {
-        (&self.nodes, &self.parent, &self.corner, self.given)
-            == (&other.nodes, &other.parent, &other.corner, other.given)
+        (
+            self.dim,
+            &self.coords,
+            &self.parent,
+            &self.corner,
+            self.given,
+        ) == (
+            other.dim,
+            &other.coords,
+            &other.parent,
+            &other.corner,
+            other.given,
+        )
     }
 }
 
@@ -419,7 +434,8 @@ impl Rooted {
     /// A tree of the end `end` alone.
     pub fn at(end: &[f64]) -> Rooted {
         Rooted {
-            nodes: vec![end.to_vec()],
+            coords: end.to_vec(),
+            dim: end.len(),
             parent: vec![u32::MAX],
             corner: vec![false],
             given: 1,
@@ -430,7 +446,7 @@ impl Rooted {
     /// The tree with its nodes indexed for nearest-neighbour queries in `space`, for trees
     /// grown from it again and again (the same start of a workcell's queries).
     pub fn indexed(mut self, space: &Space) -> Rooted {
-        self.index = Some(Arc::new(index_of(space, &self.nodes)));
+        self.index = Some(Arc::new(index_of(space, &self)));
         self
     }
 
@@ -460,17 +476,17 @@ impl Rooted {
 
     /// The end (node 0).
     pub fn end(&self) -> &[f64] {
-        &self.nodes[0]
+        self.node(0)
     }
 
     /// Nodes, the end included.
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        self.parent.len()
     }
 
     /// Whether the tree is its end alone (no nodes given).
     pub fn is_bare(&self) -> bool {
-        self.nodes.len() <= 1
+        self.node_count() <= 1
     }
 
     /// Configuration of node `i`.
@@ -478,7 +494,8 @@ impl Rooted {
     /// # Panics
     /// If `i` is not a node index.
     pub fn node(&self, i: u32) -> &[f64] {
-        &self.nodes[i as usize]
+        let at = i as usize * self.dim;
+        &self.coords[at..at + self.dim]
     }
 
     /// Adds `q`, joined to node `parent` by free single-group motions (the caller's
@@ -488,11 +505,12 @@ impl Rooted {
     }
 
     fn push(&mut self, q: Config, parent: u32, corner: bool) -> u32 {
-        debug_assert!((parent as usize) < self.nodes.len());
-        self.nodes.push(q);
+        debug_assert!((parent as usize) < self.node_count());
+        debug_assert_eq!(q.len(), self.dim);
+        self.coords.extend_from_slice(&q);
         self.parent.push(parent);
         self.corner.push(corner);
-        self.nodes.len() as u32 - 1
+        self.node_count() as u32 - 1
     }
 
     /// The corners from the end to node `id`: the end first, `id` last.
@@ -500,7 +518,7 @@ impl Rooted {
         let mut out = Vec::new();
         let mut i = id;
         while i != u32::MAX {
-            out.push(self.nodes[i as usize].clone());
+            out.push(self.node(i).to_vec());
             i = self.parent[i as usize];
         }
         out.reverse();
@@ -508,11 +526,11 @@ impl Rooted {
     }
 }
 
-/// A nearest-neighbour index of `nodes`, each by its position.
-fn index_of(space: &Space, nodes: &[Config]) -> NearestNeighbours {
+/// A nearest-neighbour index of the tree's nodes, each by its position.
+fn index_of(space: &Space, tree: &Rooted) -> NearestNeighbours {
     let mut nn = NearestNeighbours::new(space);
-    for (id, q) in nodes.iter().enumerate() {
-        nn.insert(id as u32, q);
+    for id in 0..tree.node_count() as u32 {
+        nn.insert(id, tree.node(id));
     }
     nn
 }
@@ -529,7 +547,7 @@ impl Tree {
     fn new(space: &Space, root: &Rooted) -> Tree {
         let nn = match &root.index {
             Some(index) if index.len() == root.node_count() => NearestNeighbours::clone(index),
-            _ => index_of(space, &root.nodes),
+            _ => index_of(space, root),
         };
         let mut base = root.clone();
         base.index = None;
@@ -570,8 +588,8 @@ impl Tree {
         self.base.node_count() + 1 - self.base.given
     }
 
-    fn node(&self, id: u32) -> &Config {
-        &self.base.nodes[id as usize]
+    fn node(&self, id: u32) -> &[f64] {
+        self.base.node(id)
     }
 
     fn add(&mut self, q: Config, parent: u32) -> u32 {
@@ -695,7 +713,7 @@ impl Grower<'_> {
 
     /// [`Self::step`] from node `near`, `d` away from `target`.
     fn step_from(&self, tree: &Tree, near: u32, d: f64, target: &[f64]) -> Step {
-        let from = tree.node(near).clone();
+        let from = tree.node(near).to_vec();
         let range = self.params.range * self.space.extent();
         let full = d <= range;
         let aim = if full {
@@ -1262,7 +1280,7 @@ fn grow_once(
             new
         };
         if let Some(n) = new {
-            let q_new = ta.node(n).clone();
+            let q_new = ta.node(n).to_vec();
             // with centring an extend may move without getting closer: the connect stops then
             let mut closest = f64::INFINITY;
             let min_gain = MIN_PROGRESS * params.stair * space.extent();
