@@ -361,6 +361,10 @@ where
     join_outside_the_pool(rayon::current_num_threads(), a, b)
 }
 
+/// How long a caller outside the pool waits awake for a worker to finish the closure it took
+/// ([`join_outside_the_pool`]) before it sleeps until the worker wakes it.
+const AWAKE_WAIT: Duration = Duration::from_millis(2);
+
 /// [`join_here`] from a thread outside a pool of `threads` threads.
 fn join_outside_the_pool<RA, RB>(
     threads: usize,
@@ -380,15 +384,26 @@ where
     let rb = Mutex::new(None);
     let take_b = || {
         let side = b.lock().unwrap_or_else(|e| e.into_inner()).take();
-        if let Some(side) = side {
-            let r = side();
-            *rb.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
-        }
+        let Some(side) = side else { return false };
+        let r = side();
+        *rb.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
+        true
     };
+    let done = AtomicBool::new(false);
     let ra = rayon::in_place_scope(|s| {
-        s.spawn(|_| take_b());
+        s.spawn(|_| {
+            take_b();
+            done.store(true, Ordering::Release);
+        });
         let ra = a();
-        take_b();
+        if !take_b() {
+            // a worker runs `b` (in a race, a side stopping now): the caller waits awake,
+            // as the scope's sleep would cost another wake-up
+            let began = Instant::now();
+            while !done.load(Ordering::Acquire) && began.elapsed() < AWAKE_WAIT {
+                std::hint::spin_loop();
+            }
+        }
         ra
     });
     let rb = rb.into_inner().unwrap_or_else(|e| e.into_inner());

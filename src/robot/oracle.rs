@@ -1303,6 +1303,11 @@ impl ArmOracle {
                     if self.culling && !self.env_boxes[i].may_meet(sweep, ball, margin) {
                         continue;
                     }
+                    // the watched deadline per pair as well as inside the exact sweeps: a
+                    // pair's planes take microseconds, and a race's losing side stops at once
+                    if crate::deadline::watched_expired() {
+                        return Err(RobotError::Interrupted);
+                    }
                     if let Some(w) =
                         window(self.env_clouds[i].as_ref(), Isometry3::identity(), margin)
                     {
@@ -1332,6 +1337,9 @@ impl ArmOracle {
                     continue;
                 };
                 let margin = o.tolerance() * CLEARANCE_PER_TOLERANCE;
+                if crate::deadline::watched_expired() {
+                    return Err(RobotError::Interrupted);
+                }
                 let Some(w) = window(self.link_clouds[m].as_ref(), poses[m], margin) else {
                     continue;
                 };
