@@ -225,8 +225,9 @@ pub fn race<A: Send, B: Send>(
 /// no head start): a first side whose head start is a cheaper search of its own (a roadmap's
 /// direct paths before its local method's searches) rather than the same search cut short.
 /// After a head start the second side starts at once on the caller's thread and the first is
-/// offered to an idle pool thread beside it, or runs after the second where none takes it; in
-/// turn, as on one thread, that is the same order.
+/// offered to an idle pool thread beside it (from outside the pool, after the second has run
+/// alone for a while), or runs after the second where none takes it; in turn, as on one thread,
+/// that is the same order.
 pub fn race_after<A: Send, B: Send>(
     deadline: &Deadline,
     alone: Option<A>,
@@ -306,10 +307,18 @@ where
     }
 }
 
+/// How long the second side of a race started outside the pool runs alone after the head start
+/// before the first joins it on a worker: an arm's trees answer most requests a roadmap's direct
+/// paths do not within a few milliseconds, and the roadmap's whole search beside them only
+/// delays them (bookshelf_tall's tree requests on two threads: a third slower than on one, the
+/// trees making the same calls).
+const SECOND_ALONE: Duration = Duration::from_millis(2);
+
 /// The race after a head start that did not answer (`head`): the second side starts at once on
 /// the caller's thread, as it would in turn, and the first is offered to an idle pool thread
-/// beside it; where none takes it, the caller runs it after the second, unless that answered or
-/// the race's time ended (then the head start is the first side's run). Nothing waits for a
+/// beside it (from a caller outside the pool, once the second has run alone for
+/// [`SECOND_ALONE`]); where none takes it, the caller runs it after the second, unless that
+/// answered or the race's time ended (then the head start is the first side's run). Nothing waits for a
 /// thread, and the side that mostly answers after a failed head start (a roadmap's trees) starts
 /// on the thread that is running rather than on one that must first wake up (on two threads a
 /// worker's wake-up would otherwise delay a bookshelf request's trees).
@@ -325,9 +334,29 @@ where
     S: FnOnce(&Deadline) -> B + Send,
     V: FnOnce(&B) -> bool + Send,
 {
+    // from outside the pool the first side waits, awake, while the second runs alone for a
+    // while (see `SECOND_ALONE`); a pool thread never waits so, as it may have other work
+    let alone_until = rayon::current_thread_index()
+        .is_none()
+        .then(|| Instant::now() + SECOND_ALONE);
+    let second_over = AtomicBool::new(false);
     let (b, a) = join_here(
-        || marking(won, second(racing), second_won),
-        || (!racing.expired()).then(|| marking(won, first(racing, racing), first_won)),
+        || {
+            let b = marking(won, second(racing), second_won);
+            second_over.store(true, Ordering::Release);
+            b
+        },
+        || {
+            if let Some(until) = alone_until {
+                while !second_over.load(Ordering::Acquire)
+                    && !racing.expired()
+                    && Instant::now() < until
+                {
+                    std::thread::yield_now();
+                }
+            }
+            (!racing.expired()).then(|| marking(won, first(racing, racing), first_won))
+        },
     );
     match a {
         Some(a) => Raced {
@@ -719,6 +748,24 @@ mod tests {
             let (thread, answer) = raced.second.expect("the second side ran");
             assert_eq!((thread, answer), (caller, (1000, true)));
             assert!(!raced.first.1, "the first side was stopped or skipped");
+        }
+    }
+
+    /// From outside the pool the first side after a head start, waiting while the second runs
+    /// alone, runs once the second gave up without an answer, and answers.
+    #[test]
+    fn outside_the_pool_the_first_side_runs_after_a_second_that_gave_up() {
+        for _ in 0..20 {
+            let raced = race(
+                &Deadline::after(Duration::from_secs(30)),
+                Duration::from_millis(1),
+                |d, _| count(5000, d),
+                |a| a.1,
+                |d| count(10, d),
+                |_| false,
+            );
+            assert_eq!(raced.first, (5000, true), "the first side ran: {raced:?}");
+            assert!(raced.head_start.is_some());
         }
     }
 
