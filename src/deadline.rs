@@ -310,18 +310,17 @@ where
 /// How long the second side of a race started outside the pool runs alone after the head start
 /// before the first joins it on a worker: an arm's trees answer most requests a roadmap's direct
 /// paths do not within a few milliseconds, and the roadmap's whole search beside them only
-/// delays them (bookshelf_tall's tree requests on two threads: a third slower than on one, the
-/// trees making the same calls).
+/// delays them (the caller then waits for it to stop, and its work shares the machine with them).
 const SECOND_ALONE: Duration = Duration::from_millis(2);
 
 /// The race after a head start that did not answer (`head`): the second side starts at once on
 /// the caller's thread, as it would in turn, and the first is offered to an idle pool thread
 /// beside it (from a caller outside the pool, once the second has run alone for
 /// [`SECOND_ALONE`]); where none takes it, the caller runs it after the second, unless that
-/// answered or the race's time ended (then the head start is the first side's run). Nothing waits for a
-/// thread, and the side that mostly answers after a failed head start (a roadmap's trees) starts
-/// on the thread that is running rather than on one that must first wake up (on two threads a
-/// worker's wake-up would otherwise delay a bookshelf request's trees).
+/// answered or the race's time ended (then the head start is the first side's run). The caller
+/// never waits for a thread to start, and the side that mostly answers after a failed head start
+/// (a roadmap's trees) starts on the thread that is running rather than on one that must first
+/// wake up (on two threads a worker's wake-up would otherwise delay a bookshelf request's trees).
 fn behind_a_head_start<A: Send, B: Send, F, W, S, V>(
     racing: &Deadline,
     won: &AtomicBool,
