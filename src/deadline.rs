@@ -589,6 +589,39 @@ mod tests {
         (i, i == n)
     }
 
+    /// A race after a head start whose first side counts to `n` and whose second gives up
+    /// after counting to 10.
+    fn after_a_second_that_gives_up(n: u64) -> Raced<(u64, bool), (u64, bool)> {
+        race(
+            &Deadline::after(Duration::from_secs(3600)),
+            Duration::from_millis(1),
+            |d, _| count(n, d),
+            |a| a.1,
+            |d| count(10, d),
+            |_| false,
+        )
+    }
+
+    /// Races a first side that never answers against a second that answers, and asserts that
+    /// the second ran where `thread` says the caller runs, and that the first was stopped or
+    /// skipped.
+    fn second_side_on_the_callers_thread<T: PartialEq + std::fmt::Debug + Send>(
+        thread: impl Fn() -> T + Sync,
+    ) {
+        let caller = thread();
+        let raced = race(
+            &Deadline::after(Duration::from_secs(30)),
+            Duration::from_millis(1),
+            |d, _| count(u64::MAX, d),
+            |a| a.1,
+            |d| (thread(), count(1000, d)),
+            |b| b.1 .1,
+        );
+        let (ran_on, answer) = raced.second.expect("the second side ran");
+        assert_eq!((ran_on, answer), (caller, (1000, true)));
+        assert!(!raced.first.1, "the first side was stopped or skipped");
+    }
+
     #[test]
     fn a_quick_first_side_answers_in_its_head_start_alone() {
         let raced = race(
@@ -686,16 +719,7 @@ mod tests {
             assert_eq!(raced.second, Some((1000, true)), "{raced:?}");
         }
         // in turn, a second side that gives up leaves the rest of the time to the first
-        let raced = one.install(|| {
-            race(
-                &Deadline::after(Duration::from_secs(3600)),
-                Duration::from_millis(1),
-                |d, _| count(50_000, d),
-                |a| a.1,
-                |d| count(10, d),
-                |_| false,
-            )
-        });
+        let raced = one.install(|| after_a_second_that_gives_up(50_000));
         assert_eq!(raced.first, (50_000, true), "{raced:?}");
         assert!(raced.head_start.is_some_and(|(_, done)| !done));
         assert_eq!(raced.second, Some((10, true)));
@@ -711,21 +735,7 @@ mod tests {
             .build()
             .unwrap();
         for _ in 0..20 {
-            let (caller, raced) = two.install(|| {
-                let caller = rayon::current_thread_index();
-                let raced = race(
-                    &Deadline::after(Duration::from_secs(30)),
-                    Duration::from_millis(1),
-                    |d, _| count(u64::MAX, d),
-                    |a| a.1,
-                    |d| (rayon::current_thread_index(), count(1000, d)),
-                    |b| b.1 .1,
-                );
-                (caller, raced)
-            });
-            let (thread, answer) = raced.second.expect("the second side ran");
-            assert_eq!((thread, answer), (caller, (1000, true)));
-            assert!(!raced.first.1, "the first side was stopped or skipped");
+            two.install(|| second_side_on_the_callers_thread(rayon::current_thread_index));
         }
     }
 
@@ -734,19 +744,8 @@ mod tests {
     /// race answers as on a pool thread.
     #[test]
     fn outside_the_pool_the_second_side_runs_on_the_callers_thread() {
-        let caller = std::thread::current().id();
         for _ in 0..20 {
-            let raced = race(
-                &Deadline::after(Duration::from_secs(30)),
-                Duration::from_millis(1),
-                |d, _| count(u64::MAX, d),
-                |a| a.1,
-                |d| (std::thread::current().id(), count(1000, d)),
-                |b| b.1 .1,
-            );
-            let (thread, answer) = raced.second.expect("the second side ran");
-            assert_eq!((thread, answer), (caller, (1000, true)));
-            assert!(!raced.first.1, "the first side was stopped or skipped");
+            second_side_on_the_callers_thread(|| std::thread::current().id());
         }
     }
 
@@ -755,14 +754,7 @@ mod tests {
     #[test]
     fn outside_the_pool_the_first_side_runs_after_a_second_that_gave_up() {
         for _ in 0..20 {
-            let raced = race(
-                &Deadline::after(Duration::from_secs(30)),
-                Duration::from_millis(1),
-                |d, _| count(5000, d),
-                |a| a.1,
-                |d| count(10, d),
-                |_| false,
-            );
+            let raced = after_a_second_that_gives_up(5000);
             assert_eq!(raced.first, (5000, true), "the first side ran: {raced:?}");
             assert!(raced.head_start.is_some());
         }
